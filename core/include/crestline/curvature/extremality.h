@@ -1,0 +1,21 @@
+#pragma once
+// Paper §3, eq. (4): discrete extremality coefficients.
+#include <vector>
+
+#include "crestline/curvature/shape_operator.h"
+
+namespace crestline {
+
+/// e_i(p) = 1/area(star p) · Σ_{T∋p} area(T) ⟨∇κ_i(T), κ⃗_i(p)⟩ for i = max, min.
+/// Pointwise, units 1/length². The sign of e_i(p) is relative to the
+/// (arbitrary) sign of dir_i(p) in Curvature; only products that also flip
+/// with it (σ_pq e(q), consistent triangle choices) are meaningful.
+struct Extremality {
+  std::vector<double> e_max;
+  std::vector<double> e_min;
+};
+
+Extremality compute_extremality(const Mesh& mesh, const Topology& topology,
+                                const Curvature& curvature);
+
+}  // namespace crestline

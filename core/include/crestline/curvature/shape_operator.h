@@ -1,0 +1,35 @@
+#pragma once
+// Paper §3: the discrete shape operator and principal curvatures.
+//
+// Conventions (used everywhere in Crestline):
+// - Triangles are counter-clockwise seen from outside; triangle normals point
+//   outwards.
+// - Curvature is positive where the surface bends away from its normal, i.e.
+//   convex: a sphere of radius r has κ_max = κ_min = +1/r. Ridges are convex
+//   crests (κ_max > 0 maximal), valleys concave creases (κ_min < 0 minimal).
+// - The vertex shape operator S(p) is an *integrated* quantity (units of
+//   length). The curvatures stored here are *pointwise* (units 1/length):
+//   κ(p) = 3 / area(star(p)) · λ(p), λ an eigenvalue of S(p).
+#include <vector>
+
+#include "crestline/mesh/mesh.h"
+#include "crestline/mesh/topology.h"
+
+namespace crestline {
+
+struct Curvature {
+  std::vector<Vec3> vertex_normals;  // unit, area-weighted average of triangle normals
+  std::vector<double> kappa_max;     // pointwise, κ_max ≥ κ_min
+  std::vector<double> kappa_min;
+  std::vector<Vec3> dir_max;         // unit eigenvectors; the sign is arbitrary
+  std::vector<Vec3> dir_min;
+  std::vector<double> star_area;     // sum of the areas of the triangles around each vertex
+};
+
+/// S(e) = H_e (ē×N_e)(ē×N_e)^T with H_e = 2|e|cos(θ_e/2) (signed: + on convex
+/// edges), S(p) = ½ Σ_{e∋p} ⟨N_p,N_e⟩ S(e). Principal curvatures are the two
+/// eigenvalues of largest magnitude, rescaled to pointwise values. Boundary
+/// edges contribute nothing (they have no dihedral angle).
+Curvature compute_curvature(const Mesh& mesh, const Topology& topology);
+
+}  // namespace crestline

@@ -1,0 +1,38 @@
+#pragma once
+// One entry for every input format. Readers parse only; welding and repair
+// happen afterwards in repair_mesh.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "crestline/mesh/mesh.h"
+
+namespace crestline::io {
+
+enum class MeshFormat { Auto, Obj, Gltf, Glb, Ply, Stl, Off };
+
+struct ReadOptions {
+  MeshFormat format = MeshFormat::Auto;  // Auto: detect from content, then extension
+  /// Refuse files that claim more than this many triangles or vertices
+  /// before allocating for them.
+  size_t max_triangles = 50'000'000;
+};
+
+/// Reads a file. Multi-file glTF resolves .bin and images relative to `path`.
+/// Throws crestline::Error with a one-sentence message naming the file.
+TriangleSoup read_mesh(const std::string& path, const ReadOptions& options = {});
+
+/// Reads from memory (the browser). `name` is used for messages and for the
+/// extension hint. External glTF resources are looked up in `companions`
+/// by their URI (may be empty).
+struct NamedBuffer {
+  std::string name;
+  std::vector<uint8_t> bytes;
+};
+TriangleSoup read_mesh_bytes(const std::string& name, const std::vector<uint8_t>& bytes,
+                             const std::vector<NamedBuffer>& companions = {},
+                             const ReadOptions& options = {});
+
+MeshFormat detect_format(const std::string& name, const uint8_t* bytes, size_t size);
+
+}  // namespace crestline::io

@@ -1,0 +1,38 @@
+#pragma once
+// Output formats for feature lines. Each returns the file's text; the
+// caller writes it (the core never touches the filesystem in a stage).
+#include <string>
+#include <vector>
+
+#include "crestline/lines/polylines.h"
+#include "crestline/pipeline.h"
+
+namespace crestline::io {
+
+/// OBJ contract: `v` lines, then `o ridges` with one `l i j k …` per
+/// polyline (closed ones repeat their first index at the end), then
+/// `o valleys` likewise.
+std::string write_lines_obj(const std::vector<Polyline>& lines);
+
+/// {"ridges":[{"points":[[x,y,z],…],"strength":s,"closed":b}…],"valleys":[…],"stats":{…}}
+std::string write_lines_json(const std::vector<Polyline>& lines, const PipelineStats& stats);
+
+/// The stats object alone (also what `crestline --stats` prints).
+std::string stats_json(const PipelineStats& stats);
+
+enum class View { Front, Back, Left, Right, Top, Bottom };
+
+struct SvgOptions {
+  View view = View::Front;
+  int width = 1000;  // pixels of the longer side; the other follows the aspect ratio
+  double stroke_width = 1.5;
+  std::string ridge_color = "#c0392b";
+  std::string valley_color = "#2471a3";
+  bool silhouette = false;
+};
+
+/// Orthographic drawing of the lines with the parts hidden by `surface` removed.
+std::string write_lines_svg(const std::vector<Polyline>& lines, const Mesh& surface,
+                            const SvgOptions& options);
+
+}  // namespace crestline::io

@@ -1,0 +1,31 @@
+#pragma once
+// The traced zero sets before they are joined into polylines: nodes on mesh
+// edges (or at trisector barycentres) and segments between them.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "crestline/mesh/mesh.h"
+
+namespace crestline {
+
+enum class LineType : uint8_t { Ridge = 0, Valley = 1 };
+
+const char* line_type_name(LineType type);  // "ridge" / "valley"
+
+struct FeatureGraph {
+  LineType type = LineType::Ridge;
+  std::vector<Vec3> points;
+  /// |κ| of the line's own principal curvature at the node (κ_max for
+  /// ridges, κ_min for valleys), pointwise, linearly interpolated.
+  std::vector<double> curvature;
+  /// Edge index for edge crossings, triangle index for trisector centres.
+  std::vector<uint32_t> source;
+  std::vector<uint8_t> trisector;  // 1 for trisector barycentres
+  /// Node per mesh edge, kNone where the zero set does not cross or no
+  /// accepted segment ends there.
+  std::vector<uint32_t> edge_node;
+  std::vector<std::array<uint32_t, 2>> segments;
+};
+
+}  // namespace crestline

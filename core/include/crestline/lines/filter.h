@@ -1,0 +1,24 @@
+#pragma once
+// Paper §4 (beginning), [OBS04]: drop weak lines by their strength ∫|κ| ds.
+#include <cstdint>
+#include <vector>
+
+#include "crestline/lines/polylines.h"
+
+namespace crestline {
+
+struct FilterOptions {
+  /// Lines with strength below this are dropped. Negative: automatic, chosen
+  /// from the distribution of strengths on the mesh itself (see filter.cpp).
+  double threshold = -1;
+};
+
+struct FilterResult {
+  std::vector<uint32_t> kept;  // indices into the input lines, in order
+  double threshold = 0;        // the threshold actually used
+};
+
+/// Only reads strengths: re-filtering never touches anything upstream.
+FilterResult filter_lines(const std::vector<Polyline>& lines, const FilterOptions& options);
+
+}  // namespace crestline

@@ -1,0 +1,50 @@
+#pragma once
+// Stage 0: from a reader's triangle soup to a mesh every later stage can trust.
+#include <string>
+#include <vector>
+
+#include "crestline/mesh/mesh.h"
+
+namespace crestline {
+
+struct RepairOptions {
+  /// Vertices closer than this fraction of the bounding-box diagonal are one
+  /// vertex (glTF/OBJ split vertices at UV and normal seams).
+  double weld_tolerance = 1e-7;
+  /// Refuse meshes with more triangles than this before allocating anything
+  /// proportional to them.
+  size_t max_triangles = 50'000'000;
+};
+
+/// What was repaired, for the user ("welded 1,113 seam vertices", …).
+struct RepairReport {
+  size_t input_vertices = 0;
+  size_t input_triangles = 0;
+  size_t welded_vertices = 0;          // vertices merged into another one
+  size_t nonfinite_triangles = 0;      // dropped: a corner had NaN/inf coordinates
+  size_t degenerate_triangles = 0;     // dropped: repeated corner or zero area
+  size_t duplicate_triangles = 0;      // dropped: same three vertices as another
+  size_t unreferenced_vertices = 0;    // dropped
+  size_t nonmanifold_edges = 0;        // cut: more than two triangles met there
+  size_t nonmanifold_vertices = 0;     // split: more than one triangle fan met there
+  size_t flipped_triangles = 0;        // reoriented to agree with their neighbours
+  size_t components = 0;               // edge-connected pieces after repair
+  size_t boundary_edges = 0;
+
+  /// One sentence per non-zero repair, for logs and the UI.
+  std::vector<std::string> notes() const;
+};
+
+struct RepairResult {
+  Mesh mesh;
+  RepairReport report;
+};
+
+/// Welds, drops degenerate/duplicate/non-finite triangles and unreferenced
+/// vertices, orients each component consistently and cuts non-manifold edges
+/// and vertices into manifold pieces. Throws Error(InvalidInput) when no
+/// usable triangle remains or an index is out of range, and Error(TooLarge)
+/// beyond options.max_triangles.
+RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options = {});
+
+}  // namespace crestline

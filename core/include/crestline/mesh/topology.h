@@ -1,0 +1,36 @@
+#pragma once
+// Edge and vertex adjacency of a manifold triangle mesh.
+#include <cstdint>
+#include <vector>
+
+#include "crestline/mesh/mesh.h"
+
+namespace crestline {
+
+constexpr uint32_t kNone = 0xffffffffu;
+
+struct Topology {
+  /// Undirected edges, each as (smaller vertex index, larger vertex index).
+  std::vector<std::array<uint32_t, 2>> edges;
+  /// The (up to) two triangles of each edge; kNone where missing (boundary).
+  std::vector<std::array<uint32_t, 2>> edge_triangles;
+  /// triangle_edges[t][k] is the edge from corner k to corner k+1 (mod 3).
+  std::vector<std::array<uint32_t, 3>> triangle_edges;
+  /// Triangles around each vertex, CSR: vertex_triangles[vertex_offsets[v] .. vertex_offsets[v+1]).
+  std::vector<uint32_t> vertex_offsets;
+  std::vector<uint32_t> vertex_triangles;
+  /// True for vertices on a boundary edge.
+  std::vector<uint8_t> boundary_vertex;
+
+  bool is_boundary_edge(uint32_t e) const { return edge_triangles[e][1] == kNone; }
+  /// The triangle across edge e from triangle t (kNone on the boundary).
+  uint32_t opposite_triangle(uint32_t e, uint32_t t) const {
+    return edge_triangles[e][0] == t ? edge_triangles[e][1] : edge_triangles[e][0];
+  }
+};
+
+/// Builds adjacency in O(n log n). Requires an edge-manifold mesh (at most two
+/// triangles per edge), which `repair_mesh` guarantees.
+Topology build_topology(const Mesh& mesh);
+
+}  // namespace crestline

@@ -1,0 +1,112 @@
+#pragma once
+// The paper's Table 1 as one object that keeps every stage's result, so a
+// changed parameter re-runs only the stages after it:
+//   mesh ─ presmooth ─► curvature ─► extremality ─► regularity ─ smoothing ─►
+//   tracing ─► singular ─► polylines ─► fairing ─► filter
+// (Fairing runs on every line before filtering so that re-thresholding is a
+// pure selection: instant.)
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "crestline/curvature/extremality_smoothing.h"
+#include "crestline/lines/fairing.h"
+#include "crestline/lines/filter.h"
+#include "crestline/lines/singular.h"
+#include "crestline/mesh/presmooth.h"
+
+namespace crestline {
+
+struct PipelineOptions {
+  PresmoothOptions presmooth;
+  ExtremalitySmoothingOptions smoothing;
+  TraceOptions trace;
+  FairingOptions fairing;
+  FilterOptions filter;
+};
+
+enum class Stage : int {
+  Presmooth = 0,
+  Curvature,
+  Extremality,
+  Regularity,
+  Smoothing,
+  Tracing,
+  Singular,
+  Polylines,
+  Fairing,
+  Filter,
+  Count
+};
+
+const char* stage_name(Stage stage);  // "presmooth", "curvature", …
+
+/// Called between and inside stages; return false to cancel (run() then
+/// throws Cancelled and the pipeline stays valid up to the last finished stage).
+using ProgressCallback = std::function<bool(Stage stage, double fraction)>;
+
+struct Cancelled : std::exception {
+  const char* what() const noexcept override { return "cancelled"; }
+};
+
+struct PipelineStats {
+  size_t vertices = 0, triangles = 0;
+  size_t singular_max = 0, singular_min = 0;
+  size_t ridges = 0, valleys = 0;  // kept lines
+  double ridge_length = 0, valley_length = 0;
+  double threshold = 0;            // used by the filter
+  double mean_edge_length = 0;
+  double seconds[static_cast<int>(Stage::Count)] = {};  // last run time per stage
+};
+
+class Pipeline {
+ public:
+  /// Takes a repaired mesh (see repair_mesh).
+  explicit Pipeline(Mesh mesh);
+
+  /// Stores options and marks the first stage whose options changed (and
+  /// everything after it) for recomputation. Cheap.
+  void set_options(const PipelineOptions& options);
+  const PipelineOptions& options() const { return options_; }
+
+  /// Recomputes the stages marked dirty.
+  void run(const ProgressCallback& progress = {});
+
+  const Mesh& input_mesh() const { return input_; }
+  /// The mesh after optional pre-smoothing: all curvature lives on it.
+  const Mesh& surface() const { return surface_; }
+  const Topology& topology() const { return topology_; }
+  const Curvature& curvature() const { return curvature_; }
+  const Extremality& raw_extremality() const { return raw_extremality_; }
+  const Extremality& extremality() const { return extremality_; }  // after smoothing
+  const Regularity& regularity() const { return regularity_; }
+  const SingularResult& traced() const { return singular_; }
+  /// Every joined, faired line, before the threshold filter.
+  const std::vector<Polyline>& all_lines() const { return faired_; }
+  const FilterResult& filtered() const { return filtered_; }
+  /// The lines that pass the filter, ridges first then valleys.
+  std::vector<Polyline> lines() const;
+  PipelineStats stats() const;
+
+ private:
+  void mark_dirty(Stage from);
+
+  PipelineOptions options_;
+  Stage first_dirty_ = Stage::Presmooth;
+  Mesh input_;
+  Mesh surface_;
+  Topology topology_;
+  double mean_edge_ = 0;
+  Curvature curvature_;
+  Extremality raw_extremality_;
+  Extremality extremality_;
+  Regularity regularity_;
+  TraceResult traced_;
+  SingularResult singular_;
+  std::vector<Polyline> joined_;
+  std::vector<Polyline> faired_;
+  FilterResult filtered_;
+  double seconds_[static_cast<int>(Stage::Count)] = {};
+};
+
+}  // namespace crestline

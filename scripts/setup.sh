@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Installs whatever is missing on a Debian bookworm machine (as root): the
+# Debian packages the build and tests need, and the npm packages of
+# package-lock.json. Fast when everything is already there.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+packages=(
+  build-essential cmake ninja-build pkg-config
+  libeigen3-dev libtinygltf-dev nlohmann-json3-dev libtinyobjloader-dev
+  libcli11-dev libdraco-dev libmeshoptimizer-dev catch2
+  emscripten nodejs npm chromium
+  clang libclang-rt-14-dev
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "setup: installing ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+# npm packages: reinstall only when the lock file changed since the last install.
+if [ ! -f node_modules/.package-lock.json ] || ! cmp -s package-lock.json node_modules/.crestline-lock; then
+  echo "setup: installing npm packages"
+  npm ci --no-audit --no-fund --loglevel=error
+  cp package-lock.json node_modules/.crestline-lock
+fi

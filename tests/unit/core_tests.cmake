@@ -1,0 +1,1 @@
+target_sources(crestline_tests PRIVATE)
