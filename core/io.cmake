@@ -1,6 +1,6 @@
-# Readers and writers. Owned by the IO work; writers are format-free text.
-add_library(crestline_io
-  src/io/write_lines.cpp
-  src/io/svg_writer.cpp
-)
-target_link_libraries(crestline_io PUBLIC crestline_core)
+# Input and output. Readers (core/readers.cmake) and writers
+# (core/writers.cmake) are separate libraries; crestline_io is both.
+include(${CMAKE_CURRENT_LIST_DIR}/readers.cmake)
+include(${CMAKE_CURRENT_LIST_DIR}/writers.cmake)
+add_library(crestline_io INTERFACE)
+target_link_libraries(crestline_io INTERFACE crestline_readers crestline_writers)

@@ -1,0 +1,6 @@
+# Line writers (OBJ, JSON, SVG): pure text, no filesystem.
+add_library(crestline_writers
+  src/io/write_lines.cpp
+  src/io/svg_writer.cpp
+)
+target_link_libraries(crestline_writers PUBLIC crestline_core)
