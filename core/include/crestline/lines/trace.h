@@ -16,6 +16,8 @@ struct TraceOptions {
 struct TraceResult {
   FeatureGraph ridges;   // zero set of e_max with conditions (5) and (6)
   FeatureGraph valleys;  // zero set of e_min with the mirrored conditions
+  /// Triangles left out near the boundary (see TraceOptions::boundary_rings).
+  std::vector<uint8_t> excluded;
 };
 
 TraceResult trace_regular_triangles(const Mesh& mesh, const Topology& topology,

@@ -33,4 +33,8 @@ struct Topology {
 /// triangles per edge), which `repair_mesh` guarantees.
 Topology build_topology(const Mesh& mesh);
 
+/// Ring distance of each vertex to the mesh boundary (0 on it), capped at
+/// `max_rings`: vertices farther away (or on closed components) get max_rings.
+std::vector<uint32_t> boundary_ring_distance(const Mesh& mesh, const Topology& topology, uint32_t max_rings);
+
 }  // namespace crestline

@@ -1,0 +1,32 @@
+#pragma once
+// The one place Crestline solves linear systems. Every system it solves is
+// M + t·L with a lumped mass matrix M and a (sign-corrected) cotan
+// Laplacian with non-negative weights, hence symmetric positive definite and
+// well conditioned for time steps of a few squared edge lengths: conjugate
+// gradients beat a factorization there, in time and memory.
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <vector>
+
+namespace crestline {
+
+using SparseMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+using Triplets = std::vector<Eigen::Triplet<double>>;
+
+class SpdSolver {
+ public:
+  /// Takes the matrix; throws Error(Numerical) unless its diagonal is
+  /// positive and finite.
+  void compute(SparseMatrix matrix);
+  /// Solves matrix · x = b starting from `guess`; throws Error(Numerical)
+  /// when the iteration does not converge.
+  Eigen::VectorXd solve(const Eigen::VectorXd& b, const Eigen::VectorXd& guess) const;
+
+  double tolerance = 1e-10;  // relative residual
+  int max_iterations = 2000;
+
+ private:
+  SparseMatrix matrix_;
+};
+
+}  // namespace crestline

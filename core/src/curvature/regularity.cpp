@@ -1,0 +1,29 @@
+#include "crestline/curvature/regularity.h"
+
+namespace crestline {
+
+bool consistent_signs(const Vec3& d0, const Vec3& d1, const Vec3& d2, std::array<double, 3>& signs) {
+  const double a = d0.dot(d1), b = d0.dot(d2);
+  signs = {1.0, a >= 0 ? 1.0 : -1.0, b >= 0 ? 1.0 : -1.0};
+  // Orienting d1 and d2 towards d0 is the only candidate (up to a global
+  // flip); the triangle is regular when it makes them agree with each other.
+  return a != 0 && b != 0 && signs[1] * signs[2] * d1.dot(d2) > 0;
+}
+
+Regularity classify_triangles(const Mesh& mesh, const Curvature& curvature) {
+  Regularity r;
+  const size_t nt = mesh.triangles.size();
+  r.regular_max.resize(nt);
+  r.regular_min.resize(nt);
+  std::array<double, 3> signs;
+  for (size_t t = 0; t < nt; ++t) {
+    const Triangle& f = mesh.triangles[t];
+    r.regular_max[t] = consistent_signs(curvature.dir_max[f[0]], curvature.dir_max[f[1]], curvature.dir_max[f[2]], signs);
+    r.regular_min[t] = consistent_signs(curvature.dir_min[f[0]], curvature.dir_min[f[1]], curvature.dir_min[f[2]], signs);
+    r.singular_max += !r.regular_max[t];
+    r.singular_min += !r.regular_min[t];
+  }
+  return r;
+}
+
+}  // namespace crestline

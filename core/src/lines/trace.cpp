@@ -1,0 +1,101 @@
+#include "crestline/lines/trace.h"
+
+#include <cmath>
+#include <limits>
+
+namespace crestline {
+namespace {
+
+// Zero is treated as a tiny positive value so that sign flips stay exact and
+// every edge crossing is decided the same way from both of its triangles.
+double nonzero(double v) { return v != 0 ? v : std::numeric_limits<double>::denorm_min(); }
+
+struct Field {
+  LineType type;
+  const std::vector<double>& e;
+  const std::vector<Vec3>& dir;
+  const std::vector<double>& kappa_own;    // κ_max for ridges
+  const std::vector<double>& kappa_other;  // κ_min for ridges
+  const std::vector<uint8_t>& regular;
+};
+
+// The zero of e on edge `edge`, from its lower-index end with the other end's
+// sign made consistent by σ = sign⟨κ⃗(u), κ⃗(v)⟩; shared by both triangles.
+uint32_t crossing_node(FeatureGraph& graph, const Mesh& mesh, const Topology& topology, const Field& field,
+                       uint32_t edge) {
+  uint32_t& node = graph.edge_node[edge];
+  if (node != kNone) return node;
+  const uint32_t u = topology.edges[edge][0], v = topology.edges[edge][1];
+  const double sigma = field.dir[u].dot(field.dir[v]) >= 0 ? 1.0 : -1.0;
+  const double a = nonzero(field.e[u]), b = sigma * nonzero(field.e[v]);
+  const double t = a / (a - b);
+  node = static_cast<uint32_t>(graph.points.size());
+  graph.points.push_back((1 - t) * mesh.positions[u] + t * mesh.positions[v]);
+  graph.curvature.push_back(std::abs((1 - t) * field.kappa_own[u] + t * field.kappa_own[v]));
+  graph.source.push_back(edge);
+  graph.trisector.push_back(0);
+  return node;
+}
+
+void trace_field(const Mesh& mesh, const Topology& topology, const Field& field,
+                 const std::vector<uint8_t>& excluded, FeatureGraph& graph) {
+  graph.type = field.type;
+  graph.edge_node.assign(topology.edges.size(), kNone);
+  const std::vector<Vec3>& x = mesh.positions;
+  std::array<double, 3> s;
+  for (uint32_t t = 0; t < mesh.triangles.size(); ++t) {
+    if (excluded[t] || !field.regular[t]) continue;
+    const Triangle& f = mesh.triangles[t];
+    consistent_signs(field.dir[f[0]], field.dir[f[1]], field.dir[f[2]], s);
+    const double v[3] = {s[0] * nonzero(field.e[f[0]]), s[1] * nonzero(field.e[f[1]]), s[2] * nonzero(field.e[f[2]])};
+    int crossed[2], n = 0;
+    for (int k = 0; k < 3; ++k)
+      if ((v[k] > 0) != (v[(k + 1) % 3] > 0)) crossed[n++] = k;
+    if (n != 2) continue;
+
+    // Conditions (5) and (6) on the consistently signed linear function.
+    const Vec3 normal = (x[f[1]] - x[f[0]]).cross(x[f[2]] - x[f[0]]);
+    const double twice_area = normal.norm();
+    if (!(twice_area > 0)) continue;
+    Vec3 gradient = Vec3::Zero(), direction = Vec3::Zero();
+    double own = 0, other = 0;
+    for (int k = 0; k < 3; ++k) {
+      gradient += v[k] * (normal / twice_area).cross(x[f[(k + 2) % 3]] - x[f[(k + 1) % 3]]) / twice_area;
+      direction += s[k] * field.dir[f[k]];
+      own += field.kappa_own[f[k]];
+      other += field.kappa_other[f[k]];
+    }
+    const double slope = gradient.dot(direction);
+    const bool extremum = field.type == LineType::Ridge ? slope < 0 : slope > 0;
+    if (!extremum || !(std::abs(own) > std::abs(other))) continue;
+
+    const uint32_t a = crossing_node(graph, mesh, topology, field, topology.triangle_edges[t][crossed[0]]);
+    const uint32_t b = crossing_node(graph, mesh, topology, field, topology.triangle_edges[t][crossed[1]]);
+    graph.segments.push_back({a, b});
+  }
+}
+
+}  // namespace
+
+const char* line_type_name(LineType type) { return type == LineType::Ridge ? "ridge" : "valley"; }
+
+TraceResult trace_regular_triangles(const Mesh& mesh, const Topology& topology, const Curvature& curvature,
+                                    const Extremality& extremality, const Regularity& regularity,
+                                    const TraceOptions& options) {
+  TraceResult out;
+  const uint32_t rings = options.boundary_rings > 0 ? static_cast<uint32_t>(options.boundary_rings) : 0;
+  const std::vector<uint32_t> distance = boundary_ring_distance(mesh, topology, rings);
+  out.excluded.assign(mesh.triangles.size(), 0);
+  for (size_t t = 0; t < mesh.triangles.size(); ++t)
+    for (uint32_t v : mesh.triangles[t]) out.excluded[t] |= distance[v] < rings;
+
+  const Field ridge{LineType::Ridge, extremality.e_max, curvature.dir_max, curvature.kappa_max, curvature.kappa_min,
+                    regularity.regular_max};
+  const Field valley{LineType::Valley, extremality.e_min, curvature.dir_min, curvature.kappa_min, curvature.kappa_max,
+                     regularity.regular_min};
+  trace_field(mesh, topology, ridge, out.excluded, out.ridges);
+  trace_field(mesh, topology, valley, out.excluded, out.valleys);
+  return out;
+}
+
+}  // namespace crestline

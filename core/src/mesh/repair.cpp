@@ -1,0 +1,360 @@
+#include "crestline/mesh/repair.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <string>
+#include <unordered_map>
+
+#include "crestline/error.h"
+#include "crestline/mesh/topology.h"
+
+namespace crestline {
+namespace {
+
+std::string count_text(size_t n, const char* singular, const char* plural) {
+  return std::to_string(n) + " " + (n == 1 ? singular : plural);
+}
+
+void check_soup(const TriangleSoup& soup, const RepairOptions& options) {
+  if (soup.positions.size() % 3 != 0)
+    throw Error(ErrorKind::InvalidInput, "the vertex array length is not a multiple of 3.");
+  if (soup.indices.size() % 3 != 0)
+    throw Error(ErrorKind::InvalidInput, "the index array length is not a multiple of 3.");
+  if (soup.triangle_count() > options.max_triangles)
+    throw Error(ErrorKind::TooLarge, "the mesh has " + std::to_string(soup.triangle_count()) +
+                                         " triangles, more than the limit of " +
+                                         std::to_string(options.max_triangles) + ".");
+  if (soup.triangle_count() == 0) throw Error(ErrorKind::InvalidInput, "the mesh contains no triangles.");
+  const size_t nv = soup.vertex_count();
+  for (size_t i = 0; i < soup.indices.size(); ++i)
+    if (soup.indices[i] >= nv)
+      throw Error(ErrorKind::InvalidInput, "triangle " + std::to_string(i / 3) + " refers to vertex " +
+                                               std::to_string(soup.indices[i]) + " but there are only " +
+                                               std::to_string(nv) + " vertices.");
+}
+
+struct Union {
+  std::vector<uint32_t> parent;
+  explicit Union(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
+  uint32_t find(uint32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  }
+  void join(uint32_t a, uint32_t b) {
+    a = find(a), b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  }
+};
+
+// Merges vertices closer than `tolerance` with a hash grid of that cell size;
+// the first vertex of a cluster (in input order) represents it.
+std::vector<uint32_t> weld(const std::vector<Vec3>& points, const std::vector<uint8_t>& finite, const Vec3& lo,
+                           double tolerance, size_t& welded) {
+  std::vector<uint32_t> representative(points.size());
+  std::iota(representative.begin(), representative.end(), 0u);
+  if (!(tolerance > 0)) return representative;
+  const double inv = 1.0 / tolerance;
+  auto cell_key = [](int64_t x, int64_t y, int64_t z) {
+    return static_cast<uint64_t>(x) * 73856093u ^ static_cast<uint64_t>(y) * 19349663u ^
+           static_cast<uint64_t>(z) * 83492791u;
+  };
+  std::unordered_multimap<uint64_t, uint32_t> grid;
+  grid.reserve(points.size());
+  const double tol2 = tolerance * tolerance;
+  for (uint32_t i = 0; i < points.size(); ++i) {
+    if (!finite[i]) continue;
+    const Vec3 q = (points[i] - lo) * inv;
+    const int64_t cx = static_cast<int64_t>(std::floor(q.x())), cy = static_cast<int64_t>(std::floor(q.y())),
+                  cz = static_cast<int64_t>(std::floor(q.z()));
+    uint32_t found = i;
+    for (int64_t dx = -1; dx <= 1 && found == i; ++dx)
+      for (int64_t dy = -1; dy <= 1 && found == i; ++dy)
+        for (int64_t dz = -1; dz <= 1 && found == i; ++dz) {
+          auto range = grid.equal_range(cell_key(cx + dx, cy + dy, cz + dz));
+          for (auto it = range.first; it != range.second; ++it)
+            if ((points[it->second] - points[i]).squaredNorm() <= tol2) {
+              found = it->second;
+              break;
+            }
+        }
+    if (found == i)
+      grid.emplace(cell_key(cx, cy, cz), i);
+    else {
+      representative[i] = found;
+      ++welded;
+    }
+  }
+  return representative;
+}
+
+// Orients triangles consistently across shared edges, component by
+// component; edges that cannot agree (non-orientable surfaces) are cut.
+// Returns per-corner "edge is cut" flags and the component of each triangle.
+struct Orientation {
+  std::vector<uint8_t> cut;  // 3 per triangle, edge k = corners k, k+1
+  std::vector<uint32_t> component;
+  size_t components = 0;
+};
+
+Orientation orient(std::vector<Triangle>& tris, const std::vector<Vec3>& points, RepairReport& report) {
+  const size_t nt = tris.size();
+  Orientation out;
+  out.cut.assign(3 * nt, 0);
+  out.component.assign(nt, kNone);
+
+  // Group half-edges by undirected edge.
+  std::vector<std::pair<uint64_t, uint32_t>> half(3 * nt);
+  for (uint32_t t = 0; t < nt; ++t)
+    for (uint32_t k = 0; k < 3; ++k) {
+      uint64_t a = tris[t][k], b = tris[t][(k + 1) % 3];
+      if (a > b) std::swap(a, b);
+      half[3 * t + k] = {(a << 32) | b, 3 * t + k};
+    }
+  std::sort(half.begin(), half.end());
+  std::vector<uint32_t> partner(3 * nt, kNone);  // the corner across a manifold edge
+  for (size_t i = 0; i < half.size();) {
+    size_t j = i;
+    while (j < half.size() && half[j].first == half[i].first) ++j;
+    if (j - i == 2) {
+      partner[half[i].second] = half[i + 1].second;
+      partner[half[i + 1].second] = half[i].second;
+    } else if (j - i > 2) {
+      ++report.nonmanifold_edges;
+      for (size_t h = i; h < j; ++h) out.cut[half[h].second] = 1;
+    }
+    i = j;
+  }
+
+  std::vector<uint8_t> flipped(nt, 0);
+  std::vector<uint32_t> stack, members;
+  auto directed = [&](uint32_t corner, bool flip) {
+    const Triangle& t = tris[corner / 3];
+    uint32_t a = t[corner % 3], b = t[(corner % 3 + 1) % 3];
+    return flip ? std::make_pair(b, a) : std::make_pair(a, b);
+  };
+  for (uint32_t seed = 0; seed < nt; ++seed) {
+    if (out.component[seed] != kNone) continue;
+    const uint32_t c = static_cast<uint32_t>(out.components++);
+    members.clear();
+    stack.assign(1, seed);
+    out.component[seed] = c;
+    while (!stack.empty()) {
+      const uint32_t t = stack.back();
+      stack.pop_back();
+      members.push_back(t);
+      for (uint32_t k = 0; k < 3; ++k) {
+        const uint32_t corner = 3 * t + k, other = partner[corner];
+        if (other == kNone || out.cut[corner]) continue;
+        const uint32_t u = other / 3;
+        const auto mine = directed(corner, flipped[t]);
+        if (out.component[u] == kNone) {
+          // Neighbours agree when they traverse the shared edge in opposite directions.
+          flipped[u] = directed(other, false) == mine;
+          out.component[u] = c;
+          stack.push_back(u);
+        } else if (directed(other, flipped[u]) == mine) {
+          out.cut[corner] = out.cut[other] = 1;  // non-orientable here
+        }
+      }
+    }
+    // Keep the orientation most of the file agreed on; closed components then
+    // face outwards (positive signed volume).
+    size_t nflip = 0;
+    for (uint32_t t : members) nflip += flipped[t];
+    bool invert = 2 * nflip > members.size();
+    bool closed = true;
+    for (uint32_t t : members)
+      for (uint32_t k = 0; k < 3; ++k) closed = closed && partner[3 * t + k] != kNone && !out.cut[3 * t + k];
+    if (closed) {
+      double volume = 0;
+      for (uint32_t t : members) {
+        const Triangle& f = tris[t];
+        const double v = points[f[0]].dot(points[f[1]].cross(points[f[2]]));
+        volume += (flipped[t] != invert) ? -v : v;
+      }
+      invert = invert != (volume < 0);
+    }
+    for (uint32_t t : members)
+      if (flipped[t] != invert) {
+        std::swap(tris[t][1], tris[t][2]);
+        ++report.flipped_triangles;
+        // Corner k of the swapped triangle: edges (0,2),(2,1),(1,0) — remap cut flags.
+        uint8_t* cut = &out.cut[3 * t];
+        std::swap(cut[0], cut[2]);
+      }
+  }
+  return out;
+}
+
+// Splits every vertex whose triangles form several fans (connected through
+// uncut edges around it) into one vertex per fan.
+void split_fans(std::vector<Triangle>& tris, std::vector<Vec3>& points, const std::vector<uint8_t>& cut,
+                RepairReport& report) {
+  const size_t nv = points.size(), nt = tris.size();
+  std::vector<uint32_t> offsets(nv + 1, 0), corners(3 * nt);
+  for (const Triangle& t : tris)
+    for (uint32_t v : t) ++offsets[v + 1];
+  for (size_t v = 0; v < nv; ++v) offsets[v + 1] += offsets[v];
+  std::vector<uint32_t> fill(offsets.begin(), offsets.end() - 1);
+  for (uint32_t t = 0; t < nt; ++t)
+    for (uint32_t k = 0; k < 3; ++k) corners[fill[tris[t][k]]++] = 3 * t + k;
+
+  std::vector<std::pair<uint32_t, uint32_t>> ends;  // (other end of an uncut edge at v, local triangle)
+  std::vector<uint32_t> fan_of;
+  for (uint32_t v = 0; v < nv; ++v) {
+    const uint32_t begin = offsets[v], n = offsets[v + 1] - begin;
+    if (n < 2) continue;
+    // Two triangles at v are in one fan when they share an uncut edge at v.
+    ends.clear();
+    for (uint32_t i = 0; i < n; ++i) {
+      const uint32_t corner = corners[begin + i], t = corner / 3, k = corner % 3;
+      if (!cut[3 * t + k]) ends.emplace_back(tris[t][(k + 1) % 3], i);
+      if (!cut[3 * t + (k + 2) % 3]) ends.emplace_back(tris[t][(k + 2) % 3], i);
+    }
+    std::sort(ends.begin(), ends.end());
+    Union fans(n);
+    for (size_t j = 1; j < ends.size(); ++j)
+      if (ends[j].first == ends[j - 1].first) fans.join(ends[j].second, ends[j - 1].second);
+    // The fan of the first triangle keeps v; every other fan gets a copy.
+    fan_of.assign(n, kNone);
+    size_t fan_count = 0;
+    for (uint32_t i = 0; i < n; ++i) {
+      const uint32_t root = fans.find(i);
+      if (fan_of[root] == kNone) {
+        fan_of[root] = fan_count++ == 0 ? v : static_cast<uint32_t>(points.size());
+        if (fan_of[root] != v) {
+          const Vec3 copy = points[v];
+          points.push_back(copy);
+        }
+      }
+      const uint32_t corner = corners[begin + i];
+      tris[corner / 3][corner % 3] = fan_of[root];
+    }
+    if (fan_count > 1) ++report.nonmanifold_vertices;
+  }
+}
+
+}  // namespace
+
+RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options) {
+  check_soup(soup, options);
+  RepairResult result;
+  RepairReport& report = result.report;
+  report.input_vertices = soup.vertex_count();
+  report.input_triangles = soup.triangle_count();
+
+  const size_t nv = soup.vertex_count();
+  std::vector<Vec3> points(nv);
+  std::vector<uint8_t> finite(nv);
+  Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
+  for (size_t i = 0; i < nv; ++i) {
+    points[i] = Vec3(soup.positions[3 * i], soup.positions[3 * i + 1], soup.positions[3 * i + 2]);
+    finite[i] = points[i].allFinite();
+  }
+  for (uint32_t v : soup.indices)
+    if (finite[v]) lo = lo.cwiseMin(points[v]), hi = hi.cwiseMax(points[v]);
+  const double diagonal = (hi - lo).norm();
+  if (!std::isfinite(diagonal)) {
+    if (!lo.allFinite()) throw Error(ErrorKind::InvalidInput, "no vertex of any triangle has finite coordinates.");
+    throw Error(ErrorKind::InvalidInput, "the coordinates are too large to compute with (the bounding box overflows).");
+  }
+
+  const std::vector<uint32_t> rep = weld(points, finite, lo, options.weld_tolerance * diagonal, report.welded_vertices);
+
+  // Triangles on welded vertices; drop non-finite, degenerate and duplicates.
+  std::vector<Triangle> tris;
+  tris.reserve(soup.triangle_count());
+  const double min_double_area = 1e-14 * diagonal * diagonal;
+  for (size_t t = 0; t < soup.triangle_count(); ++t) {
+    Triangle f{rep[soup.indices[3 * t]], rep[soup.indices[3 * t + 1]], rep[soup.indices[3 * t + 2]]};
+    if (!finite[f[0]] || !finite[f[1]] || !finite[f[2]]) {
+      ++report.nonfinite_triangles;
+      continue;
+    }
+    if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2] ||
+        (points[f[1]] - points[f[0]]).cross(points[f[2]] - points[f[0]]).norm() <= min_double_area) {
+      ++report.degenerate_triangles;
+      continue;
+    }
+    tris.push_back(f);
+  }
+  {
+    std::vector<std::pair<Triangle, uint32_t>> keyed(tris.size());
+    for (uint32_t t = 0; t < tris.size(); ++t) {
+      Triangle k = tris[t];
+      std::sort(k.begin(), k.end());
+      keyed[t] = {k, t};
+    }
+    std::sort(keyed.begin(), keyed.end());
+    std::vector<uint8_t> keep(tris.size(), 1);
+    for (size_t i = 1; i < keyed.size(); ++i)
+      if (keyed[i].first == keyed[i - 1].first) keep[keyed[i].second] = 0, ++report.duplicate_triangles;
+    size_t n = 0;
+    for (size_t t = 0; t < tris.size(); ++t)
+      if (keep[t]) tris[n++] = tris[t];
+    tris.resize(n);
+  }
+  if (tris.empty())
+    throw Error(ErrorKind::InvalidInput, "no usable triangle remains (all are degenerate or have non-finite coordinates).");
+
+  Orientation orientation = orient(tris, points, report);
+  report.components = orientation.components;
+  split_fans(tris, points, orientation.cut, report);
+
+  // Compact: keep referenced vertices in first-use order of the input.
+  std::vector<uint32_t> index(points.size(), kNone);
+  uint32_t next = 0;
+  std::vector<uint8_t> used(points.size(), 0);
+  for (const Triangle& t : tris)
+    for (uint32_t v : t) used[v] = 1;
+  for (size_t v = 0; v < points.size(); ++v)
+    if (used[v]) index[v] = next++;
+  size_t input_used = 0;
+  for (size_t v = 0; v < nv; ++v) input_used += used[v];
+  report.unreferenced_vertices = nv - report.welded_vertices - input_used;
+  result.mesh.positions.resize(next);
+  for (size_t v = 0; v < points.size(); ++v)
+    if (used[v]) result.mesh.positions[index[v]] = points[v];
+  result.mesh.triangles = std::move(tris);
+  for (Triangle& t : result.mesh.triangles)
+    for (uint32_t& v : t) v = index[v];
+
+  // Boundary edges of the repaired mesh: undirected edges used once.
+  std::vector<uint64_t> keys;
+  keys.reserve(3 * result.mesh.triangles.size());
+  for (const Triangle& t : result.mesh.triangles)
+    for (int k = 0; k < 3; ++k) {
+      uint64_t a = t[k], b = t[(k + 1) % 3];
+      keys.push_back(a < b ? (a << 32 | b) : (b << 32 | a));
+    }
+  std::sort(keys.begin(), keys.end());
+  for (size_t i = 0; i < keys.size();) {
+    size_t j = i;
+    while (j < keys.size() && keys[j] == keys[i]) ++j;
+    if (j - i == 1) ++report.boundary_edges;
+    if (j - i > 2)
+      throw Error(ErrorKind::InvalidInput, "the mesh has an edge that could not be made manifold.");
+    i = j;
+  }
+  return result;
+}
+
+std::vector<std::string> RepairReport::notes() const {
+  std::vector<std::string> out;
+  auto add = [&](size_t n, const std::string& text) {
+    if (n) out.push_back(text);
+  };
+  add(welded_vertices, "Welded " + count_text(welded_vertices, "duplicate vertex", "duplicate vertices") + ".");
+  add(nonfinite_triangles, "Dropped " + count_text(nonfinite_triangles, "triangle", "triangles") +
+                               " with non-finite coordinates.");
+  add(degenerate_triangles, "Dropped " + count_text(degenerate_triangles, "degenerate triangle", "degenerate triangles") + ".");
+  add(duplicate_triangles, "Dropped " + count_text(duplicate_triangles, "duplicate triangle", "duplicate triangles") + ".");
+  add(unreferenced_vertices, "Dropped " + count_text(unreferenced_vertices, "unreferenced vertex", "unreferenced vertices") + ".");
+  add(nonmanifold_edges, "Cut " + count_text(nonmanifold_edges, "non-manifold edge", "non-manifold edges") + ".");
+  add(nonmanifold_vertices, "Split " + count_text(nonmanifold_vertices, "non-manifold vertex", "non-manifold vertices") + ".");
+  add(flipped_triangles, "Reoriented " + count_text(flipped_triangles, "triangle", "triangles") + " to agree with their neighbours.");
+  return out;
+}
+
+}  // namespace crestline
