@@ -1,0 +1,318 @@
+// Orthographic SVG drawing of feature lines with hidden parts removed.
+//
+// The surface is rasterized into a depth buffer at twice the drawing's
+// resolution; each polyline is then sampled (at least one sample per depth
+// pixel) and split into runs of visible samples. Cost: linear in the number
+// of triangles plus the covered pixels plus the projected line length.
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "crestline/io/write_lines.h"
+#include "crestline/mesh/topology.h"
+
+namespace crestline::io {
+namespace {
+
+/// right × up = toward (toward the viewer); depth grows toward the viewer.
+struct Camera {
+  Vec3 right, up, toward;
+};
+
+Camera camera_for(View view) {
+  const Vec3 x = Vec3::UnitX(), y = Vec3::UnitY(), z = Vec3::UnitZ();
+  switch (view) {
+    case View::Back: return {-x, y, -z};    // looking along +z
+    case View::Left: return {z, y, -x};     // from -x, looking along +x
+    case View::Right: return {-z, y, x};    // from +x, looking along -x
+    case View::Top: return {x, -z, y};      // from +y, looking down, front at the bottom
+    case View::Bottom: return {x, z, -y};   // from -y, looking up
+    case View::Front:
+    default: return {x, y, z};              // looking along -z, +y up
+  }
+}
+
+constexpr int kSupersample = 2;       // depth pixels per drawing pixel
+constexpr double kMarginFraction = 0.02;
+
+/// Maps world points to drawing coordinates (x right, y down) and depth.
+struct Projection {
+  Camera camera;
+  double u_min = 0, v_max = 0, scale = 1, margin = 0;
+  double width = 0, height = 0;  // of the drawing, in drawing pixels
+
+  Vec3 operator()(const Vec3& p) const {
+    return {(p.dot(camera.right) - u_min) * scale + margin,
+            (v_max - p.dot(camera.up)) * scale + margin, p.dot(camera.toward)};
+  }
+};
+
+Projection make_projection(const std::vector<Polyline>& lines, const Mesh& surface,
+                           const SvgOptions& options) {
+  Projection proj;
+  proj.camera = camera_for(options.view);
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  double u_min = inf, u_max = -inf, v_min = inf, v_max = -inf;
+  auto extend = [&](const Vec3& p) {
+    const double u = p.dot(proj.camera.right), v = p.dot(proj.camera.up);
+    if (!std::isfinite(u) || !std::isfinite(v)) return;
+    u_min = std::min(u_min, u), u_max = std::max(u_max, u);
+    v_min = std::min(v_min, v), v_max = std::max(v_max, v);
+  };
+  for (const Vec3& p : surface.positions) extend(p);
+  for (const Polyline& line : lines)
+    for (const Vec3& p : line.points) extend(p);
+  if (u_min > u_max) u_min = u_max = v_min = v_max = 0;  // nothing to draw
+
+  const double longer = std::max(1, options.width);
+  proj.margin = kMarginFraction * longer;
+  const double extent = std::max(u_max - u_min, v_max - v_min);
+  proj.scale = extent > 0 ? (longer - 2 * proj.margin) / extent : 1.0;
+  proj.u_min = u_min;
+  proj.v_max = v_max;
+  proj.width = (u_max - u_min) * proj.scale + 2 * proj.margin;
+  proj.height = (v_max - v_min) * proj.scale + 2 * proj.margin;
+  return proj;
+}
+
+/// Largest depth (nearest surface) per depth pixel; -inf where empty.
+class DepthBuffer {
+ public:
+  DepthBuffer(const Mesh& surface, const Projection& proj) {
+    width_ = static_cast<int>(std::ceil(proj.width * kSupersample));
+    height_ = static_cast<int>(std::ceil(proj.height * kSupersample));
+    depth_.assign(static_cast<size_t>(width_) * height_, -std::numeric_limits<float>::infinity());
+    std::vector<Vec3> raster(surface.positions.size());
+    double d_min = std::numeric_limits<double>::infinity(), d_max = -d_min;
+    for (size_t v = 0; v < raster.size(); ++v) {
+      raster[v] = proj(surface.positions[v]);
+      raster[v].x() *= kSupersample;
+      raster[v].y() *= kSupersample;
+      d_min = std::min(d_min, raster[v].z());
+      d_max = std::max(d_max, raster[v].z());
+    }
+    for (const Triangle& t : surface.triangles) fill(raster[t[0]], raster[t[1]], raster[t[2]]);
+    // The lines lie ON the surface: accept samples up to ~2 depth pixels (in
+    // world units) plus a small fraction of the depth range behind it.
+    const double range = d_max > d_min ? d_max - d_min : 0.0;
+    tolerance_ = 2.0 / (proj.scale * kSupersample) + 1e-3 * range;
+  }
+
+  /// `q` in drawing coordinates with depth. Compared with the farthest of the
+  /// four depth pixels around it, so a point on a steep but visible surface is
+  /// not hidden by the surface's own slope between pixel centres.
+  bool visible(const Vec3& q) const {
+    const double x = q.x() * kSupersample - 0.5, y = q.y() * kSupersample - 0.5;
+    const int i0 = static_cast<int>(std::floor(x)), j0 = static_cast<int>(std::floor(y));
+    float farthest = std::numeric_limits<float>::infinity();
+    for (int j = j0; j <= j0 + 1; ++j)
+      for (int i = i0; i <= i0 + 1; ++i) {
+        if (i < 0 || j < 0 || i >= width_ || j >= height_) return true;
+        farthest = std::min(farthest, depth_[static_cast<size_t>(j) * width_ + i]);
+      }
+    return q.z() >= farthest - tolerance_;
+  }
+
+ private:
+  void fill(const Vec3& a, const Vec3& b, const Vec3& c) {
+    const double area = (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
+    if (!(std::abs(area) > 0)) return;  // edge-on (or NaN): its neighbours cover it
+    const int i_lo = std::max(0, static_cast<int>(std::ceil(std::min({a.x(), b.x(), c.x()}) - 0.5)));
+    const int i_hi = std::min(width_ - 1, static_cast<int>(std::floor(std::max({a.x(), b.x(), c.x()}) - 0.5)));
+    const int j_lo = std::max(0, static_cast<int>(std::ceil(std::min({a.y(), b.y(), c.y()}) - 0.5)));
+    const int j_hi = std::min(height_ - 1, static_cast<int>(std::floor(std::max({a.y(), b.y(), c.y()}) - 0.5)));
+    // Slightly inclusive edge test so shared edges leave no cracks.
+    const double eps = -1e-9;
+    const double inv = 1.0 / area;
+    for (int j = j_lo; j <= j_hi; ++j) {
+      const double py = j + 0.5;
+      for (int i = i_lo; i <= i_hi; ++i) {
+        const double px = i + 0.5;
+        const double w0 = ((b.x() - px) * (c.y() - py) - (b.y() - py) * (c.x() - px)) * inv;
+        const double w1 = ((c.x() - px) * (a.y() - py) - (c.y() - py) * (a.x() - px)) * inv;
+        const double w2 = 1.0 - w0 - w1;
+        if (w0 < eps || w1 < eps || w2 < eps) continue;
+        const float d = static_cast<float>(w0 * a.z() + w1 * b.z() + w2 * c.z());
+        float& slot = depth_[static_cast<size_t>(j) * width_ + i];
+        slot = std::max(slot, d);
+      }
+    }
+  }
+
+  int width_ = 0, height_ = 0;
+  std::vector<float> depth_;
+  double tolerance_ = 0;
+};
+
+/// A visible piece of a line, in drawing coordinates.
+struct Run {
+  std::vector<Vec3> points;
+  bool closed = false;
+};
+
+/// Splits a projected polyline into visible runs. Vertices are kept; inside a
+/// segment only the samples where visibility changes become points.
+std::vector<Run> visible_runs(const std::vector<Vec3>& projected, bool closed,
+                              const DepthBuffer& depth) {
+  std::vector<Run> runs;
+  const size_t n = projected.size();
+  if (n < 2) return runs;
+  const size_t segments = closed ? n : n - 1;
+  Run current;
+  bool open = false;        // a run is being built
+  bool pending = false;     // `last` is a visible sample not yet in the run
+  Vec3 last;
+  bool any_hidden = false;
+  auto finish = [&] {
+    if (pending) current.points.push_back(last);
+    if (current.points.size() >= 2) runs.push_back(std::move(current));
+    current = Run{};
+    open = pending = false;
+  };
+  for (size_t s = 0; s < segments; ++s) {
+    const Vec3& a = projected[s];
+    const Vec3& b = projected[(s + 1) % n];
+    const double pixels = std::hypot(b.x() - a.x(), b.y() - a.y()) * kSupersample;
+    const int samples = std::max(1, static_cast<int>(std::ceil(pixels)));
+    for (int k = s == 0 ? 0 : 1; k <= samples; ++k) {
+      const double t = static_cast<double>(k) / samples;
+      const Vec3 q = k == samples ? b : Vec3(a + t * (b - a));
+      if (!depth.visible(q)) {
+        any_hidden = true;
+        if (open) finish();
+        continue;
+      }
+      if (!open) {
+        current.points.push_back(q);
+        open = true;
+        pending = false;
+      } else if (k == samples) {
+        current.points.push_back(q);  // a line vertex: always kept
+        pending = false;
+      } else {
+        last = q;
+        pending = true;
+      }
+    }
+  }
+  const bool reaches_end = open;
+  finish();
+  if (closed && !any_hidden && runs.size() == 1) {
+    // Visible all round: the last point repeats the first.
+    runs[0].points.pop_back();
+    runs[0].closed = true;
+  } else if (closed && reaches_end && runs.size() >= 2 && runs[0].points[0] == projected[0]) {
+    // The last run continues into the first one across the start vertex.
+    Run& tail = runs.back();
+    tail.points.insert(tail.points.end(), runs[0].points.begin() + 1, runs[0].points.end());
+    runs.erase(runs.begin());
+  }
+  return runs;
+}
+
+void append_coord(std::string& out, double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.2f", value);
+  out += buffer;
+}
+
+void append_path_data(std::string& out, const Run& run) {
+  for (size_t k = 0; k < run.points.size(); ++k) {
+    out += k == 0 ? "M" : (k == 1 ? " L" : " ");
+    append_coord(out, run.points[k].x());
+    out += ',';
+    append_coord(out, run.points[k].y());
+  }
+  if (run.closed) out += " Z";
+}
+
+void open_group(std::string& out, const char* id, const std::string& color, double width) {
+  out += "<g id=\"";
+  out += id;
+  out += "\" fill=\"none\" stroke=\"";
+  out += color;
+  out += "\" stroke-width=\"";
+  append_coord(out, width);
+  out += "\" stroke-linecap=\"round\" stroke-linejoin=\"round\">\n";
+}
+
+/// Edges where the surface turns away from the viewer, and boundary edges.
+std::vector<Run> silhouette_runs(const Mesh& surface, const Projection& proj,
+                                 const DepthBuffer& depth) {
+  std::vector<Run> runs;
+  if (surface.triangles.empty()) return runs;
+  const Topology topology = build_topology(surface);
+  std::vector<uint8_t> front(surface.triangles.size());
+  for (size_t t = 0; t < surface.triangles.size(); ++t) {
+    const Triangle& tri = surface.triangles[t];
+    const Vec3& a = surface.positions[tri[0]];
+    const Vec3 normal = (surface.positions[tri[1]] - a).cross(surface.positions[tri[2]] - a);
+    front[t] = normal.dot(proj.camera.toward) > 0;
+  }
+  for (size_t e = 0; e < topology.edges.size(); ++e) {
+    const auto& [t0, t1] = topology.edge_triangles[e];
+    const bool outline = t1 == kNone ? front[t0] : front[t0] != front[t1];
+    if (!outline) continue;
+    const std::vector<Vec3> edge = {proj(surface.positions[topology.edges[e][0]]),
+                                    proj(surface.positions[topology.edges[e][1]])};
+    for (Run& run : visible_runs(edge, false, depth)) runs.push_back(std::move(run));
+  }
+  return runs;
+}
+
+}  // namespace
+
+std::string write_lines_svg(const std::vector<Polyline>& lines, const Mesh& surface,
+                            const SvgOptions& options) {
+  const Projection proj = make_projection(lines, surface, options);
+  const DepthBuffer depth(surface, proj);
+
+  std::string out = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\"";
+  std::string width, height;
+  append_coord(width, proj.width);
+  append_coord(height, proj.height);
+  out += " width=\"" + width + "\" height=\"" + height + "\" viewBox=\"0 0 " + width + ' ' + height + "\">\n";
+
+  if (options.silhouette) {
+    // One path with a subpath per visible edge piece: thousands of tiny
+    // elements would bloat the file for no visual gain.
+    open_group(out, "silhouette", "#555555", 0.6 * options.stroke_width);
+    std::string data;
+    for (const Run& run : silhouette_runs(surface, proj, depth)) {
+      if (!data.empty()) data += ' ';
+      append_path_data(data, run);
+    }
+    if (!data.empty()) out += "<path d=\"" + data + "\"/>\n";
+    out += "</g>\n";
+  }
+
+  const struct {
+    LineType type;
+    const char* id;
+    const std::string& color;
+  } groups[] = {{LineType::Ridge, "ridges", options.ridge_color},
+                {LineType::Valley, "valleys", options.valley_color}};
+  std::vector<Vec3> projected;
+  for (const auto& group : groups) {
+    open_group(out, group.id, group.color, options.stroke_width);
+    for (const Polyline& line : lines) {
+      if (line.type != group.type) continue;
+      projected.clear();
+      for (const Vec3& p : line.points) projected.push_back(proj(p));
+      for (const Run& run : visible_runs(projected, line.closed, depth)) {
+        out += "<path d=\"";
+        append_path_data(out, run);
+        out += "\"/>\n";
+      }
+    }
+    out += "</g>\n";
+  }
+  out += "</svg>\n";
+  return out;
+}
+
+}  // namespace crestline::io

@@ -1,0 +1,151 @@
+// Text writers for feature lines: the OBJ contract, JSON and the stats
+// object. Hand-formatted (no JSON library) so the file compiles unchanged
+// with em++; every coordinate is printed so that it parses back to the same
+// double.
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "crestline/io/write_lines.h"
+
+namespace crestline::io {
+namespace {
+
+// Shortest of %.15g/%.16g/%.17g that reads back bit-identically: compact
+// files for "nice" numbers, exact round trip for all.
+void append_number(std::string& out, double value) {
+  if (!std::isfinite(value)) {  // JSON has no NaN/inf; OBJ readers choke on them too
+    out += "null";
+    return;
+  }
+  char buffer[32];
+  for (int precision = 15; precision <= 17; ++precision) {
+    std::snprintf(buffer, sizeof buffer, "%.*g", precision, value);
+    if (precision == 17 || std::strtod(buffer, nullptr) == value) break;
+  }
+  out += buffer;
+}
+
+void append_count(std::string& out, size_t value) { out += std::to_string(value); }
+
+// Ridges first, then valleys, each in input order: the OBJ and JSON
+// contracts both group by type.
+constexpr LineType kTypes[] = {LineType::Ridge, LineType::Valley};
+const char* group_name(LineType type) { return type == LineType::Ridge ? "ridges" : "valleys"; }
+
+}  // namespace
+
+std::string write_lines_obj(const std::vector<Polyline>& lines) {
+  std::string out = "# crestline feature lines: o ridges, o valleys; one l per polyline\n";
+  // Vertices in the order ridges-then-valleys so that indices grow along the file.
+  std::vector<size_t> first_index(lines.size(), 0);
+  size_t next = 1;  // OBJ indices are 1-based
+  for (LineType type : kTypes) {
+    for (size_t i = 0; i < lines.size(); ++i) {
+      if (lines[i].type != type || lines[i].points.size() < 2) continue;
+      first_index[i] = next;
+      for (const Vec3& p : lines[i].points) {
+        out += "v ";
+        append_number(out, p.x());
+        out += ' ';
+        append_number(out, p.y());
+        out += ' ';
+        append_number(out, p.z());
+        out += '\n';
+      }
+      next += lines[i].points.size();
+    }
+  }
+  for (LineType type : kTypes) {
+    out += "o ";
+    out += group_name(type);
+    out += '\n';
+    for (size_t i = 0; i < lines.size(); ++i) {
+      const Polyline& line = lines[i];
+      if (line.type != type || line.points.size() < 2) continue;
+      out += 'l';
+      for (size_t k = 0; k < line.points.size(); ++k) {
+        out += ' ';
+        append_count(out, first_index[i] + k);
+      }
+      if (line.closed) {
+        out += ' ';
+        append_count(out, first_index[i]);
+      }
+      out += '\n';
+    }
+  }
+  return out;
+}
+
+std::string stats_json(const PipelineStats& stats) {
+  const std::pair<const char*, size_t> counts[] = {
+      {"vertices", stats.vertices},         {"triangles", stats.triangles},
+      {"singular_max", stats.singular_max}, {"singular_min", stats.singular_min},
+      {"ridges", stats.ridges},             {"valleys", stats.valleys}};
+  const std::pair<const char*, double> measures[] = {{"ridge_length", stats.ridge_length},
+                                                     {"valley_length", stats.valley_length},
+                                                     {"threshold", stats.threshold},
+                                                     {"mean_edge_length", stats.mean_edge_length}};
+  std::string out = "{";
+  auto key = [&out](const char* name) {
+    if (out.size() > 1 && out.back() != '{') out += ',';
+    out += '"';
+    out += name;
+    out += "\":";
+  };
+  for (const auto& [name, value] : counts) key(name), append_count(out, value);
+  for (const auto& [name, value] : measures) key(name), append_number(out, value);
+  key("seconds");
+  out += '{';
+  for (int s = 0; s < static_cast<int>(Stage::Count); ++s) {
+    key(stage_name(static_cast<Stage>(s)));
+    append_number(out, stats.seconds[s]);
+  }
+  out += "}}";
+  return out;
+}
+
+std::string write_lines_json(const std::vector<Polyline>& lines, const PipelineStats& stats) {
+  std::string out = "{";
+  for (LineType type : kTypes) {
+    if (type != kTypes[0]) out += ",\n";
+    out += '"';
+    out += group_name(type);
+    out += "\":[";
+    bool first_line = true;
+    for (const Polyline& line : lines) {
+      if (line.type != type) continue;
+      out += first_line ? "\n" : ",\n";
+      first_line = false;
+      out += "{\"points\":[";
+      for (size_t k = 0; k < line.points.size(); ++k) {
+        if (k) out += ',';
+        out += '[';
+        append_number(out, line.points[k].x());
+        out += ',';
+        append_number(out, line.points[k].y());
+        out += ',';
+        append_number(out, line.points[k].z());
+        out += ']';
+      }
+      out += "],\"strength\":";
+      append_number(out, line.strength);
+      out += ",\"length\":";
+      append_number(out, line.length);
+      out += ",\"closed\":";
+      out += line.closed ? "true" : "false";
+      out += '}';
+    }
+    out += ']';
+  }
+  out += ",\n\"stats\":";
+  out += stats_json(stats);
+  out += "}\n";
+  return out;
+}
+
+}  // namespace crestline::io

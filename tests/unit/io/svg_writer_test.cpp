@@ -1,0 +1,214 @@
+// SVG writer: hidden-line removal against the surface, views, groups.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include "crestline/io/write_lines.h"
+
+using crestline::LineType;
+using crestline::Mesh;
+using crestline::Polyline;
+using crestline::Vec3;
+using crestline::io::SvgOptions;
+using crestline::io::View;
+
+namespace {
+
+const double kPi = std::acos(-1.0);
+
+/// The square [-1,1]² in the plane z = 0, facing +z.
+Mesh plane() {
+  Mesh mesh;
+  mesh.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+  mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+  return mesh;
+}
+
+/// Unit UV sphere; `rings` even, so the equator y = 0 is a ring of vertices.
+Mesh uv_sphere(int rings, int sectors) {
+  Mesh mesh;
+  mesh.positions.push_back({0, 1, 0});
+  for (int r = 1; r < rings; ++r) {
+    const double theta = kPi * r / rings;
+    for (int s = 0; s < sectors; ++s) {
+      const double phi = 2 * kPi * s / sectors;
+      mesh.positions.push_back({std::sin(theta) * std::cos(phi), std::cos(theta), -std::sin(theta) * std::sin(phi)});
+    }
+  }
+  mesh.positions.push_back({0, -1, 0});
+  const uint32_t south = static_cast<uint32_t>(mesh.positions.size() - 1);
+  auto at = [&](int r, int s) { return static_cast<uint32_t>(1 + (r - 1) * sectors + (s % sectors)); };
+  for (int s = 0; s < sectors; ++s) {
+    mesh.triangles.push_back({0, at(1, s), at(1, s + 1)});
+    for (int r = 1; r + 1 < rings; ++r) {
+      mesh.triangles.push_back({at(r, s), at(r + 1, s), at(r + 1, s + 1)});
+      mesh.triangles.push_back({at(r, s), at(r + 1, s + 1), at(r, s + 1)});
+    }
+    mesh.triangles.push_back({at(rings - 1, s), south, at(rings - 1, s + 1)});
+  }
+  return mesh;
+}
+
+Polyline line(LineType type, std::vector<Vec3> points, bool closed = false) {
+  Polyline out;
+  out.type = type;
+  out.points = std::move(points);
+  out.curvature.assign(out.points.size(), 1.0);
+  out.closed = closed;
+  return out;
+}
+
+struct Path {
+  std::vector<std::pair<double, double>> points;
+  bool closed = false;
+  double length() const {
+    double sum = 0;
+    for (size_t k = 1; k < points.size(); ++k)
+      sum += std::hypot(points[k].first - points[k - 1].first, points[k].second - points[k - 1].second);
+    if (closed && points.size() > 1)
+      sum += std::hypot(points.front().first - points.back().first, points.front().second - points.back().second);
+    return sum;
+  }
+};
+
+/// The <path> elements inside <g id="group">, one Path per subpath.
+std::vector<Path> paths_in(const std::string& svg, const std::string& group) {
+  std::vector<Path> out;
+  const size_t begin = svg.find("<g id=\"" + group + "\"");
+  if (begin == std::string::npos) return out;
+  const size_t end = svg.find("</g>", begin);
+  const std::string body = svg.substr(begin, end - begin);
+  static const std::regex path_re("<path d=\"([^\"]*)\"");
+  static const std::regex token_re("([MLZ])|(-?[0-9.]+),(-?[0-9.]+)");
+  for (std::sregex_iterator it(body.begin(), body.end(), path_re), stop; it != stop; ++it) {
+    const std::string data = (*it)[1];
+    for (std::sregex_iterator t(data.begin(), data.end(), token_re); t != stop; ++t) {
+      if ((*t)[1] == "M") out.emplace_back();
+      else if ((*t)[1] == "Z") out.back().closed = true;
+      else if ((*t)[1].length() == 0) out.back().points.emplace_back(std::stod((*t)[2]), std::stod((*t)[3]));
+    }
+  }
+  return out;
+}
+
+double total_length(const std::vector<Path>& paths) {
+  double sum = 0;
+  for (const Path& p : paths) sum += p.length();
+  return sum;
+}
+
+std::string svg_of(const std::vector<Polyline>& lines, const Mesh& surface, View view = View::Front) {
+  SvgOptions options;
+  options.view = view;
+  return crestline::io::write_lines_svg(lines, surface, options);
+}
+
+// Drawing pixels per world unit when the bounding box's longer side is `extent`.
+double scale_for(double extent) { return 1000 * (1 - 2 * 0.02) / extent; }
+
+}  // namespace
+
+TEST_CASE("SVG: a line in front of a plane is drawn, the same line behind it is not", "[io][svg]") {
+  const Mesh surface = plane();
+  const auto front = line(LineType::Ridge, {{-0.5, 0, 0.1}, {0, 0.01, 0.1}, {0.5, 0, 0.1}});
+  const auto behind = line(LineType::Ridge, {{-0.5, 0, -0.1}, {0, 0.01, -0.1}, {0.5, 0, -0.1}});
+
+  const auto drawn = paths_in(svg_of({front}, surface), "ridges");
+  REQUIRE(drawn.size() == 1);
+  CHECK(drawn[0].points.size() == 3);  // vertices kept, no extra samples
+  CHECK(drawn[0].length() == Approx(scale_for(2) * 1.0).epsilon(0.01));
+
+  CHECK(paths_in(svg_of({behind}, surface), "ridges").empty());
+
+  SECTION("seen from the back, it is the other way round") {
+    CHECK(paths_in(svg_of({front}, surface, View::Back), "ridges").empty());
+    CHECK(paths_in(svg_of({behind}, surface, View::Back), "ridges").size() == 1);
+  }
+}
+
+TEST_CASE("SVG: a line lying on the surface is visible", "[io][svg]") {
+  const auto on = line(LineType::Valley, {{-0.9, -0.3, 0}, {0.2, 0.7, 0}, {0.9, 0.1, 0}});
+  const auto drawn = paths_in(svg_of({on}, plane()), "valleys");
+  REQUIRE(drawn.size() == 1);
+  CHECK(drawn[0].points.size() == 3);
+}
+
+TEST_CASE("SVG: a line passing behind a plane is split into its visible runs", "[io][svg]") {
+  const auto across = line(LineType::Ridge, {{-2, 0, -0.1}, {2, 0, -0.1}});
+  const auto drawn = paths_in(svg_of({across}, plane()), "ridges");
+  REQUIRE(drawn.size() == 2);
+  const double unit = scale_for(4);  // the line widens the bounding box to 4
+  for (const Path& run : drawn) CHECK(run.length() == Approx(unit).margin(2.0));
+}
+
+TEST_CASE("SVG: the equator of a sphere shows only its front half", "[io][svg]") {
+  const Mesh sphere = uv_sphere(16, 48);
+  std::vector<Vec3> equator;
+  for (int s = 0; s < 48; ++s) equator.push_back(sphere.positions[1 + 7 * 48 + s]);
+  REQUIRE(equator[0].y() == Approx(0).margin(1e-12));
+  const auto ring = line(LineType::Ridge, equator, true);
+
+  // Front: a horizontal stroke across the disc, drawn once (the back half is hidden).
+  const auto front = paths_in(svg_of({ring}, sphere), "ridges");
+  REQUIRE(front.size() == 1);
+  CHECK(total_length(front) == Approx(2 * scale_for(2)).epsilon(0.02));
+
+  // Top: the whole ring is visible and stays one closed path.
+  const auto top = paths_in(svg_of({ring}, sphere, View::Top), "ridges");
+  REQUIRE(top.size() == 1);
+  CHECK(top[0].closed);
+  CHECK(top[0].points.size() == 48);
+}
+
+TEST_CASE("SVG: a closed line hidden in the middle stays one run across its start", "[io][svg]") {
+  // Square loop starting at its left edge; its right half is behind the plane
+  // x ∈ [0.5, 1.5] of a narrower occluder.
+  Mesh occluder;
+  occluder.positions = {{0.25, -2, 0}, {2, -2, 0}, {2, 2, 0}, {0.25, 2, 0}};
+  occluder.triangles = {{0, 1, 2}, {0, 2, 3}};
+  const auto loop =
+      line(LineType::Ridge, {{-1, 0, -0.5}, {-1, -1, -0.5}, {1, -1, -0.5}, {1, 1, -0.5}, {-1, 1, -0.5}}, true);
+  const auto drawn = paths_in(svg_of({loop}, occluder), "ridges");
+  REQUIRE(drawn.size() == 1);
+  CHECK_FALSE(drawn[0].closed);
+  // Visible: x ∈ [-1, 0.25] on the top and bottom edges plus the left edge.
+  CHECK(drawn[0].length() == Approx(scale_for(4) * (1.25 + 1.25 + 2)).margin(2.0));
+}
+
+TEST_CASE("SVG: document structure, groups and views", "[io][svg]") {
+  const auto ridge = line(LineType::Ridge, {{-0.5, 0.5, 0.1}, {0.5, 0.5, 0.1}});
+  const auto valley = line(LineType::Valley, {{-0.5, -0.5, 0.1}, {0.5, -0.5, 0.1}});
+  SvgOptions options;
+  options.silhouette = true;
+  const std::string svg = crestline::io::write_lines_svg({ridge, valley}, plane(), options);
+  CHECK(svg.find("viewBox=\"0 0 1000.00 1000.00\"") != std::string::npos);
+  CHECK(svg.find("stroke=\"" + options.ridge_color + "\"") != std::string::npos);
+  CHECK(svg.find("stroke=\"" + options.valley_color + "\"") != std::string::npos);
+  CHECK(paths_in(svg, "ridges").size() == 1);
+  CHECK(paths_in(svg, "valleys").size() == 1);
+  // The plane's outline: four boundary edges.
+  CHECK(paths_in(svg, "silhouette").size() == 4);
+  CHECK(total_length(paths_in(svg, "silhouette")) == Approx(4 * 960).margin(4.0));
+
+  // Ridge above the valley in front view (SVG y grows downwards).
+  CHECK(paths_in(svg, "ridges")[0].points[0].second < paths_in(svg, "valleys")[0].points[0].second);
+
+  SECTION("a left view of a wide box keeps the longer side at the requested width") {
+    const auto wide = line(LineType::Ridge, {{0, 0, -3}, {0, 1, 3}});
+    const std::string left = crestline::io::write_lines_svg({wide}, Mesh{}, SvgOptions{View::Left});
+    CHECK(left.find("width=\"1000.00\"") != std::string::npos);
+    const auto drawn = paths_in(left, "ridges");
+    REQUIRE(drawn.size() == 1);
+    // Seen from -x, +z points right.
+    CHECK(drawn[0].points[0].first < drawn[0].points[1].first);
+  }
+}
+
+TEST_CASE("SVG: empty input gives a valid, empty drawing", "[io][svg]") {
+  const std::string svg = crestline::io::write_lines_svg({}, Mesh{}, SvgOptions{});
+  CHECK(svg.find("<svg") != std::string::npos);
+  CHECK(svg.find("</svg>") != std::string::npos);
+  CHECK(paths_in(svg, "ridges").empty());
+}

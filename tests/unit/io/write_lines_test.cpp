@@ -1,0 +1,164 @@
+// OBJ and JSON line writers: the file contracts other tools rely on.
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "crestline/io/write_lines.h"
+
+using crestline::LineType;
+using crestline::Polyline;
+using crestline::Vec3;
+
+namespace {
+
+Polyline make_line(LineType type, std::vector<Vec3> points, bool closed, double strength) {
+  Polyline line;
+  line.type = type;
+  line.points = std::move(points);
+  line.curvature.assign(line.points.size(), 1.0);
+  line.closed = closed;
+  line.strength = strength;
+  line.length = 1.0;
+  return line;
+}
+
+// Ridges and valleys interleaved on purpose: writers must group them.
+std::vector<Polyline> sample_lines() {
+  return {
+      make_line(LineType::Valley, {{0, 0, 0}, {1, 0, 0}}, false, 0.5),
+      make_line(LineType::Ridge, {{0.1, 0.2, 0.3}, {1.0 / 3, 2e-300, -7.25}, {1e10, -0.0, 5}}, false, 2.0),
+      make_line(LineType::Ridge, {{0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}}, true, 3.0),
+  };
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) out.push_back(line);
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("OBJ output follows the contract: v lines, o ridges, o valleys, one l per polyline",
+          "[io][writers]") {
+  const std::vector<Polyline> lines = sample_lines();
+  const std::string obj = crestline::io::write_lines_obj(lines);
+
+  std::vector<Vec3> vertices;
+  std::vector<std::string> objects;
+  std::vector<std::pair<std::string, std::vector<size_t>>> polylines;  // object, indices
+  bool seen_object = false;
+  for (const std::string& row : lines_of(obj)) {
+    std::istringstream in(row);
+    std::string tag;
+    in >> tag;
+    if (tag == "v") {
+      CHECK_FALSE(seen_object);  // all vertices come first
+      Vec3 p;
+      in >> p.x() >> p.y() >> p.z();
+      vertices.push_back(p);
+    } else if (tag == "o") {
+      seen_object = true;
+      std::string name;
+      in >> name;
+      objects.push_back(name);
+    } else if (tag == "l") {
+      REQUIRE_FALSE(objects.empty());
+      std::vector<size_t> indices;
+      for (size_t i; in >> i;) indices.push_back(i);
+      CHECK(indices.size() >= 2);
+      polylines.emplace_back(objects.back(), indices);
+    }
+  }
+  REQUIRE(objects == std::vector<std::string>{"ridges", "valleys"});
+  REQUIRE(vertices.size() == 9);
+  REQUIRE(polylines.size() == 3);
+
+  // Ridges in input order, then the valley.
+  CHECK(polylines[0].first == "ridges");
+  CHECK(polylines[0].second == std::vector<size_t>{1, 2, 3});
+  CHECK(polylines[1].first == "ridges");
+  CHECK(polylines[1].second == std::vector<size_t>{4, 5, 6, 7, 4});  // closed: first index repeated
+  CHECK(polylines[2].first == "valleys");
+  CHECK(polylines[2].second == std::vector<size_t>{8, 9});
+
+  // Coordinates round-trip exactly.
+  CHECK(vertices[1] == lines[1].points[1]);
+  CHECK(vertices[2] == lines[1].points[2]);
+  CHECK(vertices[0] == lines[1].points[0]);
+  CHECK(vertices[8] == lines[0].points[1]);
+}
+
+TEST_CASE("OBJ output without lines still names both objects", "[io][writers]") {
+  const auto rows = lines_of(crestline::io::write_lines_obj({}));
+  std::vector<std::string> objects;
+  for (const auto& row : rows)
+    if (row.rfind("o ", 0) == 0) objects.push_back(row);
+  CHECK(objects == std::vector<std::string>{"o ridges", "o valleys"});
+}
+
+TEST_CASE("JSON output parses back to the same lines and stats", "[io][writers]") {
+  const std::vector<Polyline> lines = sample_lines();
+  crestline::PipelineStats stats;
+  stats.vertices = 1234;
+  stats.triangles = 2460;
+  stats.singular_max = 7;
+  stats.singular_min = 9;
+  stats.ridges = 2;
+  stats.valleys = 1;
+  stats.ridge_length = 0.1 + 0.2;
+  stats.valley_length = 1.0 / 7;
+  stats.seconds[static_cast<int>(crestline::Stage::Curvature)] = 0.125;
+
+  const auto json = nlohmann::json::parse(crestline::io::write_lines_json(lines, stats));
+  REQUIRE(json["ridges"].size() == 2);
+  REQUIRE(json["valleys"].size() == 1);
+
+  auto check_line = [](const nlohmann::json& got, const Polyline& want) {
+    REQUIRE(got["points"].size() == want.points.size());
+    for (size_t k = 0; k < want.points.size(); ++k) {
+      INFO("point " << k);
+      CHECK(got["points"][k][0].get<double>() == want.points[k].x());
+      CHECK(got["points"][k][1].get<double>() == want.points[k].y());
+      CHECK(got["points"][k][2].get<double>() == want.points[k].z());
+    }
+    CHECK(got["strength"].get<double>() == want.strength);
+    CHECK(got["closed"].get<bool>() == want.closed);
+  };
+  check_line(json["ridges"][0], lines[1]);
+  check_line(json["ridges"][1], lines[2]);
+  check_line(json["valleys"][0], lines[0]);
+
+  const auto& s = json["stats"];
+  CHECK(s["vertices"] == 1234);
+  CHECK(s["triangles"] == 2460);
+  CHECK(s["singular_max"] == 7);
+  CHECK(s["singular_min"] == 9);
+  CHECK(s["ridges"] == 2);
+  CHECK(s["valleys"] == 1);
+  CHECK(s["ridge_length"].get<double>() == 0.1 + 0.2);
+  CHECK(s["valley_length"].get<double>() == 1.0 / 7);
+  REQUIRE(s["seconds"].is_object());
+  CHECK(s["seconds"].size() == static_cast<size_t>(crestline::Stage::Count));
+  CHECK(s["seconds"][crestline::stage_name(crestline::Stage::Curvature)].get<double>() == 0.125);
+}
+
+TEST_CASE("stats JSON is one object on one line", "[io][writers]") {
+  const std::string text = crestline::io::stats_json(crestline::PipelineStats{});
+  CHECK(text.find('\n') == std::string::npos);
+  const auto json = nlohmann::json::parse(text);
+  for (const char* key : {"vertices", "triangles", "singular_max", "singular_min", "ridges", "valleys",
+                          "ridge_length", "valley_length", "seconds"})
+    CHECK(json.contains(key));
+}
+
+TEST_CASE("JSON output writes non-finite numbers as null, never NaN", "[io][writers]") {
+  std::vector<Polyline> lines = {make_line(LineType::Ridge, {{0, 0, 0}, {1, 1, 1}}, false, 0)};
+  lines[0].strength = std::numeric_limits<double>::quiet_NaN();
+  const auto json = nlohmann::json::parse(crestline::io::write_lines_json(lines, {}));
+  CHECK(json["ridges"][0]["strength"].is_null());
+}
