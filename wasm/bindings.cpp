@@ -1,0 +1,19 @@
+// Embind declarations only; the conversions live in session.cpp.
+#include <emscripten/bind.h>
+
+#include "session.h"
+
+EMSCRIPTEN_BINDINGS(crestline) {
+  using crestline::wasm::Session;
+  emscripten::class_<Session>("Session")
+      .constructor<>()
+      .function("load", &Session::load)
+      .function("setOptions", &Session::setOptions)
+      .function("options", &Session::options)
+      .function("run", &Session::run)
+      .function("surface", &Session::surface)
+      .function("lines", &Session::lines)
+      .function("fields", &Session::fields)
+      .function("stats", &Session::stats)
+      .function("linesObj", &Session::linesObj);
+}

@@ -1,0 +1,27 @@
+// Loads the WASM module in node. Emscripten 3.1.6's ES-module glue still
+// reads `__dirname` and `require` on node, and fetches the .wasm by path
+// (which fails on node 20): give it both globals and the bytes directly, and
+// drop the process-wide exception handlers it installs.
+import { readFileSync } from 'node:fs';
+import { createRequire } from 'node:module';
+import { fileURLToPath } from 'node:url';
+
+const dist = new URL('./dist/', import.meta.url);
+
+export async function loadCrestline() {
+  globalThis.__dirname ??= fileURLToPath(dist);
+  globalThis.require ??= createRequire(import.meta.url);
+  const before = {
+    uncaughtException: process.listeners('uncaughtException'),
+    unhandledRejection: process.listeners('unhandledRejection'),
+  };
+  const { default: createCrestline } = await import(new URL('crestline.js', dist).href);
+  const module = await createCrestline({ wasmBinary: readFileSync(new URL('crestline.wasm', dist)) });
+  for (const [event, kept] of Object.entries(before)) {
+    for (const listener of process.listeners(event)) if (!kept.includes(listener)) process.off(event, listener);
+  }
+  return module;
+}
+
+/** The factory itself, for engine.createEngine. */
+export const factory = (settings) => loadCrestline(settings);

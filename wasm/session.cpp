@@ -1,0 +1,258 @@
+#include "session.h"
+
+#include <emscripten/val.h>
+
+#include <new>
+#include <vector>
+
+#include "crestline/error.h"
+#include "crestline/io/write_lines.h"
+#include "crestline/mesh/repair.h"
+
+namespace crestline::wasm {
+namespace {
+
+using emscripten::typed_memory_view;
+
+constexpr int kStages = static_cast<int>(Stage::Count);
+
+/// Copies a JS typed array (any numeric kind) into a new vector. The heap
+/// view exists only during TypedArray.set, which allocates nothing here.
+template <class T>
+std::vector<T> copy_in(const val& array) {
+  std::vector<T> out(array["length"].as<size_t>());
+  val(typed_memory_view(out.size(), out.data())).call<void>("set", array);
+  return out;
+}
+
+/// A JS-owned copy: survives heap growth and can be transferred.
+template <class T>
+val copy_out(const T* data, size_t count) {
+  return val(typed_memory_view(count, data)).call<val>("slice");
+}
+
+val positions_out(const std::vector<Vec3>& points) {
+  return copy_out(points.empty() ? nullptr : points.front().data(), points.size() * 3);
+}
+
+val error_value(const char* kind, const std::string& message) {
+  val out = val::object();
+  out.set("error", message);
+  out.set("kind", std::string(kind));
+  return out;
+}
+
+std::string too_large(size_t triangles) {
+  return "mesh too large for the browser (" + std::to_string(triangles) + " triangles)";
+}
+
+/// Runs `body`, mapping every exception to {error, kind}.
+template <class F>
+val guarded(size_t triangles, F&& body) {
+  try {
+    return body();
+  } catch (const Cancelled&) {
+    val out = val::object();
+    out.set("cancelled", true);
+    return out;
+  } catch (const Error& e) {
+    return error_value(error_kind_name(e.kind()), e.what());
+  } catch (const std::bad_alloc&) {
+    return error_value("TooLarge", too_large(triangles));
+  } catch (const std::exception& e) {
+    return error_value("Internal", e.what());
+  }
+}
+
+template <class T>
+void read(const val& object, const char* key, T& out) {
+  const val v = object[key];
+  if (!v.isUndefined() && !v.isNull()) out = v.as<T>();
+}
+
+val report_value(const RepairReport& r) {
+  val out = val::object();
+  out.set("inputVertices", r.input_vertices);
+  out.set("inputTriangles", r.input_triangles);
+  out.set("weldedVertices", r.welded_vertices);
+  out.set("nonfiniteTriangles", r.nonfinite_triangles);
+  out.set("degenerateTriangles", r.degenerate_triangles);
+  out.set("duplicateTriangles", r.duplicate_triangles);
+  out.set("unreferencedVertices", r.unreferenced_vertices);
+  out.set("nonmanifoldEdges", r.nonmanifold_edges);
+  out.set("nonmanifoldVertices", r.nonmanifold_vertices);
+  out.set("flippedTriangles", r.flipped_triangles);
+  out.set("components", r.components);
+  out.set("boundaryEdges", r.boundary_edges);
+  return out;
+}
+
+}  // namespace
+
+val Session::load(val positions, val indices, val options) {
+  pipeline_.reset();
+  triangles_ = indices["length"].as<size_t>() / 3;
+  return guarded(triangles_, [&] {
+    RepairOptions repair;
+    if (!options.isUndefined()) {
+      read(options, "weldTolerance", repair.weld_tolerance);
+      read(options, "maxTriangles", repair.max_triangles);
+    }
+    if (triangles_ > repair.max_triangles) throw Error(ErrorKind::TooLarge, too_large(triangles_));
+    TriangleSoup soup;
+    soup.positions = copy_in<double>(positions);
+    soup.indices = copy_in<uint32_t>(indices);
+    RepairResult repaired = repair_mesh(soup, repair);
+    soup = {};
+    val out = val::object();
+    out.set("ok", true);
+    out.set("vertices", repaired.mesh.vertex_count());
+    out.set("triangles", repaired.mesh.triangle_count());
+    out.set("report", report_value(repaired.report));
+    val notes = val::array();
+    for (const std::string& note : repaired.report.notes()) notes.call<void>("push", note);
+    out.set("notes", notes);
+    pipeline_ = std::make_unique<Pipeline>(std::move(repaired.mesh));
+    return out;
+  });
+}
+
+val Session::setOptions(val o) {
+  if (!pipeline_) return error_value("InvalidInput", "no mesh is loaded");
+  return guarded(triangles_, [&] {
+    PipelineOptions p = pipeline_->options();
+    read(o, "presmoothSteps", p.presmooth.steps);
+    read(o, "presmoothTimeStep", p.presmooth.time_step);
+    read(o, "smoothingSteps", p.smoothing.steps);
+    read(o, "smoothingTimeStep", p.smoothing.time_step);
+    read(o, "boundaryRings", p.trace.boundary_rings);
+    read(o, "hausdorffBound", p.fairing.hausdorff_bound);
+    read(o, "fairingIterations", p.fairing.iterations);
+    read(o, "threshold", p.filter.threshold);
+    const val weights = o["vertexWeights"];
+    if (weights.isNull()) p.smoothing.vertex_weights.clear();
+    else if (!weights.isUndefined()) p.smoothing.vertex_weights = copy_in<double>(weights);
+    pipeline_->set_options(p);
+    val out = val::object();
+    out.set("ok", true);
+    return out;
+  });
+}
+
+val Session::options() const {
+  if (!pipeline_) return val::object();
+  const PipelineOptions& p = pipeline_->options();
+  val o = val::object();
+  o.set("presmoothSteps", p.presmooth.steps);
+  o.set("presmoothTimeStep", p.presmooth.time_step);
+  o.set("smoothingSteps", p.smoothing.steps);
+  o.set("smoothingTimeStep", p.smoothing.time_step);
+  o.set("boundaryRings", p.trace.boundary_rings);
+  o.set("hausdorffBound", p.fairing.hausdorff_bound);
+  o.set("fairingIterations", p.fairing.iterations);
+  o.set("threshold", p.filter.threshold);
+  o.set("weighted", !p.smoothing.vertex_weights.empty());
+  return o;
+}
+
+val Session::run(val progress) {
+  if (!pipeline_) return error_value("InvalidInput", "no mesh is loaded");
+  return guarded(triangles_, [&] {
+    std::vector<bool> ran(kStages, false);
+    const PipelineStats before = pipeline_->stats();
+    const bool report = progress.typeOf().as<std::string>() == "function";
+    pipeline_->run([&](Stage stage, double fraction) {
+      ran[static_cast<int>(stage)] = true;
+      return !report || !progress(val(stage_name(stage)), val(fraction)).strictlyEquals(val(false));
+    });
+    const PipelineStats after = pipeline_->stats();
+    val names = val::array();
+    for (int s = 0; s < kStages; ++s) {
+      // A stage ran if it reported progress or its timing changed.
+      if (ran[s] || after.seconds[s] != before.seconds[s])
+        names.call<void>("push", std::string(stage_name(static_cast<Stage>(s))));
+    }
+    val out = val::object();
+    out.set("ok", true);
+    out.set("ran", names);
+    out.set("stats", stats());
+    return out;
+  });
+}
+
+val Session::surface() const {
+  val out = val::object();
+  if (!pipeline_) return out;
+  const Mesh& mesh = pipeline_->surface();
+  out.set("positions", positions_out(mesh.positions));
+  out.set("indices", copy_out(mesh.triangles.empty() ? nullptr : mesh.triangles.front().data(),
+                              mesh.triangles.size() * 3));
+  return out;
+}
+
+val Session::lines(bool all) const {
+  std::vector<Polyline> kept;
+  if (pipeline_ && !all) kept = pipeline_->lines();
+  const std::vector<Polyline>& lines = all && pipeline_ ? pipeline_->all_lines() : kept;
+  std::vector<Vec3> points;
+  std::vector<uint32_t> offsets{0};
+  std::vector<uint8_t> types, closed;
+  std::vector<double> strengths, lengths;
+  for (const Polyline& line : lines) {
+    points.insert(points.end(), line.points.begin(), line.points.end());
+    offsets.push_back(static_cast<uint32_t>(points.size()));
+    types.push_back(static_cast<uint8_t>(line.type));
+    closed.push_back(line.closed ? 1 : 0);
+    strengths.push_back(line.strength);
+    lengths.push_back(line.length);
+  }
+  val out = val::object();
+  out.set("points", positions_out(points));
+  out.set("offsets", copy_out(offsets.data(), offsets.size()));
+  out.set("types", copy_out(types.data(), types.size()));
+  out.set("closed", copy_out(closed.data(), closed.size()));
+  out.set("strengths", copy_out(strengths.data(), strengths.size()));
+  out.set("lengths", copy_out(lengths.data(), lengths.size()));
+  return out;
+}
+
+val Session::fields() const {
+  val out = val::object();
+  if (!pipeline_) return out;
+  const Curvature& c = pipeline_->curvature();
+  const Extremality& e = pipeline_->extremality();
+  const Regularity& r = pipeline_->regularity();
+  out.set("kappaMax", copy_out(c.kappa_max.data(), c.kappa_max.size()));
+  out.set("kappaMin", copy_out(c.kappa_min.data(), c.kappa_min.size()));
+  out.set("eMax", copy_out(e.e_max.data(), e.e_max.size()));
+  out.set("eMin", copy_out(e.e_min.data(), e.e_min.size()));
+  out.set("regularMax", copy_out(r.regular_max.data(), r.regular_max.size()));
+  out.set("regularMin", copy_out(r.regular_min.data(), r.regular_min.size()));
+  return out;
+}
+
+val Session::stats() const {
+  val out = val::object();
+  if (!pipeline_) return out;
+  const PipelineStats s = pipeline_->stats();
+  out.set("vertices", s.vertices);
+  out.set("triangles", s.triangles);
+  out.set("singularMax", s.singular_max);
+  out.set("singularMin", s.singular_min);
+  out.set("ridges", s.ridges);
+  out.set("valleys", s.valleys);
+  out.set("ridgeLength", s.ridge_length);
+  out.set("valleyLength", s.valley_length);
+  out.set("threshold", s.threshold);
+  out.set("meanEdgeLength", s.mean_edge_length);
+  val seconds = val::object();
+  for (int i = 0; i < kStages; ++i) seconds.set(stage_name(static_cast<Stage>(i)), s.seconds[i]);
+  out.set("seconds", seconds);
+  return out;
+}
+
+std::string Session::linesObj() const {
+  return pipeline_ ? io::write_lines_obj(pipeline_->lines()) : std::string();
+}
+
+}  // namespace crestline::wasm

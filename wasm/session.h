@@ -1,0 +1,56 @@
+#pragma once
+// The handle JavaScript holds: one repaired mesh and its Pipeline. It only
+// converts (typed arrays in, copied typed arrays out — heap views die when
+// memory grows) and turns every exception into {error, kind}; all geometry
+// lives in core/.
+#include <emscripten/val.h>
+
+#include <memory>
+#include <string>
+
+#include "crestline/pipeline.h"
+
+namespace crestline::wasm {
+
+using emscripten::val;
+
+class Session {
+ public:
+  /// positions: Float64Array or Float32Array (x,y,z per vertex); indices:
+  /// Uint32Array (3 per triangle); options: {weldTolerance, maxTriangles}.
+  /// Repairs the soup (repair_mesh) and builds a Pipeline on it.
+  /// Returns {ok, vertices, triangles, report:{…}, notes:[…]} or {error, kind}.
+  val load(val positions, val indices, val options);
+
+  /// Partial PipelineOptions in camelCase (see options()); unknown keys are
+  /// ignored, missing ones keep their value. Cheap: only marks stages dirty.
+  val setOptions(val options);
+  /// The current PipelineOptions as a plain object.
+  val options() const;
+
+  /// Runs the dirty stages. progress(stageName, fraction) may return false
+  /// to cancel. Returns {ok, ran:[stage names], stats} or {cancelled} or
+  /// {error, kind}.
+  val run(val progress);
+
+  /// {positions: Float64Array, indices: Uint32Array} of the surface the
+  /// lines lie on (after pre-smoothing).
+  val surface() const;
+  /// Lines as flat arrays: {points: Float64Array (xyz), offsets: Uint32Array
+  /// (lineCount+1, in points), types: Uint8Array (0 ridge, 1 valley),
+  /// strengths, lengths: Float64Array, closed: Uint8Array}. `all` selects
+  /// every faired line instead of those passing the filter.
+  val lines(bool all) const;
+  /// Per-vertex kappaMax, kappaMin, eMax, eMin (Float64Array, pointwise) and
+  /// per-triangle regularMax, regularMin (Uint8Array).
+  val fields() const;
+  val stats() const;
+  /// The filtered lines in the OBJ format of the native CLI (shared writer).
+  std::string linesObj() const;
+
+ private:
+  std::unique_ptr<Pipeline> pipeline_;
+  size_t triangles_ = 0;
+};
+
+}  // namespace crestline::wasm

@@ -1,0 +1,42 @@
+// The page's text: file name, progress, the one-sentence error, stats.
+const $ = (id) => document.getElementById(id);
+
+export function setState(state) {
+  document.body.dataset.state = state;
+}
+
+export function showFile(text) {
+  $('file').firstChild.textContent = `${text} — drop another mesh or `;
+}
+
+export function showProgress(stage, fraction) {
+  $('progress').hidden = stage === null;
+  if (stage === null) return;
+  $('progress-bar').value = fraction;
+  $('progress-text').textContent = stage;
+}
+
+/** One clear sentence, or null to clear. */
+export function showError(message) {
+  $('error').hidden = !message;
+  $('error').textContent = message ?? '';
+}
+
+export function showNotes(notes) {
+  $('notes').textContent = notes.join(' ');
+}
+
+const fmt = (x, digits = 3) => (Number.isFinite(x) ? Number(x.toPrecision(digits)).toString() : '–');
+
+export function showStats({ stats, ran, milliseconds }) {
+  const times = ran
+    .map((stage) => `${stage} ${(1000 * (stats.seconds[stage] ?? 0)).toFixed(1)} ms`)
+    .join(', ');
+  $('stats').textContent = [
+    `${stats.vertices.toLocaleString()} vertices, ${stats.triangles.toLocaleString()} triangles`,
+    `ridges  ${stats.ridges} (length ${fmt(stats.ridgeLength)})`,
+    `valleys ${stats.valleys} (length ${fmt(stats.valleyLength)})`,
+    `threshold ${fmt(stats.threshold)}, singular triangles ${stats.singularMax} max / ${stats.singularMin} min`,
+    `ran: ${times} — ${milliseconds.toFixed(1)} ms in total`,
+  ].join('\n');
+}

@@ -1,0 +1,74 @@
+// The parameters panel (lil-gui). Pipeline parameters call onCompute;
+// display parameters call onDisplay. Both receive the whole params object.
+import GUI from 'lil-gui';
+
+export const VIEWS = {
+  shaded: 'shaded',
+  'κ max (curvature)': 'kappaMax',
+  'κ min (curvature)': 'kappaMin',
+  'extremality e max': 'eMax',
+  'extremality e min': 'eMin',
+  'singular triangles (max dirs)': 'singularMax',
+  'singular triangles (min dirs)': 'singularMin',
+};
+
+export function defaultParams() {
+  return {
+    smoothingSteps: 3,
+    autoThreshold: true,
+    threshold: 1,
+    hausdorffBound: 0.25,
+    presmoothSteps: 0,
+    showRidges: true,
+    showValleys: true,
+    lineWidth: 2.5,
+    ridgeColor: '#d62d20',
+    valleyColor: '#1f5fbf',
+    dark: false,
+    view: 'shaded',
+  };
+}
+
+/** The options the worker passes to Session.setOptions. */
+export function pipelineOptions(params) {
+  return {
+    smoothingSteps: params.smoothingSteps,
+    presmoothSteps: params.presmoothSteps,
+    hausdorffBound: params.hausdorffBound,
+    threshold: params.autoThreshold ? -1 : params.threshold,
+  };
+}
+
+export function createGui(params, { onCompute, onDisplay, onFit, onOpen }) {
+  const gui = new GUI({ title: 'Crestline' });
+  const lines = gui.addFolder('Feature lines');
+  lines.add(params, 'smoothingSteps', 0, 10, 1).name('smoothing steps').onFinishChange(onCompute);
+  lines.add(params, 'autoThreshold').name('automatic threshold').onChange(onCompute);
+  const threshold = lines.add(params, 'threshold', 0, 10, 0.01).name('threshold ∫|κ|ds').onChange(() => {
+    params.autoThreshold = false;
+    gui.controllersRecursive().forEach((c) => c.updateDisplay());
+    onCompute();
+  });
+  lines.add(params, 'hausdorffBound', 0, 1, 0.01).name('fairing bound (edges)').onFinishChange(onCompute);
+  lines.add(params, 'presmoothSteps', 0, 10, 1).name('pre-smoothing steps').onFinishChange(onCompute);
+  const display = gui.addFolder('Display');
+  display.add(params, 'showRidges').name('ridges').onChange(onDisplay);
+  display.add(params, 'showValleys').name('valleys').onChange(onDisplay);
+  display.add(params, 'lineWidth', 0.5, 8, 0.1).name('line width (px)').onChange(onDisplay);
+  display.addColor(params, 'ridgeColor').name('ridge colour').onChange(onDisplay);
+  display.addColor(params, 'valleyColor').name('valley colour').onChange(onDisplay);
+  display.add(params, 'view', VIEWS).name('surface').onChange(onDisplay);
+  display.add(params, 'dark').name('dark background').onChange(onDisplay);
+  gui.add({ fit: onFit }, 'fit').name('fit to view');
+  gui.add({ open: onOpen }, 'open').name('open mesh…');
+
+  return {
+    gui,
+    /** After a run with the automatic threshold: show the value used, and a useful slider range. */
+    showThreshold(value, rescale) {
+      if (rescale && value > 0) threshold.max(Math.max(1, Math.ceil(value * 4)));
+      if (params.autoThreshold) params.threshold = value;
+      threshold.updateDisplay();
+    },
+  };
+}

@@ -1,0 +1,146 @@
+// Wires the page: files → decode (three loaders) → worker (repair + Pipeline)
+// → viewer; the panel re-runs only what a changed parameter needs.
+import { DRACOLoader } from 'three/examples/jsm/loaders/DRACOLoader.js';
+import { loadMeshFiles } from '../io/load-files.js';
+import { sampleMesh } from '../io/sample.js';
+import { Viewer } from '../viewer/viewer.js';
+import { setState, showError, showFile, showNotes, showProgress, showStats } from './dom.js';
+import { installDrop } from './drop.js';
+import { createGui, defaultParams, pipelineOptions } from './gui.js';
+import { PipelineClient } from './pipeline-client.js';
+
+const params = defaultParams();
+const dracoLoader = new DRACOLoader().setDecoderPath(`${import.meta.env.BASE_URL}draco/`);
+// Test and debugging hooks: the last result, the stages each run re-computed.
+const app = (window.crestline = { results: [], params, lastResult: null, fields: null, mesh: null });
+
+const viewer = new Viewer(document.getElementById('view'), {
+  onContextLost: () => fail('The WebGL context was lost (the GPU was reset or ran out of memory); the view returns when the browser restores it.'),
+  onContextRestored: () => showError(null),
+});
+
+let pendingRun = false;
+let rescaleThreshold = false;
+
+const client = new PipelineClient({
+  onProgress: ({ stage, fraction }) => showProgress(stage, fraction),
+  onLoaded: ({ name, vertices, triangles, notes }) => {
+    app.mesh = { name, vertices, triangles };
+    showFile(`${name}: ${triangles.toLocaleString()} triangles`);
+    showNotes(notes);
+  },
+  onResult: (result) => {
+    if (result.surface) viewer.setSurface(result.surface);
+    viewer.setLines(result.lines);
+    app.lastResult = { ran: result.ran, stats: result.stats, lineCount: result.lines.types.length, milliseconds: result.milliseconds };
+    app.results.push(app.lastResult);
+    gui.showThreshold(result.stats.threshold, rescaleThreshold);
+    rescaleThreshold = false;
+    showStats(result);
+    showProgress(null);
+    const upstream = ['presmooth', 'curvature', 'extremality', 'regularity', 'smoothing'];
+    if (result.ran.some((s) => upstream.includes(s))) app.fields = null;
+    if (pendingRun) {
+      pendingRun = false;
+      compute();
+    } else {
+      setState('ready');
+      applyView();
+    }
+  },
+  onFields: ({ fields }) => {
+    app.fields = fields;
+    applyView();
+  },
+  onCancelled: ({ restarted }) => {
+    showProgress(null);
+    setState('ready');
+    showError(restarted ? 'Cancelled; the mesh was unloaded, drop it again to continue.' : null);
+  },
+  onError: ({ message }) => fail(message),
+});
+
+function fail(message) {
+  showProgress(null);
+  showError(message);
+  setState('error');
+}
+
+function compute() {
+  if (!app.mesh) return;
+  if (client.busy) {
+    pendingRun = true;
+    return;
+  }
+  setState('busy');
+  client.setOptions(pipelineOptions(params));
+}
+
+function applyDisplay() {
+  viewer.lines.setShown(params.showRidges, params.showValleys);
+  viewer.lines.setColors(params.ridgeColor, params.valleyColor);
+  viewer.lines.setWidth(params.lineWidth);
+  viewer.setBackground(params.dark ? 'dark' : 'light');
+  document.body.classList.toggle('dark', params.dark);
+  applyView();
+}
+
+/** Colour map or singular-triangle overlay; fetches fields from the worker when needed. */
+function applyView() {
+  const view = params.view;
+  if (view === 'shaded' || !app.mesh) {
+    viewer.surface.setColors(null);
+    viewer.surface.setSingular(null);
+  } else if (!app.fields) {
+    if (!client.busy) client.requestFields();
+    return;
+  } else if (view.startsWith('singular')) {
+    viewer.surface.setColors(null);
+    viewer.surface.setSingular(view === 'singularMax' ? app.fields.regularMax : app.fields.regularMin);
+  } else {
+    viewer.surface.setSingular(null);
+    viewer.surface.setColors(app.fields[view]);
+  }
+  viewer.render();
+}
+
+const picker = document.getElementById('picker');
+const gui = createGui(params, {
+  onCompute: compute,
+  onDisplay: applyDisplay,
+  onFit: () => viewer.fitView(),
+  onOpen: () => picker.click(),
+});
+
+function loadSoup({ name, positions, indices }) {
+  showError(null);
+  showNotes([]);
+  setState('busy');
+  app.mesh = null;
+  app.fields = null;
+  pendingRun = false;
+  rescaleThreshold = true;
+  showProgress('repair', 0);
+  app.mesh = { name };
+  client.load(name, positions, indices, pipelineOptions(params));
+}
+
+async function openFiles(files) {
+  if (!files.length) return;
+  client.cancel();
+  setState('busy');
+  showError(null);
+  showProgress('reading', 0);
+  try {
+    const buffers = await Promise.all(files.map(async (f) => ({ name: f.name, bytes: await f.arrayBuffer() })));
+    loadSoup(await loadMeshFiles(buffers, { dracoLoader }));
+  } catch (error) {
+    fail(error.kind ? error.message : `${files[0].name}: could not be read (${error.message}).`);
+  }
+}
+
+installDrop(document.body, openFiles);
+picker.addEventListener('change', () => openFiles([...picker.files]));
+document.getElementById('cancel').addEventListener('click', () => client.cancel());
+applyDisplay();
+loadSoup(sampleMesh());

@@ -1,0 +1,71 @@
+// The page's side of the worker protocol (../worker/protocol.js): starts the
+// worker, sends jobs, routes replies to handlers, cancels.
+import { transferables } from '../worker/protocol.js';
+
+export class PipelineClient {
+  /** handlers: {onProgress, onLoaded, onResult, onFields, onCancelled, onError} */
+  constructor(handlers) {
+    this.handlers = handlers;
+    this.job = 0;
+    this.busy = false;
+    this.lastLoad = null;
+    this.start();
+  }
+
+  start() {
+    this.worker = new Worker(new URL('../worker/worker.js', import.meta.url), { type: 'module' });
+    // Shared memory (cross-origin isolated pages only) lets cancel reach the
+    // worker while it computes.
+    this.cancelFlag = globalThis.crossOriginIsolated ? new Int32Array(new SharedArrayBuffer(4)) : null;
+    this.worker.onmessage = ({ data }) => this.receive(data);
+    this.worker.onerror = (event) => {
+      event.preventDefault?.();
+      this.busy = false;
+      this.handlers.onError?.({ message: `The pipeline worker failed (${event.message ?? 'unknown error'}).`, kind: 'Internal' });
+    };
+    this.worker.postMessage({ type: 'init', cancelFlag: this.cancelFlag });
+  }
+
+  receive(message) {
+    if (message.job !== undefined && message.job !== this.job && message.type !== 'ready') return; // stale
+    const name = { progress: 'onProgress', loaded: 'onLoaded', result: 'onResult', fields: 'onFields', cancelled: 'onCancelled', error: 'onError' }[message.type];
+    if (['result', 'cancelled', 'error'].includes(message.type)) this.busy = false;
+    if (name) this.handlers[name]?.(message);
+  }
+
+  send(message) {
+    this.job += 1;
+    this.busy = true;
+    this.worker.postMessage({ ...message, job: this.job }, transferables(message));
+    return this.job;
+  }
+
+  /** Takes ownership of the arrays (they are transferred). */
+  load(name, positions, indices, options) {
+    this.lastLoad = { name, options };
+    return this.send({ type: 'load', name, positions, indices, options });
+  }
+
+  setOptions(options) {
+    return this.send({ type: 'options', options });
+  }
+
+  /** Asks for the curvature fields of the current job's mesh (no new job). */
+  requestFields() {
+    this.worker.postMessage({ type: 'fields', job: this.job });
+  }
+
+  /** Stops the running job. Returns false when the worker had to be restarted (mesh lost). */
+  cancel() {
+    if (!this.busy) return true;
+    if (this.cancelFlag) {
+      Atomics.store(this.cancelFlag, 0, 1);
+      return true;
+    }
+    this.worker.terminate();
+    this.busy = false;
+    this.start();
+    this.handlers.onCancelled?.({ job: this.job, restarted: true });
+    return false;
+  }
+}

@@ -1,0 +1,26 @@
+// Scalar field → vertex colours: a diverging blue–white–red map, symmetric
+// around zero, scaled to the 95th percentile of |value| so a few extreme
+// vertices do not wash everything out.
+const BLUE = [0.13, 0.4, 0.75];
+const WHITE = [0.93, 0.93, 0.93];
+const RED = [0.78, 0.2, 0.17];
+
+export function robustScale(values) {
+  if (!values.length) return 1;
+  const step = Math.max(1, Math.floor(values.length / 20000));
+  const sample = [];
+  for (let i = 0; i < values.length; i += step) if (Number.isFinite(values[i])) sample.push(Math.abs(values[i]));
+  sample.sort((a, b) => a - b);
+  return sample[Math.floor(0.95 * (sample.length - 1))] || 1;
+}
+
+export function divergingColors(values, out = new Float32Array(values.length * 3)) {
+  const scale = robustScale(values);
+  for (let i = 0; i < values.length; i++) {
+    const t = Math.max(-1, Math.min(1, (values[i] || 0) / scale));
+    const [from, to] = t < 0 ? [WHITE, BLUE] : [WHITE, RED];
+    const a = Math.abs(t);
+    for (let k = 0; k < 3; k++) out[3 * i + k] = from[k] + (to[k] - from[k]) * a;
+  }
+  return out;
+}

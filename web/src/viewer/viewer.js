@@ -1,0 +1,119 @@
+// The 3D view: renderer, camera, orbit controls, lights, the surface and the
+// line layers. Renders on demand (after a change), not in a loop.
+import {
+  Box3,
+  Color,
+  DirectionalLight,
+  HemisphereLight,
+  PerspectiveCamera,
+  Scene,
+  Sphere,
+  Vector3,
+  WebGLRenderer,
+} from 'three';
+import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+import { LineLayer } from './line-layer.js';
+import { SurfaceLayer } from './surface-layer.js';
+
+const BACKGROUND = { light: 0xf4f4f2, dark: 0x1d1f24 };
+
+export class Viewer {
+  /** @param {HTMLElement} container  @param {{onContextLost, onContextRestored}} handlers */
+  constructor(container, { onContextLost, onContextRestored } = {}) {
+    this.container = container;
+    this.renderer = new WebGLRenderer({ antialias: true });
+    this.renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
+    container.appendChild(this.renderer.domElement);
+    this.scene = new Scene();
+    this.camera = new PerspectiveCamera(35, 1, 0.01, 100);
+    this.scene.add(this.camera);
+    this.scene.add(new HemisphereLight(0xffffff, 0x606070, 1.6));
+    const key = new DirectionalLight(0xffffff, 1.8);
+    key.position.set(1, 1.5, 2);
+    this.camera.add(key); // the light follows the view
+    this.controls = new OrbitControls(this.camera, this.renderer.domElement);
+    this.controls.addEventListener('change', () => this.render());
+    this.surface = new SurfaceLayer();
+    this.lines = new LineLayer();
+    this.scene.add(this.surface.mesh, this.lines.group);
+    this.origin = [0, 0, 0];
+    this.setBackground('light');
+
+    const canvas = this.renderer.domElement;
+    canvas.addEventListener('webglcontextlost', (event) => {
+      event.preventDefault(); // allows the context to be restored
+      onContextLost?.();
+    });
+    canvas.addEventListener('webglcontextrestored', () => {
+      onContextRestored?.();
+      this.render();
+    });
+    this.resizeObserver = new ResizeObserver(() => this.resize());
+    this.resizeObserver.observe(container);
+    this.resize();
+  }
+
+  /** Surface in double precision; it is centred before conversion to float32. */
+  setSurface({ positions, indices }) {
+    const box = new Box3();
+    const p = new Vector3();
+    for (let i = 0; i < positions.length; i += 3) box.expandByPoint(p.set(positions[i], positions[i + 1], positions[i + 2]));
+    const centre = box.getCenter(new Vector3());
+    this.origin = centre.toArray();
+    const local = new Float32Array(positions.length);
+    for (let i = 0; i < positions.length; i++) local[i] = positions[i] - this.origin[i % 3];
+    this.surface.setMesh(local, indices);
+    this.fitView();
+  }
+
+  setLines(lines) {
+    this.lines.setLines(lines, this.origin);
+    this.render();
+  }
+
+  fitView() {
+    const geometry = this.surface.mesh.geometry;
+    const sphere = geometry.boundingSphere ?? new Sphere(new Vector3(), 1);
+    const radius = sphere.radius || 1;
+    const distance = radius / Math.sin((this.camera.fov * Math.PI) / 360);
+    this.camera.near = distance / 100;
+    this.camera.far = distance * 10;
+    this.camera.position.copy(sphere.center).add(new Vector3(0, 0, distance * 1.05));
+    this.camera.updateProjectionMatrix();
+    this.controls.target.copy(sphere.center);
+    this.controls.update();
+    this.render();
+  }
+
+  setBackground(mode) {
+    this.scene.background = new Color(BACKGROUND[mode] ?? BACKGROUND.light);
+    this.render();
+  }
+
+  resize() {
+    const { clientWidth: w, clientHeight: h } = this.container;
+    if (!w || !h) return;
+    this.renderer.setSize(w, h, false);
+    this.camera.aspect = w / h;
+    this.camera.updateProjectionMatrix();
+    this.lines.setResolution(w, h); // line width in CSS pixels
+    this.render();
+  }
+
+  render() {
+    if (this.pending) return;
+    this.pending = requestAnimationFrame(() => {
+      this.pending = 0;
+      this.renderer.render(this.scene, this.camera);
+      this.renderCount = (this.renderCount ?? 0) + 1;
+    });
+  }
+
+  dispose() {
+    this.resizeObserver.disconnect();
+    this.controls.dispose();
+    this.surface.dispose();
+    this.lines.dispose();
+    this.renderer.dispose();
+  }
+}

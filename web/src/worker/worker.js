@@ -1,0 +1,81 @@
+// The pipeline worker: one Engine (WASM module + Session) per loaded mesh.
+// Protocol in protocol.js.
+import createCrestline from '../../../wasm/dist/crestline.js';
+import wasmUrl from '../../../wasm/dist/crestline.wasm?url';
+import { createEngine } from './engine.js';
+import { transferables } from './protocol.js';
+
+let engine = null;
+let cancelFlag = null;
+let job = 0;
+let surfaceStale = false;
+let lastPost = { stage: '', fraction: -1 };
+
+const post = (message) => self.postMessage(message, transferables(message));
+
+function progress(stage, fraction) {
+  // Throttled: a message per stage and per 5 %.
+  if (stage !== lastPost.stage || fraction - lastPost.fraction >= 0.05 || fraction === 1) {
+    lastPost = { stage, fraction };
+    self.postMessage({ type: 'progress', job, stage, fraction });
+  }
+  return !(cancelFlag && Atomics.load(cancelFlag, 0) === 1);
+}
+
+function run(options) {
+  lastPost = { stage: '', fraction: -1 };
+  if (cancelFlag) Atomics.store(cancelFlag, 0, 0);
+  const result = engine.run(options, progress);
+  if (result.cancelled) post({ type: 'cancelled', job });
+  else {
+    // The surface changes only after a load or when pre-smoothing ran.
+    const sendSurface = surfaceStale || result.ran.includes('presmooth');
+    surfaceStale = false;
+    post({ type: 'result', job, ...result, surface: sendSurface ? engine.surface() : undefined });
+  }
+}
+
+async function handle(message) {
+  job = message.job;
+  if (!engine) engine = await createEngine(createCrestline, { wasmUrl });
+  switch (message.type) {
+    case 'load': {
+      const loaded = engine.load(message);
+      surfaceStale = true;
+      post({ type: 'loaded', job, ...loaded });
+      run(message.options);
+      break;
+    }
+    case 'options':
+      run(message.options);
+      break;
+    case 'fields':
+      post({ type: 'fields', job, fields: engine.fields() });
+      break;
+  }
+}
+
+if (typeof WorkerGlobalScope !== 'undefined' && self instanceof WorkerGlobalScope) {
+  self.onmessage = async ({ data }) => {
+    if (data.type === 'init') {
+      cancelFlag = data.cancelFlag ?? null;
+      try {
+        engine = await createEngine(createCrestline, { wasmUrl });
+        post({ type: 'ready' });
+      } catch (error) {
+        post({ type: 'error', job: 0, message: `The WebAssembly module failed to start (${error.message}).`, kind: 'Internal' });
+      }
+      return;
+    }
+    try {
+      await handle(data);
+    } catch (error) {
+      // An abort (RuntimeError) leaves the module unusable: start a fresh one next time.
+      if (!error.kind) engine = null;
+      const message = error instanceof WebAssembly.RuntimeError
+        ? `The computation failed inside WebAssembly (${error.message}); the page has reset the engine.`
+        : error.message;
+      post({ type: 'error', job: data.job, message, kind: error.kind ?? 'Internal' });
+    }
+  };
+}
