@@ -1,5 +1,20 @@
-# Mesh readers, one file per format behind io::read_mesh.
+# Mesh readers, one file per format behind io::read_mesh. tinyobjloader and
+# tinygltf are compiled from their headers (TINY*_IMPLEMENTATION in
+# read_obj.cpp / read_gltf.cpp) so the same sources build with em++; Draco
+# and meshoptimizer decode compressed glTF in the native build only (the
+# browser decodes with three.js).
 add_library(crestline_readers
   src/io/read_mesh.cpp
+  src/io/read_obj.cpp
+  src/io/read_gltf.cpp
+  src/io/read_ply.cpp
+  src/io/read_stl.cpp
+  src/io/read_off.cpp
 )
 target_link_libraries(crestline_readers PUBLIC crestline_core)
+target_compile_options(crestline_readers PRIVATE $<$<CXX_COMPILER_ID:GNU,Clang>:-Wall -Wextra>)
+if(NOT EMSCRIPTEN)
+  find_package(draco REQUIRED CONFIG)
+  find_package(meshoptimizer REQUIRED CONFIG)
+  target_link_libraries(crestline_readers PRIVATE draco::draco meshoptimizer::meshoptimizer)
+endif()

@@ -1,0 +1,552 @@
+// glTF 2.0 (.gltf and .glb) through tinygltf, which parses the JSON and
+// loads buffers (external .bin, data URIs, the GLB BIN chunk) through our
+// file-system callbacks. Accessors are read here with every range checked,
+// because tinygltf does not check them: byte strides, normalized integers
+// (KHR_mesh_quantization) and sparse accessors.
+//
+// Compressed data (native build only; the browser decodes it with three.js):
+// - KHR_draco_mesh_compression is decoded with the draco library directly
+//   rather than through TINYGLTF_ENABLE_DRACO, whose decoder in tinygltf 2.7
+//   dereferences accessor and attribute ids from the file unchecked;
+// - EXT_meshopt_compression bufferViews are decoded with meshoptimizer.
+//
+// What is read: every mesh of the default scene (else scene 0, else every
+// root node) with node transforms applied, instances expanded.
+#define TINYGLTF_IMPLEMENTATION
+#define TINYGLTF_NO_STB_IMAGE
+#define TINYGLTF_NO_STB_IMAGE_WRITE
+#define TINYGLTF_NO_EXTERNAL_IMAGE
+#include <tiny_gltf.h>
+
+#include <Eigen/Geometry>
+#include <cstring>
+#include <map>
+
+#include "readers.h"
+
+#ifndef __EMSCRIPTEN__
+#include <draco/compression/decode.h>
+#include <meshoptimizer.h>
+#endif
+
+namespace crestline::io::detail {
+namespace {
+
+using Json = nlohmann::json;
+
+constexpr const char* kGlbBin = "crestline-glb-bin-chunk";
+constexpr const char* kFallback = "crestline-meshopt-fallback";
+
+struct Files {
+  const Input* in = nullptr;
+  const uint8_t* glb_bin = nullptr;
+  size_t glb_bin_size = 0;
+  std::vector<std::string> missing;
+};
+
+bool file_exists(const std::string&, void*) { return true; }  // ReadWholeFile decides
+std::string expand_path(const std::string& path, void*) { return path; }
+bool write_file(std::string*, const std::string&, const std::vector<unsigned char>&, void*) { return false; }
+bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int,
+                void*) {
+  return true;
+}
+
+bool read_companion(std::vector<unsigned char>* out, std::string*, const std::string& uri, void* user) {
+  auto& files = *static_cast<Files*>(user);
+  if (uri == kGlbBin) {
+    out->assign(files.glb_bin, files.glb_bin + files.glb_bin_size);
+    return true;
+  }
+  if (uri == kFallback) {
+    out->assign(1, 0);
+    return true;
+  }
+  if (find_companion(*files.in, uri, *out)) return true;
+  files.missing.push_back(uri);
+  return false;
+}
+
+uint32_t read_u32(const uint8_t* p) {
+  uint32_t v;
+  std::memcpy(&v, p, 4);
+  return v;
+}
+
+// The JSON and BIN chunks of a .glb container, bounds-checked.
+std::string split_glb(const Input& in, Files& files) {
+  if (in.size < 20) fail(ErrorKind::InvalidInput, in, "the GLB file is shorter than its 20-byte header.");
+  if (read_u32(in.data + 4) != 2) {
+    fail(ErrorKind::Unsupported, in, "only GLB version 2 is supported, not " + std::to_string(read_u32(in.data + 4)) + ".");
+  }
+  const size_t total = std::min<size_t>(read_u32(in.data + 8), in.size);
+  const size_t json_length = read_u32(in.data + 12);
+  if (read_u32(in.data + 16) != 0x4E4F534A || json_length > total - 20) {
+    fail(ErrorKind::InvalidInput, in, "the GLB JSON chunk is missing or longer than the file.");
+  }
+  size_t bin = 20 + ((json_length + 3) & ~size_t(3));
+  if (bin + 8 <= total && read_u32(in.data + bin + 4) == 0x004E4942) {
+    const size_t bin_length = read_u32(in.data + bin);
+    if (bin_length > total - bin - 8) fail(ErrorKind::InvalidInput, in, "the GLB BIN chunk is longer than the file.");
+    files.glb_bin = in.data + bin + 8;
+    files.glb_bin_size = bin_length;
+  }
+  return std::string(reinterpret_cast<const char*>(in.data + 20), json_length);
+}
+
+// Rewrites what tinygltf 2.7 cannot load as is: the GLB BIN chunk becomes a
+// named file we serve (cut to the buffer's byteLength: the chunk is padded),
+// EXT_meshopt_compression fallback buffers (no data by design) become
+// one-byte placeholders, and Draco primitives lose their "indices" accessor
+// (it has no bufferView, which tinygltf rejects; the faces come from Draco).
+std::string prepare_json(const Input& in, const std::string& text, bool binary, Files& files) {
+  Json json = Json::parse(text, nullptr, false);
+  if (json.is_discarded() || !json.is_object()) fail(ErrorKind::InvalidInput, in, "the glTF JSON cannot be parsed.");
+  auto buffers = json.find("buffers");
+  if (buffers != json.end() && buffers->is_array()) {
+    for (size_t i = 0; i < buffers->size(); ++i) {
+      Json& buffer = (*buffers)[i];
+      if (!buffer.is_object() || buffer.contains("uri")) continue;
+      const Json* meshopt = nullptr;
+      if (buffer.contains("extensions") && buffer["extensions"].is_object() &&
+          buffer["extensions"].contains("EXT_meshopt_compression")) {
+        meshopt = &buffer["extensions"]["EXT_meshopt_compression"];
+      }
+      if (meshopt && meshopt->is_object() && meshopt->value("fallback", false)) {
+        buffer["uri"] = kFallback;
+        buffer["byteLength"] = 1;
+      } else if (binary && i == 0) {
+        buffer["uri"] = kGlbBin;
+        const Json& length = buffer.contains("byteLength") ? buffer["byteLength"] : Json();
+        if (length.is_number_unsigned()) files.glb_bin_size = std::min<size_t>(files.glb_bin_size, length.get<size_t>());
+      }
+    }
+  }
+  auto meshes = json.find("meshes");
+  if (meshes != json.end() && meshes->is_array()) {
+    for (Json& mesh : *meshes) {
+      if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
+      for (Json& primitive : mesh["primitives"]) {
+        if (primitive.is_object() && primitive.contains("extensions") && primitive["extensions"].is_object() &&
+            primitive["extensions"].contains("KHR_draco_mesh_compression")) {
+          primitive.erase("indices");
+        }
+      }
+    }
+  }
+  return json.dump();
+}
+
+std::string first_line(const std::string& text) {
+  std::string line = text.substr(0, text.find('\n'));
+  while (!line.empty() && (line.back() == '.' || line.back() == ' ' || line.back() == '\r')) line.pop_back();
+  return line;
+}
+
+int value_int(const tinygltf::Value& object, const char* key, int fallback) {
+  if (!object.IsObject() || !object.Has(key)) return fallback;
+  const tinygltf::Value& v = object.Get(key);
+  return v.IsNumber() || v.IsInt() ? int(v.GetNumberAsInt()) : fallback;
+}
+
+std::string value_string(const tinygltf::Value& object, const char* key) {
+  if (!object.IsObject() || !object.Has(key) || !object.Get(key).IsString()) return "";
+  return object.Get(key).Get<std::string>();
+}
+
+// One primitive, decoded once per mesh and reused by every instance.
+struct Primitive {
+  std::vector<double> positions;  // xyz
+  std::vector<uint32_t> triangles;
+};
+
+class GltfReader {
+ public:
+  GltfReader(const Input& in, const ReadOptions& options, const tinygltf::Model& model)
+      : in_(in), options_(options), model_(model) {}
+
+  TriangleSoup read() {
+    decode_meshopt_views();
+    std::vector<int> roots;
+    if (model_.defaultScene >= 0 && size_t(model_.defaultScene) < model_.scenes.size()) {
+      roots = model_.scenes[size_t(model_.defaultScene)].nodes;
+    } else if (!model_.scenes.empty()) {
+      roots = model_.scenes[0].nodes;
+    } else {
+      std::vector<char> is_child(model_.nodes.size(), 0);
+      for (const auto& node : model_.nodes) {
+        for (int child : node.children) {
+          if (child >= 0 && size_t(child) < is_child.size()) is_child[size_t(child)] = 1;
+        }
+      }
+      for (size_t n = 0; n < model_.nodes.size(); ++n) {
+        if (!is_child[n]) roots.push_back(int(n));
+      }
+    }
+    traverse(roots);
+    if (skipped_primitives_ > 0) {
+      soup_.notes.push_back(std::to_string(skipped_primitives_) +
+                            " point or line primitives were ignored.");
+    }
+    return std::move(soup_);
+  }
+
+ private:
+  [[noreturn]] void invalid(const std::string& problem) const { fail(ErrorKind::InvalidInput, in_, problem); }
+
+  void traverse(const std::vector<int>& roots) {
+    struct Frame {
+      int node;
+      Eigen::Matrix4d parent;
+      bool exit;
+    };
+    std::vector<char> on_path(model_.nodes.size(), 0), visited(model_.nodes.size(), 0);
+    std::vector<Frame> stack;
+    for (auto r = roots.rbegin(); r != roots.rend(); ++r) stack.push_back({*r, Eigen::Matrix4d::Identity(), false});
+    while (!stack.empty()) {
+      Frame frame = stack.back();
+      stack.pop_back();
+      if (frame.exit) {
+        on_path[size_t(frame.node)] = 0;
+        continue;
+      }
+      if (frame.node < 0 || size_t(frame.node) >= model_.nodes.size()) {
+        invalid("the scene refers to node " + std::to_string(frame.node) + " but the file has " +
+                std::to_string(model_.nodes.size()) + " nodes.");
+      }
+      const size_t n = size_t(frame.node);
+      if (on_path[n]) invalid("the node hierarchy has a cycle through node " + std::to_string(n) + ".");
+      if (visited[n]) invalid("node " + std::to_string(n) + " has more than one parent.");
+      on_path[n] = visited[n] = 1;
+      const tinygltf::Node& node = model_.nodes[n];
+      const Eigen::Matrix4d world = frame.parent * local_transform(node);
+      if (node.mesh >= 0) add_instance(node.mesh, world);
+      stack.push_back({frame.node, Eigen::Matrix4d::Identity(), true});
+      for (auto c = node.children.rbegin(); c != node.children.rend(); ++c) stack.push_back({*c, world, false});
+    }
+  }
+
+  static Eigen::Matrix4d local_transform(const tinygltf::Node& node) {
+    Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
+    if (node.matrix.size() == 16) return Eigen::Map<const Eigen::Matrix4d>(node.matrix.data());  // column-major
+    if (node.scale.size() == 3) m = Eigen::Vector4d(node.scale[0], node.scale[1], node.scale[2], 1).asDiagonal();
+    if (node.rotation.size() == 4) {
+      Eigen::Quaterniond q(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
+      if (q.norm() > 0) {
+        Eigen::Matrix4d r = Eigen::Matrix4d::Identity();
+        r.topLeftCorner<3, 3>() = q.normalized().toRotationMatrix();
+        m = r * m;
+      }
+    }
+    if (node.translation.size() == 3) {
+      m.topRightCorner<3, 1>() += Eigen::Vector3d(node.translation[0], node.translation[1], node.translation[2]);
+    }
+    return m;
+  }
+
+  void add_instance(int mesh_index, const Eigen::Matrix4d& world) {
+    if (size_t(mesh_index) >= model_.meshes.size()) {
+      invalid("a node refers to mesh " + std::to_string(mesh_index) + " but the file has " +
+              std::to_string(model_.meshes.size()) + " meshes.");
+    }
+    auto cached = decoded_.find(mesh_index);
+    if (cached == decoded_.end()) cached = decoded_.emplace(mesh_index, decode_mesh(mesh_index)).first;
+    for (const Primitive& primitive : cached->second) {
+      if (soup_.triangle_count() + primitive.triangles.size() / 3 > options_.max_triangles) {
+        fail(ErrorKind::TooLarge, in_,
+             "the scene has more than " + std::to_string(options_.max_triangles) + " triangles.");
+      }
+      const uint32_t base = uint32_t(soup_.vertex_count());
+      for (size_t v = 0; v < primitive.positions.size(); v += 3) {
+        const Eigen::Vector4d p = world * Eigen::Vector4d(primitive.positions[v], primitive.positions[v + 1],
+                                                          primitive.positions[v + 2], 1.0);
+        soup_.positions.insert(soup_.positions.end(), {p[0], p[1], p[2]});
+      }
+      for (uint32_t index : primitive.triangles) soup_.indices.push_back(base + index);
+    }
+  }
+
+  std::vector<Primitive> decode_mesh(int mesh_index) {
+    std::vector<Primitive> primitives;
+    const auto& mesh = model_.meshes[size_t(mesh_index)];
+    for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+      const tinygltf::Primitive& source = mesh.primitives[p];
+      const std::string where = "mesh " + std::to_string(mesh_index) + " primitive " + std::to_string(p);
+      if (source.mode < TINYGLTF_MODE_TRIANGLES || source.mode > TINYGLTF_MODE_TRIANGLE_FAN) {
+        ++skipped_primitives_;
+        continue;
+      }
+      Primitive primitive;
+      std::vector<double> indices;
+      bool indexed = source.indices >= 0;
+      auto draco = source.extensions.find("KHR_draco_mesh_compression");
+      if (draco != source.extensions.end()) {
+        decode_draco(draco->second, where, primitive.positions, indices);
+        indexed = true;
+      } else {
+        auto position = source.attributes.find("POSITION");
+        if (position == source.attributes.end()) invalid(where + " has no POSITION attribute.");
+        read_accessor(position->second, TINYGLTF_TYPE_VEC3, where + " POSITION", primitive.positions);
+        if (indexed) read_accessor(source.indices, TINYGLTF_TYPE_SCALAR, where + " indices", indices);
+      }
+      const size_t vertices = primitive.positions.size() / 3;
+      const size_t count = indexed ? indices.size() : vertices;
+      auto corner = [&](size_t k) -> uint32_t {
+        if (!indexed) return uint32_t(k);
+        const double index = indices[k];
+        if (!(index >= 0 && index < double(vertices))) {
+          invalid(where + " refers to vertex " + std::to_string(int64_t(index)) + " but has only " +
+                  std::to_string(vertices) + " vertices.");
+        }
+        return uint32_t(index);
+      };
+      auto& out = primitive.triangles;
+      if (source.mode == TINYGLTF_MODE_TRIANGLES) {
+        for (size_t k = 0; k + 2 < count; k += 3) out.insert(out.end(), {corner(k), corner(k + 1), corner(k + 2)});
+      } else if (source.mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+        // Every other triangle is flipped to keep one orientation.
+        for (size_t k = 0; k + 2 < count; ++k) {
+          if (k % 2 == 0) out.insert(out.end(), {corner(k), corner(k + 1), corner(k + 2)});
+          else out.insert(out.end(), {corner(k + 1), corner(k), corner(k + 2)});
+        }
+      } else {
+        for (size_t k = 1; k + 1 < count; ++k) out.insert(out.end(), {corner(0), corner(k), corner(k + 1)});
+      }
+      primitives.push_back(std::move(primitive));
+    }
+    return primitives;
+  }
+
+  // The bytes of a bufferView: meshopt-decoded, or a checked range of its buffer.
+  std::pair<const uint8_t*, size_t> view_bytes(int view_index, const std::string& what) const {
+    if (view_index < 0 || size_t(view_index) >= model_.bufferViews.size()) {
+      invalid(what + " refers to bufferView " + std::to_string(view_index) + ", which does not exist.");
+    }
+    auto decoded = meshopt_views_.find(view_index);
+    if (decoded != meshopt_views_.end()) return {decoded->second.data(), decoded->second.size()};
+    const tinygltf::BufferView& view = model_.bufferViews[size_t(view_index)];
+    if (view.buffer < 0 || size_t(view.buffer) >= model_.buffers.size()) {
+      invalid("bufferView " + std::to_string(view_index) + " refers to a buffer that does not exist.");
+    }
+    const auto& data = model_.buffers[size_t(view.buffer)].data;
+    if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset) {
+      invalid("bufferView " + std::to_string(view_index) + " reaches past the end of its buffer.");
+    }
+    return {data.data() + view.byteOffset, view.byteLength};
+  }
+
+  static double component(const uint8_t* p, int type, bool normalized) {
+    switch (type) {
+      case TINYGLTF_COMPONENT_TYPE_BYTE: {
+        const double v = int8_t(*p);
+        return normalized ? std::max(v / 127.0, -1.0) : v;
+      }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? *p / 255.0 : *p;
+      case TINYGLTF_COMPONENT_TYPE_SHORT: {
+        int16_t s;
+        std::memcpy(&s, p, 2);
+        return normalized ? std::max(s / 32767.0, -1.0) : s;
+      }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+        uint16_t s;
+        std::memcpy(&s, p, 2);
+        return normalized ? s / 65535.0 : s;
+      }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+        uint32_t u;
+        std::memcpy(&u, p, 4);
+        return normalized ? u / 4294967295.0 : u;
+      }
+      default: {
+        float f;
+        std::memcpy(&f, p, 4);
+        return f;
+      }
+    }
+  }
+
+  // Checks that `count` elements of `element` bytes at `stride` starting at
+  // `offset` fit in `size` bytes.
+  void check_range(size_t offset, size_t count, size_t stride, size_t element, size_t size,
+                   const std::string& what) const {
+    if (count == 0) return;
+    const uint64_t end = uint64_t(offset) + uint64_t(stride) * (count - 1) + element;
+    if (stride < element || offset > size || end > size || (count - 1) > size) {
+      invalid(what + " reaches past the end of its bufferView.");
+    }
+  }
+
+  void read_accessor(int index, int type, const std::string& what, std::vector<double>& out) const {
+    if (index < 0 || size_t(index) >= model_.accessors.size()) {
+      invalid(what + " refers to accessor " + std::to_string(index) + ", which does not exist.");
+    }
+    const tinygltf::Accessor& accessor = model_.accessors[size_t(index)];
+    const int components = tinygltf::GetNumComponentsInType(uint32_t(accessor.type));
+    const int size = tinygltf::GetComponentSizeInBytes(uint32_t(accessor.componentType));
+    if (accessor.type != type || size <= 0 || accessor.componentType == TINYGLTF_COMPONENT_TYPE_DOUBLE) {
+      invalid(what + " has an unexpected type.");
+    }
+    const size_t count = accessor.count;
+    if (count > 3 * options_.max_triangles + 3) {
+      fail(ErrorKind::TooLarge, in_, what + " claims " + std::to_string(count) + " elements, more than the limit.");
+    }
+    const size_t element = size_t(size) * size_t(components);
+    if (accessor.bufferView >= 0) {
+      const auto [data, length] = view_bytes(accessor.bufferView, what);
+      const size_t declared = model_.bufferViews[size_t(accessor.bufferView)].byteStride;
+      const size_t stride = declared ? declared : element;
+      check_range(accessor.byteOffset, count, stride, element, length, what);
+      out.resize(count * size_t(components));
+      for (size_t i = 0; i < count; ++i) {
+        const uint8_t* p = data + accessor.byteOffset + i * stride;
+        for (int c = 0; c < components; ++c) {
+          out[i * size_t(components) + size_t(c)] = component(p + c * size, accessor.componentType, accessor.normalized);
+        }
+      }
+    } else {
+      out.assign(count * size_t(components), 0.0);  // no bufferView: zeros (then sparse)
+    }
+    if (!accessor.sparse.isSparse) return;
+    const auto& sparse = accessor.sparse;
+    const size_t sparse_count = size_t(std::max(sparse.count, 0));
+    const int index_size = tinygltf::GetComponentSizeInBytes(uint32_t(sparse.indices.componentType));
+    if (index_size <= 0 || (index_size == 4 && sparse.indices.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)) {
+      invalid(what + " has sparse indices of an unexpected type.");
+    }
+    const auto [index_data, index_length] = view_bytes(sparse.indices.bufferView, what + " sparse indices");
+    const auto [value_data, value_length] = view_bytes(sparse.values.bufferView, what + " sparse values");
+    check_range(size_t(std::max(sparse.indices.byteOffset, 0)), sparse_count, size_t(index_size),
+                size_t(index_size), index_length, what + " sparse indices");
+    check_range(size_t(std::max(sparse.values.byteOffset, 0)), sparse_count, element, element, value_length,
+                what + " sparse values");
+    for (size_t k = 0; k < sparse_count; ++k) {
+      const double target = component(index_data + std::max(sparse.indices.byteOffset, 0) + k * size_t(index_size),
+                                      sparse.indices.componentType, false);
+      if (!(target >= 0 && target < double(count))) invalid(what + " has a sparse index out of range.");
+      const uint8_t* p = value_data + std::max(sparse.values.byteOffset, 0) + k * element;
+      for (int c = 0; c < components; ++c) {
+        out[size_t(target) * size_t(components) + size_t(c)] =
+            component(p + c * size, accessor.componentType, accessor.normalized);
+      }
+    }
+  }
+
+#ifndef __EMSCRIPTEN__
+  void decode_meshopt_views() {
+    for (size_t v = 0; v < model_.bufferViews.size(); ++v) {
+      auto extension = model_.bufferViews[v].extensions.find("EXT_meshopt_compression");
+      if (extension == model_.bufferViews[v].extensions.end()) continue;
+      const tinygltf::Value& e = extension->second;
+      const std::string what = "bufferView " + std::to_string(v) + " (EXT_meshopt_compression)";
+      const int buffer = value_int(e, "buffer", -1);
+      const int offset = value_int(e, "byteOffset", 0);
+      const int length = value_int(e, "byteLength", -1);
+      const int stride = value_int(e, "byteStride", -1);
+      const int count = value_int(e, "count", -1);
+      const std::string mode = value_string(e, "mode");
+      const std::string filter = value_string(e, "filter");
+      if (buffer < 0 || size_t(buffer) >= model_.buffers.size() || offset < 0 || length < 0 || stride <= 0 ||
+          stride > 256 || count < 0) {
+        invalid(what + " has missing or invalid properties.");
+      }
+      const auto& data = model_.buffers[size_t(buffer)].data;
+      if (size_t(offset) > data.size() || size_t(length) > data.size() - size_t(offset)) {
+        invalid(what + " reaches past the end of its buffer.");
+      }
+      if (uint64_t(count) > 3 * uint64_t(options_.max_triangles) + 3) {
+        fail(ErrorKind::TooLarge, in_, what + " claims " + std::to_string(count) + " elements, more than the limit.");
+      }
+      std::vector<uint8_t> out(size_t(count) * size_t(stride));
+      const unsigned char* source = data.data() + offset;
+      int status = -1;
+      if (mode == "ATTRIBUTES") {
+        status = meshopt_decodeVertexBuffer(out.data(), size_t(count), size_t(stride), source, size_t(length));
+        if (status == 0 && filter == "OCTAHEDRAL") meshopt_decodeFilterOct(out.data(), size_t(count), size_t(stride));
+        if (status == 0 && filter == "QUATERNION") meshopt_decodeFilterQuat(out.data(), size_t(count), size_t(stride));
+        if (status == 0 && filter == "EXPONENTIAL") meshopt_decodeFilterExp(out.data(), size_t(count), size_t(stride));
+      } else if ((mode == "TRIANGLES" || mode == "INDICES") && (stride == 2 || stride == 4)) {
+        status = mode == "TRIANGLES"
+                     ? meshopt_decodeIndexBuffer(out.data(), size_t(count), size_t(stride), source, size_t(length))
+                     : meshopt_decodeIndexSequence(out.data(), size_t(count), size_t(stride), source, size_t(length));
+      }
+      if (status != 0) invalid(what + " cannot be decoded.");
+      meshopt_views_[int(v)] = std::move(out);
+    }
+  }
+
+  void decode_draco(const tinygltf::Value& extension, const std::string& where, std::vector<double>& positions,
+                    std::vector<double>& indices) const {
+    const auto [data, length] = view_bytes(value_int(extension, "bufferView", -1), where + " (Draco)");
+    const int position_id = extension.Has("attributes") ? value_int(extension.Get("attributes"), "POSITION", -1) : -1;
+    draco::DecoderBuffer buffer;
+    buffer.Init(reinterpret_cast<const char*>(data), length);
+    draco::Decoder decoder;
+    auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
+    if (!decoded.ok()) invalid(where + " has Draco data that cannot be decoded (" + decoded.status().error_msg_string() + ").");
+    const draco::Mesh& mesh = *decoded.value();
+    const draco::PointAttribute* attribute =
+        position_id >= 0 ? mesh.GetAttributeByUniqueId(uint32_t(position_id)) : nullptr;
+    if (!attribute || attribute->num_components() < 3) invalid(where + " has no Draco POSITION attribute.");
+    positions.resize(3 * size_t(mesh.num_points()));
+    for (draco::PointIndex i(0); i < mesh.num_points(); ++i) {
+      if (!attribute->ConvertValue<double>(attribute->mapped_index(i), 3, &positions[3 * size_t(i.value())])) {
+        invalid(where + " has Draco positions that cannot be converted.");
+      }
+    }
+    indices.resize(3 * size_t(mesh.num_faces()));
+    for (draco::FaceIndex f(0); f < mesh.num_faces(); ++f) {
+      for (int k = 0; k < 3; ++k) indices[3 * size_t(f.value()) + size_t(k)] = mesh.face(f)[k].value();
+    }
+  }
+#else
+  void decode_meshopt_views() {
+    for (const auto& view : model_.bufferViews) {
+      if (view.extensions.count("EXT_meshopt_compression")) unsupported_compression("EXT_meshopt_compression");
+    }
+  }
+  void decode_draco(const tinygltf::Value&, const std::string&, std::vector<double>&, std::vector<double>&) const {
+    unsupported_compression("KHR_draco_mesh_compression");
+  }
+  [[noreturn]] void unsupported_compression(const char* extension) const {
+    fail(ErrorKind::Unsupported, in_,
+         std::string("the mesh is compressed with ") + extension +
+             "; decode it in the browser before passing it to the WASM core.");
+  }
+#endif
+
+  const Input& in_;
+  const ReadOptions& options_;
+  const tinygltf::Model& model_;
+  TriangleSoup soup_;
+  std::map<int, std::vector<uint8_t>> meshopt_views_;
+  std::map<int, std::vector<Primitive>> decoded_;
+  size_t skipped_primitives_ = 0;
+};
+
+}  // namespace
+
+TriangleSoup read_gltf(const Input& in, const ReadOptions& options) {
+  Files files;
+  files.in = &in;
+  const bool binary = in.size >= 4 && std::memcmp(in.data, "glTF", 4) == 0;
+  const std::string json = prepare_json(
+      in, binary ? split_glb(in, files) : std::string(reinterpret_cast<const char*>(in.data), in.size), binary,
+      files);
+
+  tinygltf::TinyGLTF loader;
+  loader.SetImageLoader(skip_image, nullptr);
+  loader.SetFsCallbacks({file_exists, expand_path, read_companion, write_file, &files});
+  tinygltf::Model model;
+  std::string error, warning;
+  if (!loader.LoadASCIIFromString(&model, &error, &warning, json.data(), unsigned(json.size()), "")) {
+    if (!files.missing.empty()) {
+      fail(ErrorKind::Io, in, "the buffer file '" + files.missing.front() + "' it refers to was not found.");
+    }
+    fail(ErrorKind::InvalidInput, in, "the glTF data is invalid (" + first_line(error) + ").");
+  }
+  TriangleSoup soup = GltfReader(in, options, model).read();
+  finish_soup(soup, in);
+  return soup;
+}
+
+}  // namespace crestline::io::detail

@@ -1,0 +1,172 @@
+// Wavefront OBJ through tinyobjloader's streaming (callback) API: it hands
+// over every `f` line whole, with its raw 1-based or negative indices and no
+// limit on the polygon size (its shape API truncates polygons to 255
+// vertices and fans them). Polygons are ear-clipped here (add_polygon).
+// Materials are never needed, so a missing .mtl is irrelevant.
+#define TINYOBJLOADER_IMPLEMENTATION
+#define TINYOBJLOADER_USE_DOUBLE
+#include <tiny_obj_loader.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <streambuf>
+
+#include "readers.h"
+
+namespace crestline::io::detail {
+namespace {
+
+// An istream over bytes we already hold, without copying them.
+struct MemoryBuffer : std::streambuf {
+  MemoryBuffer(const char* begin, size_t size) {
+    char* b = const_cast<char*>(begin);
+    setg(b, b, b + size);
+  }
+};
+
+// UTF-16 text (with byte-order mark) as 8-bit text; non-ASCII characters,
+// which can only occur in comments and names, become '?'.
+bool decode_utf16(const Input& in, std::string& text) {
+  if (in.size < 2) return false;
+  const bool big = in.data[0] == 0xFE && in.data[1] == 0xFF;
+  const bool little = in.data[0] == 0xFF && in.data[1] == 0xFE;
+  if (!big && !little) return false;
+  text.reserve(in.size / 2);
+  for (size_t i = 2; i + 1 < in.size; i += 2) {
+    const unsigned unit = big ? (in.data[i] << 8 | in.data[i + 1]) : (in.data[i + 1] << 8 | in.data[i]);
+    text += unit < 128 ? char(unit) : '?';
+  }
+  return true;
+}
+
+struct ObjState {
+  const Input* in = nullptr;
+  const ReadOptions* options = nullptr;
+  TriangleSoup soup;
+  std::vector<uint32_t> polygon;
+  size_t faces = 0;
+  size_t short_faces = 0;
+  int64_t largest_index = -1;  // validated once all vertices are known
+  size_t largest_index_face = 0;
+};
+
+void on_vertex(void* user, double x, double y, double z, double) {
+  auto& state = *static_cast<ObjState*>(user);
+  state.soup.positions.insert(state.soup.positions.end(), {x, y, z});
+}
+
+void on_face(void* user, tinyobj::index_t* indices, int count) {
+  auto& state = *static_cast<ObjState*>(user);
+  const size_t face = ++state.faces;
+  if (count < 3) {
+    ++state.short_faces;
+    return;
+  }
+  const int64_t known = int64_t(state.soup.vertex_count());
+  state.polygon.clear();
+  for (int k = 0; k < count; ++k) {
+    const int64_t raw = indices[k].vertex_index;
+    // Negative indices count back from the last vertex read so far.
+    const int64_t index = raw > 0 ? raw - 1 : known + raw;
+    if (raw == 0 || index < 0) {
+      fail(ErrorKind::InvalidInput, *state.in,
+           "face " + std::to_string(face) + " uses vertex index " + std::to_string(raw) +
+               ", which does not exist (OBJ indices start at 1, negative ones count back from " +
+               std::to_string(known) + ").");
+    }
+    if (index > state.largest_index) {
+      state.largest_index = index;
+      state.largest_index_face = face;
+    }
+    state.polygon.push_back(uint32_t(std::min<int64_t>(index, UINT32_MAX)));
+  }
+  if (state.soup.triangle_count() + state.polygon.size() - 2 > state.options->max_triangles) {
+    fail(ErrorKind::TooLarge, *state.in,
+         "the file has more than " + std::to_string(state.options->max_triangles) + " triangles.");
+  }
+  if (state.largest_index < known) {
+    add_polygon(state.soup, state.polygon.data(), state.polygon.size());
+  } else {
+    // Refers ahead to a vertex not read yet: legal only if it comes later.
+    // Fanned now, checked at the end (rare enough not to ear-clip).
+    for (size_t i = 1; i + 1 < state.polygon.size(); ++i) {
+      state.soup.indices.insert(state.soup.indices.end(),
+                                {state.polygon[0], state.polygon[i], state.polygon[i + 1]});
+    }
+  }
+}
+
+// tinyobjloader reads "nan" and "inf" as 0, which would turn a broken vertex
+// into a plausible one. Re-read the coordinates of `v` lines that contain
+// such words so they stay non-finite and repair can drop their triangles.
+void restore_non_finite(const std::string_view text, std::vector<double>& positions) {
+  size_t vertex = 0;
+  size_t pos = 0;
+  while (pos < text.size()) {
+    size_t end = text.find('\n', pos);
+    if (end == std::string_view::npos) end = text.size();
+    size_t i = pos;
+    while (i < end && (text[i] == ' ' || text[i] == '\t')) ++i;
+    if (i + 1 < end && text[i] == 'v' && (text[i + 1] == ' ' || text[i + 1] == '\t')) {
+      const std::string line(text.substr(i + 2, end - i - 2));
+      const char* p = line.c_str();
+      for (int c = 0; c < 3 && 3 * vertex + c < positions.size(); ++c) {
+        char* next = nullptr;
+        const double value = std::strtod(p, &next);
+        if (next == p) break;
+        if (!std::isfinite(value)) positions[3 * vertex + c] = value;
+        p = next;
+      }
+      ++vertex;
+    }
+    pos = end + 1;
+  }
+}
+
+bool mentions_non_finite(std::string_view text) {
+  for (size_t i = 0; i + 2 < text.size(); ++i) {
+    const char a = char(text[i] | 0x20), b = char(text[i + 1] | 0x20), c = char(text[i + 2] | 0x20);
+    if ((a == 'n' && b == 'a' && c == 'n') || (a == 'i' && b == 'n' && c == 'f')) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+TriangleSoup read_obj(const Input& in, const ReadOptions& options) {
+  std::string decoded;
+  const bool utf16 = decode_utf16(in, decoded);
+  const std::string_view text =
+      utf16 ? std::string_view(decoded) : std::string_view(reinterpret_cast<const char*>(in.data), in.size);
+
+  ObjState state;
+  state.in = &in;
+  state.options = &options;
+  tinyobj::callback_t callbacks;
+  callbacks.vertex_cb = on_vertex;
+  callbacks.index_cb = on_face;
+  MemoryBuffer buffer(text.data(), text.size());
+  std::istream stream(&buffer);
+  std::string warning, error;
+  if (!tinyobj::LoadObjWithCallback(stream, callbacks, &state, nullptr, &warning, &error)) {
+    fail(ErrorKind::InvalidInput, in, "the OBJ text cannot be parsed (" + error + ").");
+  }
+  TriangleSoup& soup = state.soup;
+  const size_t vertices = soup.vertex_count();
+  if (state.largest_index >= int64_t(vertices)) {
+    fail(ErrorKind::InvalidInput, in,
+         "face " + std::to_string(state.largest_index_face) + " refers to vertex " +
+             std::to_string(state.largest_index + 1) + " but the file has " + std::to_string(vertices) +
+             " vertices.");
+  }
+  if (mentions_non_finite(text)) restore_non_finite(text, soup.positions);
+  if (utf16) soup.notes.push_back("The file is UTF-16 text; it was read as ASCII.");
+  if (state.short_faces > 0) {
+    soup.notes.push_back(std::to_string(state.short_faces) +
+                         " faces with fewer than 3 vertices were skipped.");
+  }
+  finish_soup(soup, in);
+  return std::move(soup);
+}
+
+}  // namespace crestline::io::detail

@@ -1,0 +1,144 @@
+#pragma once
+// Private to the readers: one parse function per format and the helpers they
+// share (error messages, header-claim checks, polygon triangulation).
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "crestline/error.h"
+#include "crestline/io/read_mesh.h"
+
+namespace crestline::io::detail {
+
+/// The bytes of one file plus what is needed to find its companions.
+struct Input {
+  std::string name;  // basename, used in every message
+  const uint8_t* data = nullptr;
+  size_t size = 0;
+  /// In-memory companions (read_mesh_bytes); looked up by URI, then basename.
+  const std::vector<NamedBuffer>* companions = nullptr;
+  /// Directory of the file on disk ("" for in-memory input; companions are
+  /// then only taken from `companions`).
+  std::string directory;
+};
+
+/// Throws Error(kind, "<name>: <problem>"); `problem` is a sentence fragment
+/// ending with a full stop.
+[[noreturn]] void fail(ErrorKind kind, const Input& in, const std::string& problem);
+
+/// Refuses a header claim of `count` items before anything is allocated for
+/// it: TooLarge beyond `options.max_triangles`, InvalidInput when the file
+/// is too short to hold `count` items of at least `min_bytes_each` bytes.
+void check_claim(const Input& in, const ReadOptions& options, uint64_t count,
+                 uint64_t min_bytes_each, size_t bytes_left, const char* what);
+
+/// Appends the triangulation of polygon `poly` (n vertex indices into
+/// soup.positions, all valid) to soup.indices: n - 2 triangles with the
+/// polygon's orientation. Polygons with n > 3 are ear-clipped in their
+/// best-fit (Newell) plane, so concave ones stay inside their outline;
+/// polygons without a plane (all vertices collinear) fall back to a fan.
+void add_polygon(TriangleSoup& soup, const uint32_t* poly, size_t n);
+
+/// The checks every reader ends with: at least one triangle (InvalidInput
+/// "contains no triangles" otherwise), every index in range, and not every
+/// referenced vertex non-finite. Non-finite vertices are otherwise passed
+/// through with a note; repair_mesh drops their triangles.
+void finish_soup(TriangleSoup& soup, const Input& in);
+
+/// Reads a whole file; throws Error(Io) naming `display_name` on failure.
+std::vector<uint8_t> read_file(const std::string& path, const std::string& display_name);
+
+/// Finds a companion file (glTF buffer) by URI: first in in.companions,
+/// then on disk next to the file. Returns false when absent.
+bool find_companion(const Input& in, const std::string& uri, std::vector<uint8_t>& out);
+
+/// The last path component ("a/b/c.gltf" -> "c.gltf").
+std::string basename_of(const std::string& path);
+
+/// Words of a text format, line by line (OFF, ASCII PLY and STL). With
+/// `comments`, '#' starts a comment that runs to the end of the line.
+class TextScanner {
+ public:
+  TextScanner(const uint8_t* data, size_t size, bool comments)
+      : p_(reinterpret_cast<const char*>(data)), end_(p_ + size), comments_(comments) {}
+
+  /// Moves to the next line that has a word; false at the end of the text.
+  bool next_line() {
+    while (p_ < end_) {
+      line_ = p_;
+      const char* newline = static_cast<const char*>(std::memchr(p_, '\n', size_t(end_ - p_)));
+      line_end_ = newline ? newline : end_;
+      p_ = newline ? newline + 1 : end_;
+      ++line_number_;
+      if (comments_) {
+        const char* hash = static_cast<const char*>(std::memchr(line_, '#', size_t(line_end_ - line_)));
+        if (hash) line_end_ = hash;
+      }
+      const char* probe = line_;
+      skip_space(probe);
+      if (probe < line_end_) return true;
+    }
+    return false;
+  }
+  /// The next word of the current line; false when the line has no more.
+  bool word(std::string_view& out) {
+    skip_space(line_);
+    if (line_ >= line_end_) return false;
+    const char* start = line_;
+    while (line_ < line_end_ && !is_space(*line_)) ++line_;
+    out = std::string_view(start, size_t(line_ - start));
+    return true;
+  }
+  /// The next word as a number (strtod syntax, so "nan" and "inf" too).
+  bool number(double& out) {
+    std::string_view w;
+    if (!word(w) || w.size() >= 63) return false;
+    char buffer[64];
+    std::memcpy(buffer, w.data(), w.size());
+    buffer[w.size()] = '\0';
+    char* stop = nullptr;
+    out = std::strtod(buffer, &stop);
+    return stop == buffer + w.size();
+  }
+  /// The next word as an integer (a number with no fraction).
+  bool integer(int64_t& out) {
+    double value = 0;
+    if (!number(value) || !(std::fabs(value) < 9e18) || value != std::floor(value)) return false;
+    out = int64_t(value);
+    return true;
+  }
+  size_t line_number() const { return line_number_; }
+  size_t bytes_left() const { return size_t(end_ - p_); }
+  /// Byte offset just past the current line (where binary PLY data starts).
+  const char* after_line() const { return p_; }
+
+ private:
+  static bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
+  void skip_space(const char*& q) const {
+    while (q < line_end_ && is_space(*q)) ++q;
+  }
+  const char* p_;
+  const char* end_;
+  const char* line_ = nullptr;
+  const char* line_end_ = nullptr;
+  size_t line_number_ = 0;
+  bool comments_;
+};
+
+TriangleSoup read_obj(const Input& in, const ReadOptions& options);
+TriangleSoup read_gltf(const Input& in, const ReadOptions& options);  // .gltf and .glb
+TriangleSoup read_ply(const Input& in, const ReadOptions& options);
+TriangleSoup read_stl(const Input& in, const ReadOptions& options);
+TriangleSoup read_off(const Input& in, const ReadOptions& options);
+
+/// True when `size` bytes are a binary STL: 84-byte header and 50 bytes per
+/// triangle exactly (the only reliable test: many binary STL headers start
+/// with "solid" too).
+bool is_binary_stl_size(size_t size, const uint8_t* data);
+
+}  // namespace crestline::io::detail
