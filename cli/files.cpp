@@ -1,0 +1,78 @@
+#include "files.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <tuple>
+
+#include "crestline/error.h"
+
+namespace crestline::cli {
+
+void write_file_atomically(const std::string& path, const std::string& text) {
+  const std::string temporary = path + ".tmp";
+  auto fail = [&](const char* what) {
+    const std::string reason = std::strerror(errno);
+    std::remove(temporary.c_str());
+    throw Error(ErrorKind::Io, std::string(what) + " (" + reason + ").");
+  };
+  errno = 0;
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    if (!out) fail("the file cannot be created");
+    out.write(text.data(), static_cast<std::streamsize>(text.size()));
+    out.close();
+    if (!out) fail("the file cannot be written");
+  }
+  if (std::rename(temporary.c_str(), path.c_str()) != 0) fail("the file cannot be replaced");
+}
+
+std::vector<double> read_vertex_weights(const std::string& path, const TriangleSoup& soup,
+                                        const Mesh& mesh) {
+  std::ifstream in(path);
+  if (!in) throw Error(ErrorKind::Io, "the weights file cannot be opened.");
+  std::vector<double> weights;
+  std::string line;
+  for (size_t number = 1; std::getline(in, line); ++number) {
+    const size_t start = line.find_first_not_of(" \t\r");
+    if (start == std::string::npos || line[start] == '#') continue;
+    char* end = nullptr;
+    const double value = std::strtod(line.c_str() + start, &end);
+    const bool rest_blank = line.find_first_not_of(" \t\r", end - line.c_str()) == std::string::npos;
+    if (end == line.c_str() + start || !rest_blank || !std::isfinite(value) || value < 0)
+      throw Error(ErrorKind::InvalidInput,
+                  "line " + std::to_string(number) + " is not a finite non-negative number.");
+    weights.push_back(value);
+  }
+  if (weights.size() == mesh.vertex_count()) return weights;
+  if (weights.size() != soup.vertex_count())
+    throw Error(ErrorKind::InvalidInput,
+                "it has " + std::to_string(weights.size()) + " weights but the mesh has " +
+                    std::to_string(soup.vertex_count()) + " vertices (" +
+                    std::to_string(mesh.vertex_count()) + " after repair).");
+  // One weight per input vertex: repair keeps one of each group of welded
+  // vertices at its position, so positions identify them.
+  using Key = std::tuple<double, double, double>;
+  std::map<Key, double> by_position;
+  for (size_t v = 0; v < soup.vertex_count(); ++v) {
+    const double* p = &soup.positions[3 * v];
+    by_position.emplace(Key{p[0], p[1], p[2]}, weights[v]);
+  }
+  std::vector<double> mapped(mesh.vertex_count());
+  for (size_t v = 0; v < mesh.vertex_count(); ++v) {
+    const Vec3& p = mesh.positions[v];
+    const auto it = by_position.find(Key{p.x(), p.y(), p.z()});
+    if (it == by_position.end())
+      throw Error(ErrorKind::InvalidInput,
+                  "the mesh repair moved vertices, so give one weight per repaired vertex (" +
+                      std::to_string(mesh.vertex_count()) + ").");
+    mapped[v] = it->second;
+  }
+  return mapped;
+}
+
+}  // namespace crestline::cli

@@ -1,0 +1,22 @@
+#pragma once
+// The CLI's only contact with the filesystem besides io::read_mesh.
+#include <string>
+#include <vector>
+
+#include "crestline/mesh/mesh.h"
+
+namespace crestline::cli {
+
+/// Writes `text` to `path` atomically: to `path`.tmp first, then renamed over
+/// `path`, so a failure never leaves a partial output behind. Throws
+/// Error(Io) without a file name (the caller knows it).
+void write_file_atomically(const std::string& path, const std::string& text);
+
+/// Reads one number per line (blank lines and lines starting with # are
+/// skipped) and matches them to the repaired mesh's vertices: either one per
+/// repaired vertex, or one per vertex of the input file, carried over by
+/// position (repair welds and drops vertices). Throws Error(InvalidInput).
+std::vector<double> read_vertex_weights(const std::string& path, const TriangleSoup& soup,
+                                        const Mesh& mesh);
+
+}  // namespace crestline::cli

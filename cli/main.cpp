@@ -1,0 +1,111 @@
+// crestline INPUT -o OUT.{obj,json,svg}: read → repair → pipeline → write.
+// Exit codes: 0 success, 1 a problem with a file or the computation, 2 a
+// usage error, 130 interrupted. On failure no output file is left behind.
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <iostream>
+#include <string>
+
+#include "crestline/error.h"
+#include "crestline/io/read_mesh.h"
+#include "crestline/io/write_lines.h"
+#include "crestline/mesh/repair.h"
+#include "crestline/pipeline.h"
+#include "files.h"
+#include "options.h"
+#include "progress.h"
+
+namespace crestline::cli {
+namespace {
+
+/// "crestline: FILE: problem", without naming the file twice when the
+/// message (e.g. from io::read_mesh) already starts with it.
+void report_error(const std::string& file, const std::string& message) {
+  std::cerr << "crestline: ";
+  if (message.rfind(file + ":", 0) != 0) std::cerr << file << ": ";
+  std::cerr << message << '\n';
+}
+
+void print_repair_report(const std::string& input, const RepairReport& r) {
+  const std::pair<const char*, size_t> counts[] = {
+      {"input_vertices", r.input_vertices},
+      {"input_triangles", r.input_triangles},
+      {"welded_vertices", r.welded_vertices},
+      {"nonfinite_triangles", r.nonfinite_triangles},
+      {"degenerate_triangles", r.degenerate_triangles},
+      {"duplicate_triangles", r.duplicate_triangles},
+      {"unreferenced_vertices", r.unreferenced_vertices},
+      {"nonmanifold_edges", r.nonmanifold_edges},
+      {"nonmanifold_vertices", r.nonmanifold_vertices},
+      {"flipped_triangles", r.flipped_triangles},
+      {"components", r.components},
+      {"boundary_edges", r.boundary_edges}};
+  std::cerr << "crestline: " << input << ": repair report\n";
+  for (const auto& [name, value] : counts) std::cerr << "  " << name << ": " << value << '\n';
+}
+
+std::string render(const CliOptions& options, const Pipeline& pipeline) {
+  switch (options.format) {
+    case OutputFormat::Json: return io::write_lines_json(pipeline.lines(), pipeline.stats());
+    case OutputFormat::Svg: return io::write_lines_svg(pipeline.lines(), pipeline.surface(), options.svg);
+    case OutputFormat::Obj:
+    default: return io::write_lines_obj(pipeline.lines());
+  }
+}
+
+int run(const CliOptions& options) {
+  // The file the current step is about, for error messages.
+  std::string file = options.input;
+  try {
+    const auto directory = std::filesystem::path(options.output).parent_path();
+    if (!directory.empty() && !std::filesystem::is_directory(directory)) {
+      report_error(options.output, "the folder " + directory.string() + " does not exist.");
+      return 1;
+    }
+    const TriangleSoup soup = io::read_mesh(options.input);
+    RepairResult repaired = repair_mesh(soup);
+    if (!options.quiet) {
+      for (const std::string& note : soup.notes) report_error(options.input, note);
+      for (const std::string& note : repaired.report.notes()) report_error(options.input, note);
+    }
+    if (options.repair_report) print_repair_report(options.input, repaired.report);
+
+    PipelineOptions pipeline_options = options.pipeline;
+    if (!options.weights.empty()) {
+      file = options.weights;
+      pipeline_options.smoothing.vertex_weights = read_vertex_weights(options.weights, soup, repaired.mesh);
+      file = options.input;
+    }
+
+    Pipeline pipeline(std::move(repaired.mesh));
+    pipeline.set_options(pipeline_options);
+    {
+      Progress progress(!options.quiet);
+      pipeline.run([&progress](Stage stage, double fraction) { return progress(stage, fraction); });
+    }
+
+    const std::string text = render(options, pipeline);
+    file = options.output;
+    write_file_atomically(options.output, text);
+    if (options.stats) std::cout << io::stats_json(pipeline.stats()) << std::endl;
+    return 0;
+  } catch (const Cancelled&) {
+    report_error(file, "interrupted; nothing was written.");
+    return 130;
+  } catch (const std::exception& e) {  // crestline::Error and everything else
+    report_error(file, e.what());
+    return 1;
+  }
+}
+
+}  // namespace
+}  // namespace crestline::cli
+
+int main(int argc, char** argv) {
+  using namespace crestline::cli;
+  CliOptions options;
+  if (const int code = parse_options(argc, argv, options); code >= 0) return code;
+  Progress::catch_interrupt();
+  return run(options);
+}

@@ -1,0 +1,117 @@
+#!/usr/bin/env bash
+# End-to-end checks of the `crestline` command: exit codes, messages, and
+# that failures leave no output file behind. Usage: test_cli.sh CRESTLINE
+set -uo pipefail
+crestline=${1:?usage: test_cli.sh path/to/crestline}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+
+# A 30×30 height field z = 0.1 cos(4πx) on [0,2]²: two ridges and valleys.
+awk 'BEGIN {
+  n = 30; pi = atan2(0, -1);
+  for (j = 0; j <= n; j++) for (i = 0; i <= n; i++) {
+    x = 2 * i / n; y = 2 * j / n; printf "v %.6f %.6f %.6f\n", x, y, 0.1 * cos(4 * pi * x) }
+  for (j = 0; j < n; j++) for (i = 0; i < n; i++) {
+    a = j * (n + 1) + i + 1; printf "f %d %d %d\nf %d %d %d\n", a, a + 1, a + n + 2, a, a + n + 2, a + n + 1 }
+}' > "$work/wave.obj"
+vertices=$(grep -c '^v ' "$work/wave.obj")
+
+# expect CODE NAME -- ARGS: runs crestline, checks the exit code.
+expect() {
+  local code=$1 name=$2
+  shift 3
+  "$crestline" "$@" > "$work/stdout" 2> "$work/stderr"
+  local got=$?
+  [ "$got" -eq "$code" ] || fail "$name: exit code $got, expected $code ($(head -c 300 "$work/stderr"))"
+}
+# one_line_naming NAME TEXT: stderr is one line that mentions TEXT.
+one_line_naming() {
+  [ "$(wc -l < "$work/stderr")" -eq 1 ] || fail "$1: stderr is not one line: $(cat "$work/stderr")"
+  grep -qF -- "$2" "$work/stderr" || fail "$1: stderr does not name $2: $(cat "$work/stderr")"
+}
+absent() { [ ! -e "$2" ] && [ ! -e "$2.tmp" ] || fail "$1: $2 was left behind"; }
+
+# Success in each format.
+for ext in obj json svg; do
+  expect 0 "write .$ext" -- "$work/wave.obj" -o "$work/lines.$ext" --quiet
+  [ -s "$work/lines.$ext" ] || fail "write .$ext: no output"
+  [ ! -e "$work/lines.$ext.tmp" ] || fail "write .$ext: temporary file left"
+  [ ! -s "$work/stderr" ] || fail "write .$ext: --quiet printed $(cat "$work/stderr")"
+done
+grep -q '^o ridges$' "$work/lines.obj" || fail "OBJ has no 'o ridges'"
+grep -q '^o valleys$' "$work/lines.obj" || fail "OBJ has no 'o valleys'"
+grep -q '^l [0-9]* [0-9]*' "$work/lines.obj" || fail "OBJ has no polyline"
+grep -q '"ridges":\[' "$work/lines.json" || fail "JSON has no ridges"
+grep -q '<g id="valleys"' "$work/lines.svg" || fail "SVG has no valleys group"
+
+# --stats: one JSON object on stdout.
+expect 0 "--stats" -- "$work/wave.obj" -o "$work/stats.obj" --stats --quiet
+[ "$(wc -l < "$work/stdout")" -eq 1 ] || fail "--stats: stdout is not one line"
+for key in vertices triangles singular_max singular_min ridges valleys ridge_length valley_length seconds; do
+  grep -q "\"$key\":" "$work/stdout" || fail "--stats: no $key"
+done
+grep -q "\"vertices\":$vertices," "$work/stdout" || fail "--stats: vertices is not $vertices"
+grep -q '"seconds":{"presmooth":' "$work/stdout" || fail "--stats: seconds not keyed by stage"
+
+# Every parameter, including a weights file with one number per vertex.
+awk -v n="$vertices" 'BEGIN { for (i = 0; i < n; i++) print (i % 2 ? 0.5 : 1) }' > "$work/weights.txt"
+expect 0 "all options" -- "$work/wave.obj" -o "$work/all.svg" --presmooth-steps 1 --presmooth-time-step 0.5 \
+  --smoothing-steps 2 --smoothing-time-step 0.5 --boundary-rings 1 --fairing-bound 0.2 \
+  --fairing-iterations 10 --threshold 0.1 --view top --svg-width 400 --stroke-width 2 --silhouette \
+  --weights "$work/weights.txt" --repair-report
+grep -q 'welded_vertices: 0' "$work/stderr" || fail "--repair-report: no counts: $(cat "$work/stderr")"
+grep -q '<g id="silhouette"' "$work/all.svg" || fail "--silhouette: no silhouette group"
+
+# Failures: exit code, one line naming the file, no output.
+expect 1 "missing input" -- "$work/nope.obj" -o "$work/out.obj"
+one_line_naming "missing input" "$work/nope.obj"
+absent "missing input" "$work/out.obj"
+
+printf 'v 0 0 0\nv 1 0 0\nf 1 2 7\n' > "$work/broken.obj"
+expect 1 "broken input" -- "$work/broken.obj" -o "$work/out.svg"
+one_line_naming "broken input" "$work/broken.obj"
+absent "broken input" "$work/out.svg"
+
+head -c 2000 /dev/urandom > "$work/noise.obj"
+"$crestline" "$work/noise.obj" -o "$work/out.json" > /dev/null 2>&1
+[ $? -ne 0 ] || [ -s "$work/out.json" ] || fail "random bytes: exit 0 but no output"
+rm -f "$work/out.json"
+
+printf '1\n2\n' > "$work/short.txt"
+expect 1 "wrong weight count" -- "$work/wave.obj" -o "$work/out.obj" --weights "$work/short.txt" --quiet
+one_line_naming "wrong weight count" "$work/short.txt"
+absent "wrong weight count" "$work/out.obj"
+
+expect 1 "missing output folder" -- "$work/wave.obj" -o "$work/no/such/dir/out.obj"
+one_line_naming "missing output folder" "$work/no/such/dir/out.obj"
+
+# An existing output is replaced only on success.
+echo keep > "$work/keep.obj"
+expect 1 "failure keeps old output" -- "$work/broken.obj" -o "$work/keep.obj"
+[ "$(cat "$work/keep.obj")" = keep ] || fail "a failed run changed an existing output"
+
+# Usage errors: exit code 2.
+expect 2 "unsupported extension" -- "$work/wave.obj" -o "$work/out.png"
+one_line_naming "unsupported extension" ".obj, .json or .svg"
+absent "unsupported extension" "$work/out.png"
+expect 2 "unknown option" -- "$work/wave.obj" -o "$work/out.obj" --no-such-option
+expect 2 "missing -o" -- "$work/wave.obj"
+expect 2 "bad view" -- "$work/wave.obj" -o "$work/out.svg" --view sideways
+expect 2 "negative steps" -- "$work/wave.obj" -o "$work/out.obj" --smoothing-steps -1
+
+# --help documents every option with its default.
+expect 0 "--help" -- --help
+for option in presmooth-steps presmooth-time-step smoothing-steps smoothing-time-step boundary-rings \
+  fairing-bound fairing-iterations threshold view weights stats quiet repair-report silhouette; do
+  grep -q -- "--$option" "$work/stdout" || fail "--help does not document --$option"
+done
+grep -- '--smoothing-steps' "$work/stdout" | grep -q '=3' || fail "--help: no default for --smoothing-steps"
+grep -- '--threshold' "$work/stdout" | grep -q '=-1' || fail "--help: no default for --threshold"
+
+if [ "$failures" -ne 0 ]; then
+  echo "$failures check(s) failed"
+  exit 1
+fi
+echo "all CLI checks passed"
