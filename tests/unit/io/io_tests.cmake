@@ -1,0 +1,5 @@
+# Reader tests: the shared meshes table and small in-memory files per format.
+target_sources(crestline_tests PRIVATE
+  ${CMAKE_CURRENT_LIST_DIR}/read_mesh_test.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/read_formats_test.cpp
+)
