@@ -39,7 +39,7 @@ export default defineConfig({
   base: './',
   plugins: [dracoDecoder()],
   worker: { format: 'es' },
-  build: { outDir: resolve(here, 'dist'), emptyOutDir: true, target: 'es2022', assetsInlineLimit: 0 },
+  build: { outDir: resolve(here, 'dist'), emptyOutDir: true, target: 'es2022', assetsInlineLimit: 0, chunkSizeWarningLimit: 2000 },
   server: { host: '0.0.0.0', port: 8080, headers: isolation },
   preview: { host: '0.0.0.0', port: 8080, headers: isolation },
 });

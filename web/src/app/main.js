@@ -139,6 +139,15 @@ async function openFiles(files) {
   }
 }
 
+// Test hooks: change parameters as the panel would.
+app.viewer = viewer;
+app.update = (partial) => {
+  Object.assign(params, partial);
+  gui.gui.controllersRecursive().forEach((c) => c.updateDisplay());
+  if (Object.keys(partial).some((k) => k in pipelineOptions(partial) || k === 'autoThreshold')) compute();
+  else applyDisplay();
+};
+
 installDrop(document.body, openFiles);
 picker.addEventListener('change', () => openFiles([...picker.files]));
 document.getElementById('cancel').addEventListener('click', () => client.cancel());
