@@ -15,5 +15,8 @@ EMSCRIPTEN_BINDINGS(crestline) {
       .function("lines", &Session::lines)
       .function("fields", &Session::fields)
       .function("stats", &Session::stats)
-      .function("linesObj", &Session::linesObj);
+      .function("linesObj", &Session::linesObj)
+      .function("linesJson", &Session::linesJson)
+      .function("statsJson", &Session::statsJson)
+      .function("linesSvg", &Session::linesSvg);
 }

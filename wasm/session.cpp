@@ -255,4 +255,29 @@ std::string Session::linesObj() const {
   return pipeline_ ? io::write_lines_obj(pipeline_->lines()) : std::string();
 }
 
+std::string Session::linesJson() const {
+  return pipeline_ ? io::write_lines_json(pipeline_->lines(), pipeline_->stats()) : std::string();
+}
+
+std::string Session::statsJson() const {
+  return pipeline_ ? io::stats_json(pipeline_->stats()) : std::string();
+}
+
+val Session::linesSvg(std::string view) const {
+  if (!pipeline_) return error_value("InvalidInput", "no mesh is loaded");
+  static const char* kViews[] = {"front", "back", "left", "right", "top", "bottom"};
+  io::SvgOptions options;
+  bool known = false;
+  for (int v = 0; v < 6; ++v) {
+    if (view == kViews[v]) {
+      options.view = static_cast<io::View>(v);
+      known = true;
+    }
+  }
+  if (!known) return error_value("InvalidInput", "unknown view \"" + view + "\"");
+  return guarded(triangles_, [&] {
+    return val(io::write_lines_svg(pipeline_->lines(), pipeline_->surface(), options));
+  });
+}
+
 }  // namespace crestline::wasm

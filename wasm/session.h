@@ -45,8 +45,13 @@ class Session {
   /// per-triangle regularMax, regularMin (Uint8Array).
   val fields() const;
   val stats() const;
-  /// The filtered lines in the OBJ format of the native CLI (shared writer).
+  /// The filtered lines in the native CLI's formats (the shared writers):
+  /// OBJ, JSON with stats, the stats JSON alone, SVG (view: "front", "back",
+  /// "left", "right", "top", "bottom").
   std::string linesObj() const;
+  std::string linesJson() const;
+  std::string statsJson() const;
+  val linesSvg(std::string view) const;
 
  private:
   std::unique_ptr<Pipeline> pipeline_;

@@ -1,0 +1,98 @@
+#!/usr/bin/env node
+// The crestline command on the WASM build:
+//   node wasm/cli.mjs INPUT -o OUT.{obj,json,svg} [options]
+// Same options and output (the core's writers) as the native build/cli/crestline;
+// the input is decoded by web/src/io (what the browser app uses; no Draco in node).
+import { readFileSync, renameSync, writeFileSync } from 'node:fs';
+import { basename, extname } from 'node:path';
+import { loadMeshFiles } from '../web/src/io/load-files.js';
+import { Engine } from '../web/src/worker/engine.js';
+import { loadCrestline } from './node.mjs';
+
+// flag → [Session option key, default shown in --help, description]
+const OPTIONS = {
+  '--smoothing-steps': ['smoothingSteps', 3, 'extremality smoothing steps (paper §5.1)'],
+  '--smoothing-time-step': ['smoothingTimeStep', 1, 'time step per smoothing step, in mean edge lengths squared'],
+  '--presmooth-steps': ['presmoothSteps', 0, 'surface pre-smoothing steps (mean-curvature flow)'],
+  '--threshold': ['threshold', -1, 'drop lines with strength ∫|κ|ds below this; negative: automatic'],
+  '--fairing-bound': ['hausdorffBound', 0.25, 'line fairing Hausdorff bound, in mean edge lengths; 0 disables'],
+  '--boundary-rings': ['boundaryRings', 2, 'vertex rings along the mesh boundary left untraced'],
+};
+
+function usage() {
+  const lines = ['usage: node wasm/cli.mjs INPUT -o OUTPUT.{obj,json,svg} [options]', ''];
+  for (const [flag, [, def, text]] of Object.entries(OPTIONS)) lines.push(`  ${flag} X`.padEnd(28) + `${text} (default ${def})`);
+  lines.push('  --view V'.padEnd(28) + 'SVG view: front, back, left, right, top, bottom (default front)');
+  lines.push('  --stats'.padEnd(28) + 'print the statistics as one JSON object on stdout');
+  lines.push('  --quiet'.padEnd(28) + 'no progress on stderr');
+  return lines.join('\n');
+}
+
+function parseArgs(argv) {
+  const args = { options: {}, view: 'front', stats: false, quiet: false };
+  for (let i = 0; i < argv.length; i++) {
+    const arg = argv[i];
+    const [flag, inline] = arg.startsWith('--') && arg.includes('=') ? arg.split(/=(.*)/s) : [arg, undefined];
+    const value = () => {
+      const v = inline ?? argv[++i];
+      if (v === undefined) throw new Error(`${flag} needs a value.`);
+      return v;
+    };
+    if (flag === '-h' || flag === '--help') args.help = true;
+    else if (flag === '-o' || flag === '--output') args.output = value();
+    else if (flag === '--stats') args.stats = true;
+    else if (flag === '--quiet' || flag === '-q') args.quiet = true;
+    else if (flag === '--view') args.view = value();
+    else if (OPTIONS[flag]) {
+      const number = Number(value());
+      if (!Number.isFinite(number)) throw new Error(`${flag} needs a number.`);
+      args.options[OPTIONS[flag][0]] = number;
+    } else if (flag.startsWith('-')) throw new Error(`unknown option ${flag} (see --help).`);
+    else if (args.input === undefined) args.input = arg;
+    else throw new Error(`unexpected argument "${arg}".`);
+  }
+  return args;
+}
+
+async function main(argv) {
+  const args = parseArgs(argv);
+  if (args.help) return void console.log(usage());
+  if (!args.input || !args.output) throw new Error(`an INPUT and -o OUTPUT are required.\n${usage()}`);
+  const format = extname(args.output).slice(1).toLowerCase();
+  if (!['obj', 'json', 'svg'].includes(format)) throw new Error(`${args.output}: unknown output format (use .obj, .json or .svg).`);
+  let bytes;
+  try {
+    const data = readFileSync(args.input);
+    bytes = data.buffer.slice(data.byteOffset, data.byteOffset + data.byteLength);
+  } catch (error) {
+    throw new Error(`${args.input}: cannot be read (${error.code ?? error.message}).`);
+  }
+  const soup = await loadMeshFiles([{ name: basename(args.input), bytes }]);
+  const engine = new Engine(await loadCrestline());
+  engine.load(soup);
+  const progress = args.quiet || !process.stderr.isTTY
+    ? undefined
+    : (stage, fraction) => (process.stderr.write(`\r${stage} ${Math.round(100 * fraction)}%   `), true);
+  engine.run(args.options, progress);
+  if (progress) process.stderr.write('\r'.padEnd(30) + '\r');
+  const session = engine.session;
+  let text;
+  if (format === 'obj') text = session.linesObj();
+  else if (format === 'json') text = session.linesJson();
+  else {
+    const svg = session.linesSvg(args.view);
+    if (svg.error) throw new Error(`--view: ${svg.error}.`);
+    text = svg;
+  }
+  // Written whole or not at all: no partial file on failure.
+  const temporary = `${args.output}.partial`;
+  writeFileSync(temporary, text);
+  renameSync(temporary, args.output);
+  if (args.stats) console.log(session.statsJson());
+  engine.dispose();
+}
+
+main(process.argv.slice(2)).catch((error) => {
+  console.error(`crestline: ${error.message}`);
+  process.exitCode = 1;
+});
