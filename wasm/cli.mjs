@@ -14,22 +14,33 @@ const OPTIONS = {
   '--smoothing-steps': ['smoothingSteps', 3, 'extremality smoothing steps (paper §5.1)'],
   '--smoothing-time-step': ['smoothingTimeStep', 1, 'time step per smoothing step, in mean edge lengths squared'],
   '--presmooth-steps': ['presmoothSteps', 0, 'surface pre-smoothing steps (mean-curvature flow)'],
+  '--presmooth-time-step': ['presmoothTimeStep', 1, 'time step per pre-smoothing step, in mean edge lengths squared'],
   '--threshold': ['threshold', -1, 'drop lines with strength ∫|κ|ds below this; negative: automatic'],
   '--fairing-bound': ['hausdorffBound', 0.25, 'line fairing Hausdorff bound, in mean edge lengths; 0 disables'],
+  '--fairing-iterations': ['fairingIterations', 30, 'line fairing iterations (paper §5.2)'],
   '--boundary-rings': ['boundaryRings', 2, 'vertex rings along the mesh boundary left untraced'],
+};
+// SVG flag → [writer option key, default, description]
+const SVG_OPTIONS = {
+  '--svg-width': ['width', 1000, 'SVG size in pixels of the longer side'],
+  '--stroke-width': ['strokeWidth', 1.5, 'SVG line width in pixels'],
 };
 
 function usage() {
   const lines = ['usage: node wasm/cli.mjs INPUT -o OUTPUT.{obj,json,svg} [options]', ''];
   for (const [flag, [, def, text]] of Object.entries(OPTIONS)) lines.push(`  ${flag} X`.padEnd(28) + `${text} (default ${def})`);
+  lines.push('  --weights FILE'.padEnd(28) + 'per-vertex smoothing strength, one number per line (0 freezes a vertex)');
   lines.push('  --view V'.padEnd(28) + 'SVG view: front, back, left, right, top, bottom (default front)');
+  for (const [flag, [, def, text]] of Object.entries(SVG_OPTIONS)) lines.push(`  ${flag} X`.padEnd(28) + `${text} (default ${def})`);
+  lines.push('  --silhouette'.padEnd(28) + "also draw the surface's outline in the SVG");
+  lines.push('  --repair-report'.padEnd(28) + 'print every count of the mesh repair on stderr');
   lines.push('  --stats'.padEnd(28) + 'print the statistics as one JSON object on stdout');
   lines.push('  --quiet'.padEnd(28) + 'no progress on stderr');
   return lines.join('\n');
 }
 
 function parseArgs(argv) {
-  const args = { options: {}, view: 'front', stats: false, quiet: false };
+  const args = { options: {}, svg: { view: 'front' }, stats: false, quiet: false };
   for (let i = 0; i < argv.length; i++) {
     const arg = argv[i];
     const [flag, inline] = arg.startsWith('--') && arg.includes('=') ? arg.split(/=(.*)/s) : [arg, undefined];
@@ -42,16 +53,33 @@ function parseArgs(argv) {
     else if (flag === '-o' || flag === '--output') args.output = value();
     else if (flag === '--stats') args.stats = true;
     else if (flag === '--quiet' || flag === '-q') args.quiet = true;
-    else if (flag === '--view') args.view = value();
-    else if (OPTIONS[flag]) {
+    else if (flag === '--view') args.svg.view = value();
+    else if (flag === '--silhouette') args.svg.silhouette = true;
+    else if (flag === '--repair-report') args.repairReport = true;
+    else if (flag === '--weights') args.weights = value();
+    else if (OPTIONS[flag] || SVG_OPTIONS[flag]) {
       const number = Number(value());
       if (!Number.isFinite(number)) throw new Error(`${flag} needs a number.`);
-      args.options[OPTIONS[flag][0]] = number;
+      if (OPTIONS[flag]) args.options[OPTIONS[flag][0]] = number;
+      else args.svg[SVG_OPTIONS[flag][0]] = number;
     } else if (flag.startsWith('-')) throw new Error(`unknown option ${flag} (see --help).`);
     else if (args.input === undefined) args.input = arg;
     else throw new Error(`unexpected argument "${arg}".`);
   }
   return args;
+}
+
+function readWeights(path, vertices) {
+  let text;
+  try {
+    text = readFileSync(path, 'utf8');
+  } catch (error) {
+    throw new Error(`${path}: cannot be read (${error.code ?? error.message}).`);
+  }
+  const weights = Float64Array.from(text.split(/\s+/).filter(Boolean), Number);
+  if (weights.some((w) => !(w >= 0))) throw new Error(`${path}: every weight must be a non-negative number.`);
+  if (weights.length !== vertices) throw new Error(`${path}: has ${weights.length} weights but the repaired mesh has ${vertices} vertices.`);
+  return weights;
 }
 
 async function main(argv) {
@@ -69,7 +97,10 @@ async function main(argv) {
   }
   const soup = await loadMeshFiles([{ name: basename(args.input), bytes }]);
   const engine = new Engine(await loadCrestline());
-  engine.load(soup);
+  const loaded = engine.load(soup);
+  if (args.repairReport) for (const [key, count] of Object.entries(loaded.report)) console.error(`${key}: ${count}`);
+  else if (!args.quiet) for (const note of loaded.notes) console.error(`${args.input}: ${note}`);
+  if (args.weights) args.options.vertexWeights = readWeights(args.weights, loaded.vertices);
   const progress = args.quiet || !process.stderr.isTTY
     ? undefined
     : (stage, fraction) => (process.stderr.write(`\r${stage} ${Math.round(100 * fraction)}%   `), true);
@@ -80,7 +111,7 @@ async function main(argv) {
   if (format === 'obj') text = session.linesObj();
   else if (format === 'json') text = session.linesJson();
   else {
-    const svg = session.linesSvg(args.view);
+    const svg = session.linesSvg(args.svg);
     if (svg.error) throw new Error(`--view: ${svg.error}.`);
     text = svg;
   }

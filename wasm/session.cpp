@@ -263,10 +263,15 @@ std::string Session::statsJson() const {
   return pipeline_ ? io::stats_json(pipeline_->stats()) : std::string();
 }
 
-val Session::linesSvg(std::string view) const {
+val Session::linesSvg(val o) const {
   if (!pipeline_) return error_value("InvalidInput", "no mesh is loaded");
   static const char* kViews[] = {"front", "back", "left", "right", "top", "bottom"};
   io::SvgOptions options;
+  std::string view = "front";
+  read(o, "view", view);
+  read(o, "width", options.width);
+  read(o, "strokeWidth", options.stroke_width);
+  read(o, "silhouette", options.silhouette);
   bool known = false;
   for (int v = 0; v < 6; ++v) {
     if (view == kViews[v]) {

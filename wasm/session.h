@@ -46,12 +46,13 @@ class Session {
   val fields() const;
   val stats() const;
   /// The filtered lines in the native CLI's formats (the shared writers):
-  /// OBJ, JSON with stats, the stats JSON alone, SVG (view: "front", "back",
-  /// "left", "right", "top", "bottom").
+  /// OBJ, JSON with stats, the stats JSON alone, and SVG with options
+  /// {view: "front"|"back"|"left"|"right"|"top"|"bottom", width, strokeWidth,
+  /// silhouette} (returns the text or {error}).
   std::string linesObj() const;
   std::string linesJson() const;
   std::string statsJson() const;
-  val linesSvg(std::string view) const;
+  val linesSvg(val options) const;
 
  private:
   std::unique_ptr<Pipeline> pipeline_;

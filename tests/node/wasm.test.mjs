@@ -1,0 +1,127 @@
+// The WASM module through the worker's Engine, on analytic meshes.
+import assert from 'node:assert/strict';
+import { test } from 'node:test';
+import { loadCrestline } from '../../wasm/node.mjs';
+import { Engine } from '../../web/src/worker/engine.js';
+import { maxNearestDistance, sineHeightField } from './helpers.mjs';
+
+const module = await loadCrestline();
+const heap = () => module.HEAPU8.buffer;
+
+function lineList(lines) {
+  const out = [];
+  for (let l = 0; l < lines.types.length; l++) {
+    const points = [];
+    for (let p = lines.offsets[l]; p < lines.offsets[l + 1]; p++) points.push(lines.points.subarray(3 * p, 3 * p + 3));
+    out.push({ type: lines.types[l], points, strength: lines.strengths[l] });
+  }
+  return out;
+}
+
+test('sine height field: ridges on the crests x = k·L, valleys in the troughs x = (k+½)·L', () => {
+  const engine = new Engine(module);
+  const mesh = sineHeightField();
+  const loaded = engine.load(mesh);
+  assert.equal(loaded.triangles, mesh.indices.length / 3);
+  const result = engine.run({ threshold: 0 });
+  const lines = lineList(result.lines);
+  const ridges = lines.filter((l) => l.type === 0);
+  const valleys = lines.filter((l) => l.type === 1);
+  assert.ok(ridges.length > 0 && valleys.length > 0, `${ridges.length} ridges, ${valleys.length} valleys`);
+  const edge = result.stats.meanEdgeLength;
+  // Strong lines (the long ones) follow the analytic crest and trough lines.
+  for (const [kind, set, phase] of [['ridge', ridges, 0], ['valley', valleys, 0.5]]) {
+    const longest = set.reduce((a, b) => (a.points.length > b.points.length ? a : b));
+    for (const p of longest.points) {
+      const offset = p[0] - phase;
+      const distance = Math.abs(offset - Math.round(offset));
+      assert.ok(distance < edge, `${kind} point x=${p[0].toFixed(4)} is ${distance.toFixed(4)} from the analytic line (edge ${edge.toFixed(4)})`);
+    }
+  }
+  engine.dispose();
+});
+
+test('threshold change re-runs only the filter; smoothing change re-runs from smoothing on', () => {
+  const engine = new Engine(module);
+  engine.load(sineHeightField({ n: 40 }));
+  const first = engine.run({ threshold: -1 });
+  assert.equal(first.ran[0], 'presmooth');
+  const all = engine.run({ threshold: 0 });
+  assert.deepEqual(all.ran, ['filter']);
+  const strict = engine.run({ threshold: 1e9 });
+  assert.deepEqual(strict.ran, ['filter']);
+  assert.equal(strict.lines.types.length, 0);
+  assert.ok(all.lines.types.length >= first.lines.types.length);
+  const smoothed = engine.run({ smoothingSteps: 5 });
+  assert.equal(smoothed.ran[0], 'smoothing');
+  assert.ok(!smoothed.ran.includes('curvature'));
+  engine.dispose();
+});
+
+test('results are copies that survive heap growth and can be transferred', () => {
+  const engine = new Engine(module);
+  engine.load(sineHeightField({ n: 30 }));
+  const { lines } = engine.run({ threshold: 0 });
+  const surface = engine.surface();
+  for (const array of [lines.points, lines.offsets, surface.positions, surface.indices]) assert.notEqual(array.buffer, heap());
+  const before = Array.from(lines.points.slice(0, 6));
+  const bytes = heap().byteLength;
+  const big = new Engine(module);
+  big.load(sineHeightField({ n: 400 })); // 320k triangles: the heap grows
+  big.run({});
+  assert.ok(heap().byteLength > bytes, 'the heap grew');
+  assert.deepEqual(Array.from(lines.points.slice(0, 6)), before);
+  structuredClone(lines, { transfer: [lines.points.buffer] });
+  big.dispose();
+  engine.dispose();
+});
+
+test('cancel from the progress callback, then resume', () => {
+  const engine = new Engine(module);
+  engine.load(sineHeightField({ n: 30 }));
+  const stages = [];
+  const cancelled = engine.run({}, (stage) => (stages.push(stage), stage !== 'smoothing'));
+  assert.deepEqual(cancelled, { cancelled: true });
+  assert.ok(stages.includes('curvature'));
+  const resumed = engine.run({});
+  assert.ok(!resumed.ran.includes('curvature'), `resumed ran ${resumed.ran}`);
+  assert.ok(resumed.lines.types.length > 0);
+  engine.dispose();
+});
+
+test('errors come back as one sentence, never an abort', () => {
+  const session = new module.Session();
+  const cases = [
+    [new Float64Array([0, 0, 0, 1, 0, 0]), new Uint32Array([0, 1, 5]), {}, /vertex 5/],
+    [new Float64Array([NaN, 0, 0, 1, 0, 0, 0, 1, 0]), new Uint32Array([0, 1, 2]), {}, /no usable triangle/],
+    [new Float64Array(9), new Uint32Array(3000), { maxTriangles: 10 }, /mesh too large for the browser \(1000 triangles\)/],
+  ];
+  for (const [positions, indices, options, message] of cases) {
+    const result = session.load(positions, indices, options);
+    assert.match(result.error, message);
+  }
+  assert.match(session.run(() => true).error, /no mesh/);
+  // The module still works afterwards.
+  assert.ok(session.load(sineHeightField({ n: 10 }).positions, sineHeightField({ n: 10 }).indices, {}).ok);
+  session.delete();
+});
+
+test('a scaled mesh gives the same lines, scaled (unitless parameters)', () => {
+  const engine = new Engine(module);
+  // 43 columns: no crest falls exactly on a grid vertex, where rounding
+  // would decide a tie differently at each scale.
+  const mesh = sineHeightField({ n: 43 });
+  engine.load(mesh);
+  const a = engine.run({});
+  const scaled = { ...mesh, positions: mesh.positions.map((x) => x * 1000) };
+  engine.load(scaled);
+  const b = engine.run({});
+  assert.equal(b.lines.types.length, a.lines.types.length);
+  assert.equal(b.lines.points.length, a.lines.points.length);
+  // Lines may come out in another order or direction: compare point sets.
+  const unscaled = b.lines.points.map((x) => x / 1000);
+  const diagonal = Math.hypot(4, 4, 0.2);
+  assert.ok(maxNearestDistance(a.lines.points, unscaled) < 1e-6 * diagonal);
+  assert.ok(maxNearestDistance(unscaled, a.lines.points) < 1e-6 * diagonal);
+  engine.dispose();
+});
