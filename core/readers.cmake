@@ -18,3 +18,13 @@ if(NOT EMSCRIPTEN)
   find_package(meshoptimizer REQUIRED CONFIG)
   target_link_libraries(crestline_readers PRIVATE draco::draco meshoptimizer::meshoptimizer)
 endif()
+if(EMSCRIPTEN)
+  # The single-header libraries live in /usr/include, outside Emscripten's
+  # sysroot; copy just them so no host system header leaks in.
+  set(CRESTLINE_READERS_INCLUDE ${CMAKE_CURRENT_BINARY_DIR}/readers-include)
+  file(COPY /usr/include/tiny_gltf.h /usr/include/tiny_obj_loader.h /usr/include/nlohmann
+       DESTINATION ${CRESTLINE_READERS_INCLUDE})
+  target_include_directories(crestline_readers SYSTEM PRIVATE ${CRESTLINE_READERS_INCLUDE})
+  # Readers report errors as exceptions, like the core (see wasm/CMakeLists.txt).
+  target_compile_options(crestline_readers PRIVATE -fwasm-exceptions)
+endif()

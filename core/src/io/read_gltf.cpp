@@ -143,6 +143,7 @@ std::string first_line(const std::string& text) {
   return line;
 }
 
+#ifndef __EMSCRIPTEN__
 int value_int(const tinygltf::Value& object, const char* key, int fallback) {
   if (!object.IsObject() || !object.Has(key)) return fallback;
   const tinygltf::Value& v = object.Get(key);
@@ -153,6 +154,7 @@ std::string value_string(const tinygltf::Value& object, const char* key) {
   if (!object.IsObject() || !object.Has(key) || !object.Get(key).IsString()) return "";
   return object.Get(key).Get<std::string>();
 }
+#endif
 
 // One primitive, decoded once per mesh and reused by every instance.
 struct Primitive {
