@@ -4,16 +4,18 @@
 
 namespace crestline {
 
-// Automatic threshold: lines are sorted by strength and the threshold is a
-// fixed fraction of the strength at the 90th percentile of *total* strength
-// mass, so that a handful of strong features set the scale and the cloud of
-// weak noise lines falls below it.
+// Automatic threshold: a quarter of the strength of the line at which the
+// strongest lines make up half of the total strength, so that the strong
+// features set the scale and the cloud of weak noise lines falls below it;
+// but never below kMinimumStrength, so that a featureless surface (a sphere,
+// a plane) keeps no noise lines at all.
+constexpr double kMinimumStrength = 1.0;
 static double automatic_threshold(const std::vector<Polyline>& lines) {
   std::vector<double> s;
   s.reserve(lines.size());
   double total = 0;
   for (const Polyline& l : lines) s.push_back(l.strength), total += l.strength;
-  if (s.empty() || !(total > 0)) return 0;
+  if (s.empty() || !(total > 0)) return kMinimumStrength;
   std::sort(s.begin(), s.end(), std::greater<double>());
   double acc = 0;
   double reference = s.front();
@@ -22,7 +24,7 @@ static double automatic_threshold(const std::vector<Polyline>& lines) {
     reference = v;
     if (acc >= 0.5 * total) break;
   }
-  return 0.25 * reference;
+  return std::max(0.25 * reference, kMinimumStrength);
 }
 
 FilterResult filter_lines(const std::vector<Polyline>& lines, const FilterOptions& options) {

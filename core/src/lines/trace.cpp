@@ -6,6 +6,13 @@
 namespace crestline {
 namespace {
 
+// Where κ is constant along its own lines (sphere, cylinder, torus) e
+// vanishes identically and its zero set is round-off. Conditions (5), (6) are
+// therefore made strict: the slope of e across the line must exceed this
+// fraction of |κ|³ (both in 1/length³, so the test is scale-free). Genuine
+// crests have a ratio of order 1 and more; round-off is below 1e-12.
+constexpr double kStrictExtremum = 1e-6;
+
 // Zero is treated as a tiny positive value so that sign flips stay exact and
 // every edge crossing is decided the same way from both of its triangles.
 double nonzero(double v) { return v != 0 ? v : std::numeric_limits<double>::denorm_min(); }
@@ -68,6 +75,8 @@ void trace_field(const Mesh& mesh, const Topology& topology, const Field& field,
     const double slope = gradient.dot(direction);
     const bool extremum = field.type == LineType::Ridge ? slope < 0 : slope > 0;
     if (!extremum || !(std::abs(own) > std::abs(other))) continue;
+    const double mean_own = own / 3;
+    if (!(std::abs(slope) > kStrictExtremum * direction.norm() * std::abs(mean_own * mean_own * mean_own))) continue;
 
     const uint32_t a = crossing_node(graph, mesh, topology, field, topology.triangle_edges[t][crossed[0]]);
     const uint32_t b = crossing_node(graph, mesh, topology, field, topology.triangle_edges[t][crossed[1]]);

@@ -2,6 +2,7 @@
 // The two mesh forms of the pipeline: the unwelded soup a reader returns, and
 // the welded, repaired, consistently oriented manifold mesh every stage uses.
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <array>
 #include <cstdint>
 #include <string>

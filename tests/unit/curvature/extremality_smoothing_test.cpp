@@ -1,0 +1,128 @@
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <random>
+
+#include "analytic_meshes.h"
+#include "crestline/curvature/extremality_smoothing.h"
+#include "crestline/mesh/repair.h"
+
+using namespace crestline;
+
+namespace {
+
+struct Fixture {
+  Mesh mesh;
+  Topology topology;
+  Curvature curvature;
+  Extremality extremality;
+};
+
+Fixture noisy_bump() {
+  testing::GridOptions grid;
+  grid.nu = grid.nv = 48;
+  grid.random_diagonals = true;
+  grid.jitter = 0.2;
+  Fixture f;
+  f.mesh = repair_mesh(testing::height_field(
+                           [](double x, double y) { return 0.3 * std::cos(2 * testing::kPi * x) * std::cos(2 * testing::kPi * y); },
+                           1, 1, grid))
+               .mesh;
+  testing::add_normal_noise(f.mesh, 0.1 * mean_edge_length(f.mesh), 7);
+  f.topology = build_topology(f.mesh);
+  f.curvature = compute_curvature(f.mesh, f.topology);
+  f.extremality = compute_extremality(f.mesh, f.topology, f.curvature);
+  return f;
+}
+
+// Σ_edges w (σ e_q − e_p)²: the roughness the sign-corrected Laplacian sees.
+double roughness(const Fixture& f, const std::vector<double>& e, const std::vector<Vec3>& dir) {
+  double sum = 0;
+  for (const auto& edge : f.topology.edges) {
+    const double sigma = dir[edge[0]].dot(dir[edge[1]]) >= 0 ? 1 : -1;
+    sum += std::pow(sigma * e[edge[1]] - e[edge[0]], 2);
+  }
+  return sum;
+}
+
+}  // namespace
+
+TEST_CASE("extremality smoothing is independent of the initial choice of signs", "[smoothing]") {
+  const Fixture f = noisy_bump();
+  ExtremalitySmoothingOptions options;
+  options.steps = 3;
+  const Extremality reference = smooth_extremality(f.mesh, f.topology, f.curvature, f.extremality, options);
+
+  // Flip the directions (and so the extremalities) at random vertices,
+  // smooth, flip back: the paper (§5.1) says the result is the same.
+  Curvature flipped_c = f.curvature;
+  Extremality flipped_e = f.extremality;
+  std::mt19937 rng(11);
+  std::vector<int> flip(f.mesh.vertex_count());
+  for (size_t v = 0; v < flip.size(); ++v) {
+    flip[v] = rng() % 2;
+    if (flip[v]) {
+      flipped_c.dir_max[v] = -flipped_c.dir_max[v];
+      flipped_c.dir_min[v] = -flipped_c.dir_min[v];
+      flipped_e.e_max[v] = -flipped_e.e_max[v];
+      flipped_e.e_min[v] = -flipped_e.e_min[v];
+    }
+  }
+  const Extremality result = smooth_extremality(f.mesh, f.topology, flipped_c, flipped_e, options);
+  double scale = 0;
+  for (double v : reference.e_max) scale = std::max(scale, std::abs(v));
+  for (size_t v = 0; v < flip.size(); ++v) {
+    const double s = flip[v] ? -1 : 1;
+    CHECK(s * result.e_max[v] == Approx(reference.e_max[v]).margin(1e-9 * scale));
+    CHECK(s * result.e_min[v] == Approx(reference.e_min[v]).margin(1e-9 * scale));
+  }
+}
+
+TEST_CASE("extremality smoothing reduces roughness step by step", "[smoothing]") {
+  const Fixture f = noisy_bump();
+  double previous = roughness(f, f.extremality.e_max, f.curvature.dir_max);
+  for (int steps = 1; steps <= 4; ++steps) {
+    ExtremalitySmoothingOptions options;
+    options.steps = steps;
+    const Extremality s = smooth_extremality(f.mesh, f.topology, f.curvature, f.extremality, options);
+    const double r = roughness(f, s.e_max, f.curvature.dir_max);
+    INFO("steps " << steps);
+    CHECK(r < 0.7 * previous);
+    previous = r;
+  }
+}
+
+TEST_CASE("inhomogeneous smoothing: weight 0 freezes, larger weights smooth more", "[smoothing]") {
+  const Fixture f = noisy_bump();
+  ExtremalitySmoothingOptions options;
+  options.steps = 2;
+  options.vertex_weights.assign(f.mesh.vertex_count(), 1.0);
+  for (size_t v = 0; v < f.mesh.vertex_count(); ++v)
+    if (f.mesh.positions[v].x() < 0.5) options.vertex_weights[v] = 0.0;
+  const Extremality s = smooth_extremality(f.mesh, f.topology, f.curvature, f.extremality, options);
+  size_t frozen = 0, changed = 0;
+  for (size_t v = 0; v < f.mesh.vertex_count(); ++v) {
+    if (options.vertex_weights[v] == 0) {
+      CHECK(s.e_max[v] == Approx(f.extremality.e_max[v]).margin(1e-9));
+      ++frozen;
+    } else {
+      changed += std::abs(s.e_max[v] - f.extremality.e_max[v]) > 1e-6;
+    }
+  }
+  CHECK(frozen > 100);
+  CHECK(changed > 100);
+
+  ExtremalitySmoothingOptions strong;
+  strong.steps = 2;
+  strong.vertex_weights.assign(f.mesh.vertex_count(), 3.0);
+  ExtremalitySmoothingOptions plain;
+  plain.steps = 2;
+  const double r_strong =
+      roughness(f, smooth_extremality(f.mesh, f.topology, f.curvature, f.extremality, strong).e_max, f.curvature.dir_max);
+  const double r_plain =
+      roughness(f, smooth_extremality(f.mesh, f.topology, f.curvature, f.extremality, plain).e_max, f.curvature.dir_max);
+  CHECK(r_strong < r_plain);
+
+  ExtremalitySmoothingOptions wrong;
+  wrong.vertex_weights.assign(3, 1.0);
+  CHECK_THROWS(smooth_extremality(f.mesh, f.topology, f.curvature, f.extremality, wrong));
+}

@@ -1,0 +1,71 @@
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "analytic_meshes.h"
+#include "run_pipeline.h"
+
+using namespace crestline;
+
+namespace {
+
+// z = A cos(2πx/L) on [0,2L]²: ridges (crests) at x = kL, valleys at x = (k+½)L.
+TriangleSoup sine_field(int n, double jitter, bool random_diagonals, unsigned seed = 1) {
+  testing::GridOptions grid;
+  grid.nu = grid.nv = n;
+  grid.jitter = jitter;
+  grid.random_diagonals = random_diagonals;
+  grid.seed = seed;
+  return testing::height_field([](double x, double) { return 0.08 * std::cos(2 * testing::kPi * x); }, 2, 2, grid);
+}
+
+// Distance in x from the nearest line of the family x = offset + k.
+double off_by(double x, double offset) { return std::abs(x - offset - std::round(x - offset)); }
+
+void check_sine_lines(const Pipeline& p) {
+  const double h = p.stats().mean_edge_length;
+  double ridge_length = 0, valley_length = 0;
+  for (const Polyline& line : p.lines()) {
+    const double offset = line.type == LineType::Ridge ? 0.0 : 0.5;
+    for (const Vec3& q : line.points) {
+      INFO(line_type_name(line.type) << " point x=" << q.x() << " edge " << h);
+      CHECK(off_by(q.x(), offset) < 0.3 * h);
+    }
+    (line.type == LineType::Ridge ? ridge_length : valley_length) += line.length;
+  }
+  // One interior ridge (x = 1) and two valleys (x = ½, 3/2), each spanning
+  // the height of the patch less the boundary band.
+  CHECK(ridge_length > 2 - 12 * h);
+  CHECK(ridge_length < 2.05);
+  CHECK(valley_length > 2 * (2 - 12 * h));
+  CHECK(valley_length < 2 * 2.05);
+  CHECK(p.stats().ridges == 1);
+  CHECK(p.stats().valleys == 2);
+}
+
+}  // namespace
+
+TEST_CASE("sine height field: ridges at crests, valleys at troughs (regular grid)", "[trace]") {
+  check_sine_lines(testing::run_pipeline(sine_field(60, 0.0, false)));
+}
+
+TEST_CASE("sine height field: lines stay put on an irregular mesh", "[trace]") {
+  check_sine_lines(testing::run_pipeline(sine_field(60, 0.25, true, 5)));
+}
+
+TEST_CASE("no artefact lines along the boundary of an open mesh", "[trace]") {
+  // κ is constant on a cylinder: no lines at all, in particular none along
+  // its two rims.
+  testing::GridOptions grid;
+  grid.nu = 64;
+  grid.nv = 32;
+  const Pipeline p = testing::run_pipeline(testing::cylinder(0.5, 2.0, grid));
+  CHECK(p.lines().empty());
+}
+
+TEST_CASE("a sphere and a plane have no feature lines", "[trace]") {
+  CHECK(testing::run_pipeline(testing::icosphere(4)).lines().empty());
+  testing::GridOptions grid;
+  grid.nu = grid.nv = 30;
+  grid.jitter = 0.2;
+  CHECK(testing::run_pipeline(testing::height_field([](double, double) { return 0.0; }, 1, 1, grid)).lines().empty());
+}

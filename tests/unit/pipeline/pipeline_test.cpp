@@ -1,0 +1,102 @@
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "analytic_meshes.h"
+#include "run_pipeline.h"
+
+using namespace crestline;
+
+namespace {
+
+TriangleSoup bumpy(double scale = 1.0, Vec3 shift = Vec3::Zero()) {
+  testing::GridOptions grid;
+  grid.nu = grid.nv = 50;
+  grid.jitter = 0.2;
+  grid.random_diagonals = true;
+  TriangleSoup s = testing::height_field(
+      [](double x, double y) { return 0.1 * std::cos(5 * x) * std::cos(4 * y) + 0.05 * std::sin(9 * x + 3 * y); }, 2, 2,
+      grid);
+  for (size_t i = 0; i < s.positions.size(); ++i) s.positions[i] = s.positions[i] * scale + shift[i % 3];
+  return s;
+}
+
+std::vector<Stage> stages_run(Pipeline& p) {
+  std::vector<Stage> ran;
+  p.run([&](Stage s, double fraction) {
+    if (fraction == 0) ran.push_back(s);
+    return true;
+  });
+  return ran;
+}
+
+}  // namespace
+
+TEST_CASE("changing the threshold re-runs only the filter", "[pipeline]") {
+  Pipeline p(repair_mesh(bumpy()).mesh);
+  CHECK(stages_run(p).size() == static_cast<size_t>(Stage::Count));
+  const size_t all = p.all_lines().size();
+  const size_t automatic = p.lines().size();
+  REQUIRE(all > automatic);
+
+  PipelineOptions o = p.options();
+  o.filter.threshold = 0;
+  p.set_options(o);
+  CHECK(stages_run(p) == std::vector<Stage>{Stage::Filter});
+  CHECK(p.lines().size() == all);
+
+  o.smoothing.steps = 1;
+  p.set_options(o);
+  const auto ran = stages_run(p);
+  REQUIRE(!ran.empty());
+  CHECK(ran.front() == Stage::Smoothing);
+  CHECK(ran.size() == static_cast<size_t>(Stage::Count) - static_cast<size_t>(Stage::Smoothing));
+
+  p.set_options(o);
+  CHECK(stages_run(p).empty());
+}
+
+TEST_CASE("cancelling leaves the pipeline usable", "[pipeline]") {
+  Pipeline p(repair_mesh(bumpy()).mesh);
+  CHECK_THROWS_AS(p.run([](Stage s, double) { return s != Stage::Tracing; }), Cancelled);
+  const auto ran = stages_run(p);
+  REQUIRE(!ran.empty());
+  CHECK(ran.front() == Stage::Tracing);
+  CHECK(!p.lines().empty());
+}
+
+TEST_CASE("parameters are unitless: a scaled, moved model gives the same lines scaled", "[pipeline][scale]") {
+  const Pipeline reference = testing::run_pipeline(bumpy());
+  const auto ref_lines = reference.lines();
+  REQUIRE(ref_lines.size() > 2);
+  for (double scale : {1e-3, 1e3}) {
+    const Vec3 shift(1e3 * scale, -2e3 * scale, 0);
+    const Pipeline p = testing::run_pipeline(bumpy(scale, shift));
+    const auto lines = p.lines();
+    INFO("scale " << scale);
+    REQUIRE(lines.size() == ref_lines.size());
+    for (size_t i = 0; i < lines.size(); ++i) {
+      CHECK(lines[i].type == ref_lines[i].type);
+      REQUIRE(lines[i].points.size() == ref_lines[i].points.size());
+      CHECK(lines[i].strength == Approx(ref_lines[i].strength).epsilon(1e-6));
+      for (size_t k = 0; k < lines[i].points.size(); ++k)
+        CHECK(((lines[i].points[k] - shift) / scale - ref_lines[i].points[k]).norm() < 1e-6);
+    }
+  }
+}
+
+TEST_CASE("stats count what the pipeline produced", "[pipeline]") {
+  const Pipeline p = testing::run_pipeline(bumpy());
+  const PipelineStats s = p.stats();
+  size_t ridges = 0, valleys = 0;
+  double ridge_length = 0;
+  for (const Polyline& l : p.lines()) {
+    if (l.type == LineType::Ridge) ++ridges, ridge_length += l.length;
+    else ++valleys;
+  }
+  CHECK(s.ridges == ridges);
+  CHECK(s.valleys == valleys);
+  CHECK(s.ridge_length == Approx(ridge_length));
+  CHECK(s.triangles == p.input_mesh().triangle_count());
+  CHECK(s.singular_max == p.regularity().singular_max);
+  CHECK(s.mean_edge_length > 0);
+}
