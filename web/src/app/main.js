@@ -32,7 +32,7 @@ const client = new PipelineClient({
   onResult: (result) => {
     if (result.surface) viewer.setSurface(result.surface);
     viewer.setLines(result.lines);
-    app.lastResult = { ran: result.ran, stats: result.stats, lineCount: result.lines.types.length, milliseconds: result.milliseconds };
+    app.lastResult = { name: app.mesh?.name, ran: result.ran, stats: result.stats, lineCount: result.lines.types.length, milliseconds: result.milliseconds };
     app.results.push(app.lastResult);
     gui.showThreshold(result.stats.threshold, rescaleThreshold);
     rescaleThreshold = false;

@@ -1,0 +1,159 @@
+// The web app in headless Chromium: the bunny sample, dropped GLB / Draco GLB
+// / multi-file glTF / OBJ files, line counts against the native CLI, line
+// pixels in a screenshot, instant re-thresholding, and errors that the page
+// survives. Needs web/dist (web/build.sh).
+import assert from 'node:assert/strict';
+import { execFileSync } from 'node:child_process';
+import { existsSync, mkdirSync, writeFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { after, before, test } from 'node:test';
+import { launch } from './browser.mjs';
+import { serve } from './server.mjs';
+import { MESHES, NATIVE_CLI, ROOT, haveMeshes, haveNativeCli } from '../node/helpers.mjs';
+
+const SHOTS = join(ROOT, 'test-results');
+const noMeshes = !haveMeshes && `SKIPPED: ${MESHES} is absent`;
+let server, browser, page;
+const pageErrors = [];
+
+before(async () => {
+  assert.ok(existsSync(join(ROOT, 'web/dist/index.html')), 'web/dist is missing: run web/build.sh');
+  server = await serve({ '/meshes/': MESHES, '/': join(ROOT, 'web/dist') });
+  browser = await launch();
+  page = await browser.newPage({ viewport: { width: 1000, height: 750 } });
+  page.on('pageerror', (error) => pageErrors.push(error.message));
+  await page.goto(`http://127.0.0.1:${server.address().port}/`);
+});
+
+after(async () => {
+  await browser?.close();
+  server?.close();
+});
+
+const resultCount = () => page.evaluate(() => window.crestline?.results.length ?? 0);
+
+/** Waits for the next result (or an error) after `action`; returns the result. */
+async function nextResult(action, timeout = 60000) {
+  const count = await resultCount();
+  await action();
+  await page.waitForFunction(
+    (n) => window.crestline.results.length > n || document.body.dataset.state === 'error',
+    count,
+    { timeout },
+  );
+  const error = await page.textContent('#error');
+  assert.equal(error, '', `the page shows an error: ${error}`);
+  return page.evaluate(() => window.crestline.lastResult);
+}
+
+/** Drops files (paths under ../shared/meshes, or {name, text}) on the page as a user would. */
+function drop(files) {
+  const items = files.map((f) => (typeof f === 'string' ? { url: `/meshes/${f}`, name: f.split('/').pop() } : f));
+  return page.evaluate(async (items) => {
+    const transfer = new DataTransfer();
+    for (const item of items) {
+      const body = item.url ? await (await fetch(item.url)).arrayBuffer() : item.text;
+      transfer.items.add(new File([body], item.name));
+    }
+    document.body.dispatchEvent(new DragEvent('drop', { dataTransfer: transfer, bubbles: true, cancelable: true }));
+  }, items);
+}
+
+function nativeStats(file) {
+  const out = join(SHOTS, 'native-lines.obj');
+  mkdirSync(SHOTS, { recursive: true });
+  return JSON.parse(execFileSync(NATIVE_CLI, [join(MESHES, file), '-o', out, '--stats', '-q'], { encoding: 'utf8' }));
+}
+
+/** Pixels of the rendered canvas close to the ridge and valley colours. */
+function linePixels() {
+  return page.evaluate(async () => {
+    const { viewer, params } = window.crestline;
+    viewer.renderer.render(viewer.scene, viewer.camera);
+    const source = viewer.renderer.domElement;
+    const canvas = new OffscreenCanvas(source.width, source.height);
+    const context = canvas.getContext('2d');
+    context.drawImage(source, 0, 0);
+    const { data } = context.getImageData(0, 0, source.width, source.height);
+    const rgb = (hex) => [1, 3, 5].map((i) => parseInt(hex.slice(i, i + 2), 16));
+    const targets = [rgb(params.ridgeColor), rgb(params.valleyColor)];
+    const counts = [0, 0];
+    for (let i = 0; i < data.length; i += 4) {
+      targets.forEach((t, k) => {
+        if (Math.abs(data[i] - t[0]) + Math.abs(data[i + 1] - t[1]) + Math.abs(data[i + 2] - t[2]) < 40) counts[k]++;
+      });
+    }
+    return { ridges: counts[0], valleys: counts[1] };
+  });
+}
+
+async function checkAgainstNative(file, result) {
+  if (!haveNativeCli) return console.log(`# SKIPPED native comparison: ${NATIVE_CLI} is not built`);
+  const native = nativeStats(file);
+  assert.equal(result.stats.triangles, native.triangles, `${file}: triangles after repair`);
+  assert.equal(result.stats.ridges, native.ridges, `${file}: ridges`);
+  assert.equal(result.stats.valleys, native.valleys, `${file}: valleys`);
+}
+
+test('the built-in bunny gets ridges and valleys on first load', async () => {
+  await page.waitForFunction(() => window.crestline?.lastResult, null, { timeout: 60000 });
+  const result = await page.evaluate(() => window.crestline.lastResult);
+  assert.match(result.name, /bunny/);
+  assert.ok(result.lineCount > 0, 'bunny lines');
+  assert.equal(result.ran[0], 'presmooth', 'a load runs every stage');
+});
+
+test('GLB (feline): lines match the native CLI and are drawn', { skip: noMeshes }, async () => {
+  const result = await nextResult(() => drop(['glb/feline.glb']));
+  assert.equal(result.name, 'feline.glb');
+  await checkAgainstNative('glb/feline.glb', result);
+  const pixels = await linePixels();
+  mkdirSync(SHOTS, { recursive: true });
+  await page.screenshot({ path: join(SHOTS, 'feline.png') });
+  assert.ok(pixels.ridges > 200 && pixels.valleys > 200, `line pixels: ${JSON.stringify(pixels)}`);
+});
+
+test('threshold change re-filters only, and changes the count', { skip: noMeshes }, async () => {
+  const before = await page.evaluate(() => window.crestline.lastResult);
+  const result = await nextResult(() =>
+    page.evaluate((t) => window.crestline.update({ autoThreshold: false, threshold: t }), before.stats.threshold * 3));
+  assert.deepEqual(result.ran, ['filter'], 'only the filter ran');
+  assert.ok(result.lineCount < before.lineCount, `${result.lineCount} < ${before.lineCount} lines`);
+  console.log(`# re-threshold on ${before.stats.triangles} triangles: ${result.milliseconds.toFixed(1)} ms in the worker`);
+  const smoothed = await nextResult(() => page.evaluate(() => window.crestline.update({ autoThreshold: true, smoothingSteps: 4 })));
+  assert.equal(smoothed.ran[0], 'smoothing', 'a smoothing change re-runs from smoothing on');
+  assert.ok(!smoothed.ran.includes('curvature'));
+  await page.evaluate(() => window.crestline.update({ smoothingSteps: 3 }));
+});
+
+test('a broken file and an unsupported one: one sentence each, and the page recovers', async () => {
+  await drop([{ name: 'broken.glb', text: 'glTF this is not a binary glTF' }]);
+  await page.waitForFunction(() => document.body.dataset.state === 'error');
+  assert.match(await page.textContent('#error'), /^broken\.glb: cannot be read as GLB/);
+  await drop([{ name: 'readme.txt', text: 'hello' }]);
+  await page.waitForFunction(() => /readme/.test(document.getElementById('error').textContent));
+  assert.match(await page.textContent('#error'), /readme\.txt: unsupported format/);
+});
+
+test('OBJ (mannequin): lines match the native CLI', { skip: noMeshes }, async () => {
+  const result = await nextResult(() => drop(['classic/mannequin.obj']));
+  assert.equal(result.name, 'mannequin.obj');
+  await checkAgainstNative('classic/mannequin.obj', result);
+});
+
+test('Draco GLB (pmndrs bunny): decoded by three.js, lines match the native CLI', { skip: noMeshes }, async () => {
+  const result = await nextResult(() => drop(['glb/pmndrs-bunny-draco.glb']));
+  assert.equal(result.name, 'pmndrs-bunny-draco.glb');
+  await checkAgainstNative('glb/pmndrs-bunny-draco.glb', result);
+});
+
+test('multi-file glTF dropped together (Duck.gltf + .bin + texture)', { skip: noMeshes }, async () => {
+  const result = await nextResult(() => drop(['gltf/Duck/Duck.gltf', 'gltf/Duck/Duck0.bin', 'gltf/Duck/DuckCM.png']));
+  assert.equal(result.name, 'Duck.gltf');
+  assert.equal(result.stats.triangles, 4212);
+  await checkAgainstNative('gltf/Duck/Duck.gltf', result);
+});
+
+test('no uncaught errors in the page', () => {
+  assert.deepEqual(pageErrors, []);
+});
