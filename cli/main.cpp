@@ -19,12 +19,17 @@
 namespace crestline::cli {
 namespace {
 
-/// "crestline: FILE: problem", without naming the file twice when the
-/// message (e.g. from io::read_mesh) already starts with it.
-void report_error(const std::string& file, const std::string& message) {
-  std::cerr << "crestline: ";
-  if (message.rfind(file + ":", 0) != 0) std::cerr << file << ": ";
-  std::cerr << message << '\n';
+/// "crestline: FILE: problem". Messages that already start with the file
+/// (io::read_mesh names it by its full path or its base name) are not
+/// prefixed twice.
+void report_error(const std::string& file, std::string message) {
+  const std::string base = std::filesystem::path(file).filename().string();
+  for (const std::string& name : {file, base})
+    if (!name.empty() && message.rfind(name + ": ", 0) == 0) {
+      message.erase(0, name.size() + 2);
+      break;
+    }
+  std::cerr << "crestline: " << file << ": " << message << '\n';
 }
 
 void print_repair_report(const std::string& input, const RepairReport& r) {
@@ -48,7 +53,8 @@ void print_repair_report(const std::string& input, const RepairReport& r) {
 std::string render(const CliOptions& options, const Pipeline& pipeline) {
   switch (options.format) {
     case OutputFormat::Json: return io::write_lines_json(pipeline.lines(), pipeline.stats());
-    case OutputFormat::Svg: return io::write_lines_svg(pipeline.lines(), pipeline.surface(), options.svg);
+    case OutputFormat::Svg:
+      return io::write_lines_svg(pipeline.lines(), pipeline.surface(), pipeline.topology(), options.svg);
     case OutputFormat::Obj:
     default: return io::write_lines_obj(pipeline.lines());
   }

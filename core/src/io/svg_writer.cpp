@@ -241,11 +241,9 @@ void open_group(std::string& out, const char* id, const std::string& color, doub
 }
 
 /// Edges where the surface turns away from the viewer, and boundary edges.
-std::vector<Run> silhouette_runs(const Mesh& surface, const Projection& proj,
+std::vector<Run> silhouette_runs(const Mesh& surface, const Topology& topology, const Projection& proj,
                                  const DepthBuffer& depth) {
   std::vector<Run> runs;
-  if (surface.triangles.empty()) return runs;
-  const Topology topology = build_topology(surface);
   std::vector<uint8_t> front(surface.triangles.size());
   for (size_t t = 0; t < surface.triangles.size(); ++t) {
     const Triangle& tri = surface.triangles[t];
@@ -255,6 +253,7 @@ std::vector<Run> silhouette_runs(const Mesh& surface, const Projection& proj,
   }
   for (size_t e = 0; e < topology.edges.size(); ++e) {
     const auto& [t0, t1] = topology.edge_triangles[e];
+    if (t0 >= front.size() || (t1 != kNone && t1 >= front.size())) continue;  // not this mesh's
     const bool outline = t1 == kNone ? front[t0] : front[t0] != front[t1];
     if (!outline) continue;
     const std::vector<Vec3> edge = {proj(surface.positions[topology.edges[e][0]]),
@@ -268,6 +267,14 @@ std::vector<Run> silhouette_runs(const Mesh& surface, const Projection& proj,
 
 std::string write_lines_svg(const std::vector<Polyline>& lines, const Mesh& surface,
                             const SvgOptions& options) {
+  // Adjacency only matters for the silhouette.
+  const Topology topology =
+      options.silhouette && !surface.triangles.empty() ? build_topology(surface) : Topology{};
+  return write_lines_svg(lines, surface, topology, options);
+}
+
+std::string write_lines_svg(const std::vector<Polyline>& lines, const Mesh& surface,
+                            const Topology& topology, const SvgOptions& options) {
   const Projection proj = make_projection(lines, surface, options);
   const DepthBuffer depth(surface, proj);
 
@@ -282,7 +289,7 @@ std::string write_lines_svg(const std::vector<Polyline>& lines, const Mesh& surf
     // elements would bloat the file for no visual gain.
     open_group(out, "silhouette", "#555555", 0.6 * options.stroke_width);
     std::string data;
-    for (const Run& run : silhouette_runs(surface, proj, depth)) {
+    for (const Run& run : silhouette_runs(surface, topology, proj, depth)) {
       if (!data.empty()) data += ' ';
       append_path_data(data, run);
     }

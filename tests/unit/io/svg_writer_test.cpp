@@ -192,6 +192,10 @@ TEST_CASE("SVG: document structure, groups and views", "[io][svg]") {
   CHECK(paths_in(svg, "silhouette").size() == 4);
   CHECK(total_length(paths_in(svg, "silhouette")) == Approx(4 * 960).margin(4.0));
 
+  // The caller's adjacency gives the same drawing as the one built inside.
+  CHECK(crestline::io::write_lines_svg({ridge, valley}, plane(), crestline::build_topology(plane()), options) ==
+        svg);
+
   // Ridge above the valley in front view (SVG y grows downwards).
   CHECK(paths_in(svg, "ridges")[0].points[0].second < paths_in(svg, "valleys")[0].points[0].second);
 
