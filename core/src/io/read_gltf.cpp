@@ -406,7 +406,12 @@ class GltfReader {
         }
       }
     } else {
-      out.assign(count * size_t(components), 0.0);  // no bufferView: zeros (then sparse)
+      // No bufferView: zeros, then the sparse values. Nothing in the file
+      // backs the count, so allow at most one element per byte of the file.
+      if (count > std::max<size_t>(in_.size, 1024)) {
+        invalid(what + " claims " + std::to_string(count) + " elements that the file holds no data for.");
+      }
+      out.assign(count * size_t(components), 0.0);
     }
     if (!accessor.sparse.isSparse) return;
     const auto& sparse = accessor.sparse;
@@ -457,6 +462,12 @@ class GltfReader {
       }
       if (uint64_t(count) > 3 * uint64_t(options_.max_triangles) + 3) {
         fail(ErrorKind::TooLarge, in_, what + " claims " + std::to_string(count) + " elements, more than the limit.");
+      }
+      // meshopt's codecs spend at least 2 bits per 16 bytes of output (the
+      // vertex codec's group headers), so more than 64:1 cannot be genuine.
+      if (uint64_t(count) * uint64_t(stride) > 64 * uint64_t(length) + 4096) {
+        invalid(what + " claims " + std::to_string(uint64_t(count) * uint64_t(stride)) + " bytes from " +
+                std::to_string(length) + " compressed bytes.");
       }
       std::vector<uint8_t> out(size_t(count) * size_t(stride));
       const unsigned char* source = data.data() + offset;
@@ -543,6 +554,20 @@ TriangleSoup read_gltf(const Input& in, const ReadOptions& options) {
   if (!loader.LoadASCIIFromString(&model, &error, &warning, json.data(), unsigned(json.size()), "")) {
     if (!files.missing.empty()) {
       fail(ErrorKind::Io, in, "the buffer file '" + files.missing.front() + "' it refers to was not found.");
+    }
+    // "File size mismatch : <uri>, requestedBytes <n>, but got <m>"
+    const size_t mismatch = error.find("File size mismatch : ");
+    if (mismatch != std::string::npos) {
+      std::string detail = first_line(error.substr(mismatch + 21));
+      const size_t comma = detail.find(", requestedBytes ");
+      const size_t got = detail.find(", but got ");
+      if (comma != std::string::npos && got != std::string::npos) {
+        std::string uri = detail.substr(0, comma);
+        if (uri == kGlbBin) uri = "GLB BIN chunk";
+        fail(ErrorKind::InvalidInput, in,
+             "the buffer '" + uri + "' has " + detail.substr(got + 10) + " bytes but the glTF declares " +
+                 detail.substr(comma + 17, got - comma - 17) + ".");
+      }
     }
     fail(ErrorKind::InvalidInput, in, "the glTF data is invalid (" + first_line(error) + ").");
   }

@@ -323,6 +323,21 @@ TEST_CASE("glTF: data URIs, strips, instancing with transforms, companions", "[i
   overlong.replace(overlong.find("\"count\":4"), 9, "\"count\":400000");
   CHECK(error_kind("long.gltf", bytes_of(overlong)) == ErrorKind::InvalidInput);
   CHECK(error_kind("broken.gltf", bytes_of("{\"asset\":")) == ErrorKind::InvalidInput);
+  // An accessor without a bufferView (zeros) claiming 10^8 vertices is
+  // refused before allocating them.
+  std::string phantom = square_gltf(uri, 4, R"([{"mesh":0}])");
+  phantom.replace(phantom.find("\"bufferView\":0,\"componentType\""), 15, "");
+  phantom.replace(phantom.find("\"count\":4"), 9, "\"count\":100000000");
+  CHECK(error_kind("phantom.gltf", bytes_of(phantom)) == ErrorKind::InvalidInput);
+  // A buffer shorter than its declared byteLength.
+  std::string short_buffer = square_gltf("square.bin", 4, R"([{"mesh":0}])");
+  short_buffer.replace(short_buffer.find("\"byteLength\":48"), 15, "\"byteLength\":64");
+  try {
+    read_mesh_bytes("short.gltf", bytes_of(short_buffer), {NamedBuffer{"square.bin", square_buffer()}});
+    FAIL("no error");
+  } catch (const Error& e) {
+    CHECK(std::string(e.what()) == "short.gltf: the buffer 'square.bin' has 48 bytes but the glTF declares 64.");
+  }
 }
 
 TEST_CASE("glTF read from memory with its .bin companion", "[io][gltf][meshes]") {
