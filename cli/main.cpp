@@ -22,17 +22,21 @@ namespace {
 /// "crestline: FILE: problem". Messages that already start with the file
 /// (io::read_mesh names it by its full path or its base name) are not
 /// prefixed twice.
-void report_error(const std::string& file, std::string message) {
+std::string message_for(const std::string& file, std::string message) {
   const std::string base = std::filesystem::path(file).filename().string();
   for (const std::string& name : {file, base})
     if (!name.empty() && message.rfind(name + ": ", 0) == 0) {
       message.erase(0, name.size() + 2);
       break;
     }
-  std::cerr << "crestline: " << file << ": " << message << '\n';
+  return "crestline: " + file + ": " + message;
 }
 
-void print_repair_report(const std::string& input, const RepairReport& r) {
+void report_error(const std::string& file, const std::string& message) {
+  std::cerr << message_for(file, message) << '\n';
+}
+
+void print_repair_report(const std::string& input, const RepairReport& r, Progress& out) {
   const std::pair<const char*, size_t> counts[] = {
       {"input_vertices", r.input_vertices},
       {"input_triangles", r.input_triangles},
@@ -46,8 +50,8 @@ void print_repair_report(const std::string& input, const RepairReport& r) {
       {"flipped_triangles", r.flipped_triangles},
       {"components", r.components},
       {"boundary_edges", r.boundary_edges}};
-  std::cerr << "crestline: " << input << ": repair report\n";
-  for (const auto& [name, value] : counts) std::cerr << "  " << name << ": " << value << '\n';
+  out.print("crestline: " + input + ": repair report");
+  for (const auto& [name, value] : counts) out.print("  " + std::string(name) + ": " + std::to_string(value));
 }
 
 std::string render(const CliOptions& options, const Pipeline& pipeline) {
@@ -69,13 +73,15 @@ int run(const CliOptions& options) {
       report_error(options.output, "the folder " + directory.string() + " does not exist.");
       return 1;
     }
+    Progress progress(!options.quiet);
     const TriangleSoup soup = io::read_mesh(options.input);
+    progress.phase("repairing");
     RepairResult repaired = repair_mesh(soup);
     if (!options.quiet) {
-      for (const std::string& note : soup.notes) report_error(options.input, note);
-      for (const std::string& note : repaired.report.notes()) report_error(options.input, note);
+      for (const std::string& note : soup.notes) progress.print(message_for(options.input, note));
+      for (const std::string& note : repaired.report.notes()) progress.print(message_for(options.input, note));
     }
-    if (options.repair_report) print_repair_report(options.input, repaired.report);
+    if (options.repair_report) print_repair_report(options.input, repaired.report, progress);
 
     PipelineOptions pipeline_options = options.pipeline;
     if (!options.weights.empty()) {
@@ -86,14 +92,13 @@ int run(const CliOptions& options) {
 
     Pipeline pipeline(std::move(repaired.mesh));
     pipeline.set_options(pipeline_options);
-    {
-      Progress progress(!options.quiet);
-      pipeline.run([&progress](Stage stage, double fraction) { return progress(stage, fraction); });
-    }
+    pipeline.run([&progress](Stage stage, double fraction) { return progress(stage, fraction); });
 
+    progress.phase("writing");
     const std::string text = render(options, pipeline);
     file = options.output;
     write_file_atomically(options.output, text);
+    progress.stop();
     if (options.stats) std::cout << io::stats_json(pipeline.stats()) << std::endl;
     return 0;
   } catch (const Cancelled&) {

@@ -79,6 +79,15 @@ head -c 2000 /dev/urandom > "$work/noise.obj"
 [ $? -ne 0 ] || [ -s "$work/out.json" ] || fail "random bytes: exit 0 but no output"
 rm -f "$work/out.json"
 
+# Weights per vertex of the input file also work when repair welds vertices:
+# the same height field as a soup, three vertices per triangle.
+awk '/^v /{ v[++n] = $0 } /^f /{ print v[$2]; print v[$3]; print v[$4]; k += 3; f = f sprintf("f %d %d %d\n", k - 2, k - 1, k) }
+     END { printf "%s", f }' "$work/wave.obj" > "$work/soup.obj"
+soup_vertices=$(grep -c '^v ' "$work/soup.obj")
+awk -v n="$soup_vertices" 'BEGIN { for (i = 0; i < n; i++) print 0.5 }' > "$work/soup-weights.txt"
+expect 0 "weights per input vertex" -- "$work/soup.obj" -o "$work/soup.obj.json" --weights "$work/soup-weights.txt"
+grep -q 'Welded' "$work/stderr" || fail "soup: repair did not report welding: $(cat "$work/stderr")"
+
 printf '1\n2\n' > "$work/short.txt"
 expect 1 "wrong weight count" -- "$work/wave.obj" -o "$work/out.obj" --weights "$work/short.txt" --quiet
 one_line_naming "wrong weight count" "$work/short.txt"
