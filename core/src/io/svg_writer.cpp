@@ -106,6 +106,7 @@ class DepthBuffer {
   /// four depth pixels around it, so a point on a steep but visible surface is
   /// not hidden by the surface's own slope between pixel centres.
   bool visible(const Vec3& q) const {
+    if (!q.allFinite()) return false;  // never draw (or index with) NaN
     const double x = q.x() * kSupersample - 0.5, y = q.y() * kSupersample - 0.5;
     const int i0 = static_cast<int>(std::floor(x)), j0 = static_cast<int>(std::floor(y));
     float farthest = std::numeric_limits<float>::infinity();

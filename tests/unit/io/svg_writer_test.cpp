@@ -1,6 +1,7 @@
 // SVG writer: hidden-line removal against the surface, views, groups.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <limits>
 #include <regex>
 #include <string>
 #include <vector>
@@ -208,6 +209,37 @@ TEST_CASE("SVG: document structure, groups and views", "[io][svg]") {
     // Seen from -x, +z points right.
     CHECK(drawn[0].points[0].first < drawn[0].points[1].first);
   }
+}
+
+TEST_CASE("SVG: the drawing does not depend on the model's scale or position", "[io][svg]") {
+  const Mesh sphere = uv_sphere(12, 24);
+  std::vector<Vec3> meridian;
+  for (int r = 1; r < 12; ++r) meridian.push_back(sphere.positions[1 + (r - 1) * 24 + 3]);
+  const auto ridge = line(LineType::Ridge, meridian);
+  SvgOptions options;
+  options.silhouette = true;
+  options.view = View::Right;
+  const std::string reference = crestline::io::write_lines_svg({ridge}, sphere, options);
+  CHECK(paths_in(reference, "ridges").size() == 1);
+  for (const double scale : {1e-6, 1e6}) {
+    INFO("scale " << scale);
+    const Vec3 offset(3 * scale, -7 * scale, 11 * scale);
+    Mesh moved = sphere;
+    for (Vec3& p : moved.positions) p = p * scale + offset;
+    Polyline moved_ridge = ridge;
+    for (Vec3& p : moved_ridge.points) p = p * scale + offset;
+    CHECK(crestline::io::write_lines_svg({moved_ridge}, moved, options) == reference);
+  }
+}
+
+TEST_CASE("SVG: non-finite points are skipped, not drawn", "[io][svg]") {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const auto broken = line(LineType::Ridge, {{-0.5, 0, 0.1}, {0, 0, 0.1}, {nan, 0, 0.1}, {0.5, 0.5, 0.1}});
+  const std::string svg = svg_of({broken}, plane());
+  CHECK(svg.find("nan") == std::string::npos);
+  const auto drawn = paths_in(svg, "ridges");
+  REQUIRE(drawn.size() == 1);
+  CHECK(drawn[0].points.size() == 2);
 }
 
 TEST_CASE("SVG: empty input gives a valid, empty drawing", "[io][svg]") {
