@@ -9,11 +9,17 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev libtinygltf-dev nlohmann-json3-dev libtinyobjloader-dev
   libcli11-dev libdraco-dev libmeshoptimizer-dev catch2
-  emscripten nodejs npm chromium
+  emscripten nodejs chromium
   clang libclang-rt-14-dev
 )
 missing=()
+# Node.js may come from elsewhere (e.g. a nodesource build that bundles npm,
+# which conflicts with Debian's npm package): only ask Debian for npm if the
+# command is missing.
+command -v npm >/dev/null 2>&1 || packages+=(npm)
 for p in "${packages[@]}"; do
+  # A nodejs that ships its own npm (e.g. NodeSource) conflicts with Debian's npm.
+  if [ "$p" = npm ] && command -v npm >/dev/null; then continue; fi
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
 if ((${#missing[@]})); then
