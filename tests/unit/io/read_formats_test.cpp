@@ -10,18 +10,19 @@
 
 #include "crestline/error.h"
 #include "crestline/io/read_mesh.h"
+#include "read_test_bytes.h"
 #include "test_meshes.h"
 
 using crestline::Error;
 using crestline::ErrorKind;
 using crestline::TriangleSoup;
+using crestline::testing::bytes_of;
+using crestline::testing::put;
 using crestline::io::MeshFormat;
 using crestline::io::NamedBuffer;
 using crestline::io::read_mesh_bytes;
 
 namespace {
-
-std::vector<uint8_t> bytes_of(const std::string& text) { return {text.begin(), text.end()}; }
 
 TriangleSoup read_text(const std::string& name, const std::string& text) {
   return read_mesh_bytes(name, bytes_of(text));
@@ -38,14 +39,6 @@ ErrorKind error_kind(const std::string& name, const std::vector<uint8_t>& bytes,
   }
   FAIL("no error for " << name);
   return ErrorKind::Numerical;
-}
-
-template <typename T>
-void put(std::vector<uint8_t>& out, T value, bool big_endian) {
-  uint8_t b[sizeof(T)];
-  std::memcpy(b, &value, sizeof(T));
-  if (big_endian) std::reverse(b, b + sizeof(T));
-  out.insert(out.end(), b, b + sizeof(T));
 }
 
 // A unit square as one quad plus a triangle, with an extra uchar property per
