@@ -36,7 +36,8 @@ Camera camera_for(View view) {
   }
 }
 
-constexpr int kSupersample = 2;       // depth pixels per drawing pixel
+constexpr double kSupersample = 2;    // depth pixels per drawing pixel…
+constexpr double kMaxRaster = 8192;   // …up to this many on the longer side (memory)
 constexpr double kMarginFraction = 0.02;
 
 /// Maps world points to drawing coordinates (x right, y down) and depth.
@@ -83,15 +84,16 @@ Projection make_projection(const std::vector<Polyline>& lines, const Mesh& surfa
 class DepthBuffer {
  public:
   DepthBuffer(const Mesh& surface, const Projection& proj) {
-    width_ = static_cast<int>(std::ceil(proj.width * kSupersample));
-    height_ = static_cast<int>(std::ceil(proj.height * kSupersample));
+    factor_ = std::min(kSupersample, kMaxRaster / std::max({proj.width, proj.height, 1.0}));
+    width_ = static_cast<int>(std::ceil(proj.width * factor_));
+    height_ = static_cast<int>(std::ceil(proj.height * factor_));
     depth_.assign(static_cast<size_t>(width_) * height_, -std::numeric_limits<float>::infinity());
     std::vector<Vec3> raster(surface.positions.size());
     double d_min = std::numeric_limits<double>::infinity(), d_max = -d_min;
     for (size_t v = 0; v < raster.size(); ++v) {
       raster[v] = proj(surface.positions[v]);
-      raster[v].x() *= kSupersample;
-      raster[v].y() *= kSupersample;
+      raster[v].x() *= factor_;
+      raster[v].y() *= factor_;
       d_min = std::min(d_min, raster[v].z());
       d_max = std::max(d_max, raster[v].z());
     }
@@ -99,7 +101,7 @@ class DepthBuffer {
     // The lines lie ON the surface: accept samples up to ~2 depth pixels (in
     // world units) plus a small fraction of the depth range behind it.
     const double range = d_max > d_min ? d_max - d_min : 0.0;
-    tolerance_ = 2.0 / (proj.scale * kSupersample) + 1e-3 * range;
+    tolerance_ = 2.0 / (proj.scale * factor_) + 1e-3 * range;
   }
 
   /// `q` in drawing coordinates with depth. Compared with the farthest of the
@@ -107,7 +109,7 @@ class DepthBuffer {
   /// not hidden by the surface's own slope between pixel centres.
   bool visible(const Vec3& q) const {
     if (!q.allFinite()) return false;  // never draw (or index with) NaN
-    const double x = q.x() * kSupersample - 0.5, y = q.y() * kSupersample - 0.5;
+    const double x = q.x() * factor_ - 0.5, y = q.y() * factor_ - 0.5;
     const int i0 = static_cast<int>(std::floor(x)), j0 = static_cast<int>(std::floor(y));
     float farthest = std::numeric_limits<float>::infinity();
     for (int j = j0; j <= j0 + 1; ++j)
@@ -117,6 +119,9 @@ class DepthBuffer {
       }
     return q.z() >= farthest - tolerance_;
   }
+
+  /// Depth pixels per drawing pixel.
+  double factor() const { return factor_; }
 
  private:
   void fill(const Vec3& a, const Vec3& b, const Vec3& c) {
@@ -144,6 +149,7 @@ class DepthBuffer {
     }
   }
 
+  double factor_ = kSupersample;
   int width_ = 0, height_ = 0;
   std::vector<float> depth_;
   double tolerance_ = 0;
@@ -177,7 +183,7 @@ std::vector<Run> visible_runs(const std::vector<Vec3>& projected, bool closed,
   for (size_t s = 0; s < segments; ++s) {
     const Vec3& a = projected[s];
     const Vec3& b = projected[(s + 1) % n];
-    const double pixels = std::hypot(b.x() - a.x(), b.y() - a.y()) * kSupersample;
+    const double pixels = std::hypot(b.x() - a.x(), b.y() - a.y()) * depth.factor();
     const int samples = std::max(1, static_cast<int>(std::ceil(pixels)));
     for (int k = s == 0 ? 0 : 1; k <= samples; ++k) {
       const double t = static_cast<double>(k) / samples;

@@ -242,6 +242,17 @@ TEST_CASE("SVG: non-finite points are skipped, not drawn", "[io][svg]") {
   CHECK(drawn[0].points.size() == 2);
 }
 
+TEST_CASE("SVG: a huge drawing caps its depth buffer and still hides lines", "[io][svg]") {
+  SvgOptions options;
+  options.width = 100000;  // 2x supersampling would need 40 G depth pixels
+  const auto front = line(LineType::Ridge, {{-0.5, 0, 0.1}, {0.5, 0, 0.1}});
+  const auto behind = line(LineType::Valley, {{-0.5, 0, -0.1}, {0.5, 0, -0.1}});
+  const std::string svg = crestline::io::write_lines_svg({front, behind}, plane(), options);
+  REQUIRE(paths_in(svg, "ridges").size() == 1);
+  CHECK(paths_in(svg, "ridges")[0].length() == Approx(100000 * 0.96 / 2).epsilon(0.001));
+  CHECK(paths_in(svg, "valleys").empty());
+}
+
 TEST_CASE("SVG: empty input gives a valid, empty drawing", "[io][svg]") {
   const std::string svg = crestline::io::write_lines_svg({}, Mesh{}, SvgOptions{});
   CHECK(svg.find("<svg") != std::string::npos);
