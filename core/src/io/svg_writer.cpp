@@ -10,6 +10,8 @@
 #include <cstdio>
 #include <limits>
 #include <string>
+#include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "crestline/io/write_lines.h"
@@ -247,6 +249,56 @@ void open_group(std::string& out, const char* id, const std::string& color, doub
   out += "\" stroke-linecap=\"round\" stroke-linejoin=\"round\">\n";
 }
 
+/// Joins pieces that share end points (silhouette edges meet at vertices,
+/// which project to bit-identical points) into longer runs, so an outline is
+/// drawn with joins instead of a stack of caps, and each vertex only once.
+std::vector<Run> chain_runs(std::vector<Run> pieces) {
+  struct KeyHash {
+    size_t operator()(const std::pair<double, double>& k) const {
+      return std::hash<double>()(k.first) * 31 + std::hash<double>()(k.second);
+    }
+  };
+  auto key = [](const Vec3& p) { return std::make_pair(p.x(), p.y()); };
+  // End id 2i is the start of piece i, 2i+1 its end.
+  std::unordered_map<std::pair<double, double>, std::vector<uint32_t>, KeyHash> ends;
+  for (uint32_t i = 0; i < pieces.size(); ++i) {
+    ends[key(pieces[i].points.front())].push_back(2 * i);
+    ends[key(pieces[i].points.back())].push_back(2 * i + 1);
+  }
+  std::vector<uint8_t> used(pieces.size(), 0);
+  // Appends an unused piece that touches the chain's last point; false if none.
+  auto extend = [&](Run& chain) {
+    const auto found = ends.find(key(chain.points.back()));
+    if (found == ends.end()) return false;
+    for (const uint32_t id : found->second) {
+      if (used[id / 2]) continue;
+      used[id / 2] = 1;
+      const std::vector<Vec3>& p = pieces[id / 2].points;
+      if (id % 2 == 0) chain.points.insert(chain.points.end(), p.begin() + 1, p.end());
+      else chain.points.insert(chain.points.end(), p.rbegin() + 1, p.rend());
+      return true;
+    }
+    return false;
+  };
+  std::vector<Run> chains;
+  for (uint32_t i = 0; i < pieces.size(); ++i) {
+    if (used[i]) continue;
+    used[i] = 1;
+    Run chain = std::move(pieces[i]);
+    while (extend(chain)) {
+    }
+    std::reverse(chain.points.begin(), chain.points.end());
+    while (extend(chain)) {
+    }
+    if (chain.points.size() > 3 && chain.points.front() == chain.points.back()) {
+      chain.points.pop_back();
+      chain.closed = true;
+    }
+    chains.push_back(std::move(chain));
+  }
+  return chains;
+}
+
 /// Edges where the surface turns away from the viewer, and boundary edges.
 std::vector<Run> silhouette_runs(const Mesh& surface, const Topology& topology, const Projection& proj,
                                  const DepthBuffer& depth) {
@@ -261,13 +313,14 @@ std::vector<Run> silhouette_runs(const Mesh& surface, const Topology& topology, 
   for (size_t e = 0; e < topology.edges.size(); ++e) {
     const auto& [t0, t1] = topology.edge_triangles[e];
     if (t0 >= front.size() || (t1 != kNone && t1 >= front.size())) continue;  // not this mesh's
-    const bool outline = t1 == kNone ? front[t0] : front[t0] != front[t1];
+    // Boundary edges outline an open surface from either side.
+    const bool outline = t1 == kNone || front[t0] != front[t1];
     if (!outline) continue;
     const std::vector<Vec3> edge = {proj(surface.positions[topology.edges[e][0]]),
                                     proj(surface.positions[topology.edges[e][1]])};
     for (Run& run : visible_runs(edge, false, depth)) runs.push_back(std::move(run));
   }
-  return runs;
+  return chain_runs(std::move(runs));
 }
 
 }  // namespace

@@ -189,9 +189,12 @@ TEST_CASE("SVG: document structure, groups and views", "[io][svg]") {
   CHECK(svg.find("stroke=\"" + options.valley_color + "\"") != std::string::npos);
   CHECK(paths_in(svg, "ridges").size() == 1);
   CHECK(paths_in(svg, "valleys").size() == 1);
-  // The plane's outline: four boundary edges.
-  CHECK(paths_in(svg, "silhouette").size() == 4);
-  CHECK(total_length(paths_in(svg, "silhouette")) == Approx(4 * 960).margin(4.0));
+  // The plane's outline: its four boundary edges chained into one closed path.
+  const auto outline = paths_in(svg, "silhouette");
+  REQUIRE(outline.size() == 1);
+  CHECK(outline[0].closed);
+  CHECK(outline[0].points.size() == 4);
+  CHECK(outline[0].length() == Approx(4 * 960).margin(4.0));
 
   // The caller's adjacency gives the same drawing as the one built inside.
   CHECK(crestline::io::write_lines_svg({ridge, valley}, plane(), crestline::build_topology(plane()), options) ==
@@ -240,6 +243,22 @@ TEST_CASE("SVG: non-finite points are skipped, not drawn", "[io][svg]") {
   const auto drawn = paths_in(svg, "ridges");
   REQUIRE(drawn.size() == 1);
   CHECK(drawn[0].points.size() == 2);
+}
+
+TEST_CASE("SVG: the silhouette of a sphere is one closed outline, from every side", "[io][svg]") {
+  const Mesh sphere = uv_sphere(16, 48);
+  SvgOptions options;
+  options.silhouette = true;
+  for (const View view : {View::Front, View::Back, View::Left, View::Right, View::Top, View::Bottom}) {
+    INFO("view " << static_cast<int>(view));
+    options.view = view;
+    const auto outline = paths_in(crestline::io::write_lines_svg({}, sphere, options), "silhouette");
+    REQUIRE(!outline.empty());
+    // The contour of a faceted sphere is a polygon close to the disc's circumference.
+    CHECK(total_length(outline) == Approx(2 * kPi * scale_for(2)).epsilon(0.03));
+  }
+  options.view = View::Front;
+  CHECK(paths_in(crestline::io::write_lines_svg({}, sphere, options), "silhouette").size() == 1);
 }
 
 TEST_CASE("SVG: a huge drawing caps its depth buffer and still hides lines", "[io][svg]") {
