@@ -154,6 +154,43 @@ test('multi-file glTF dropped together (Duck.gltf + .bin + texture)', { skip: no
   await checkAgainstNative('gltf/Duck/Duck.gltf', result);
 });
 
+test('curvature colour map and singular triangles views', async () => {
+  await page.evaluate(() => window.crestline.update({ view: 'kappaMax' }));
+  await page.waitForFunction(() => window.crestline.fields && window.crestline.viewer.surface.material.vertexColors);
+  const colours = await page.evaluate(() => window.crestline.viewer.surface.mesh.geometry.getAttribute('color').count);
+  assert.equal(colours, await page.evaluate(() => window.crestline.lastResult.stats.vertices));
+  await page.evaluate(() => window.crestline.update({ view: 'singularMax' }));
+  const singular = await page.evaluate(() => window.crestline.viewer.surface.singular.geometry.index.count / 3);
+  assert.equal(singular, await page.evaluate(() => window.crestline.lastResult.stats.singularMax));
+  await page.evaluate(() => window.crestline.update({ view: 'shaded' }));
+});
+
+test('cancel stops a long computation and the page stays usable', { skip: noMeshes }, async () => {
+  await drop(['large/dragon-draco.glb']);
+  await page.waitForFunction(() => document.getElementById('progress-text').textContent === 'smoothing', null, { timeout: 60000 });
+  const started = Date.now();
+  await page.click('#cancel');
+  await page.waitForFunction(() => document.body.dataset.state === 'ready', null, { timeout: 10000 });
+  console.log(`# cancel during smoothing took effect after ${Date.now() - started} ms`);
+  assert.match(await page.textContent('#notes'), /Cancelled/);
+  const result = await nextResult(() => drop(['classic/mannequin.obj']));
+  assert.equal(result.name, 'mannequin.obj');
+});
+
+test('a lost WebGL context is one sentence; the view comes back on restore', async () => {
+  await page.evaluate(() => {
+    const gl = window.crestline.viewer.renderer.getContext();
+    window.loseContext = gl.getExtension('WEBGL_lose_context');
+    window.loseContext.loseContext();
+  });
+  await page.waitForFunction(() => document.body.dataset.state === 'error');
+  assert.match(await page.textContent('#error'), /WebGL context was lost/);
+  await page.evaluate(() => window.loseContext.restoreContext());
+  await page.waitForFunction(() => document.getElementById('error').textContent === '');
+  const pixels = await linePixels();
+  assert.ok(pixels.ridges > 50, `line pixels after restore: ${JSON.stringify(pixels)}`);
+});
+
 test('no uncaught errors in the page', () => {
   assert.deepEqual(pageErrors, []);
 });

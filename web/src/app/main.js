@@ -8,6 +8,7 @@ import { setState, showError, showFile, showNotes, showProgress, showStats } fro
 import { installDrop } from './drop.js';
 import { createGui, defaultParams, pipelineOptions } from './gui.js';
 import { PipelineClient } from './pipeline-client.js';
+import { STAGES } from '../worker/protocol.js';
 
 const params = defaultParams();
 const dracoLoader = new DRACOLoader().setDecoderPath(`${import.meta.env.BASE_URL}draco/`);
@@ -23,7 +24,7 @@ let pendingRun = false;
 let rescaleThreshold = false;
 
 const client = new PipelineClient({
-  onProgress: ({ stage, fraction }) => showProgress(stage, fraction),
+  onProgress: ({ stage, fraction }) => showProgress(stage, (STAGES.indexOf(stage) + fraction) / STAGES.length),
   onLoaded: ({ name, vertices, triangles, notes }) => {
     app.mesh = { name, vertices, triangles };
     showFile(`${name}: ${triangles.toLocaleString()} triangles`);
@@ -52,12 +53,14 @@ const client = new PipelineClient({
     app.fields = fields;
     applyView();
   },
-  onCancelled: ({ restarted }) => {
+  onCancelled: () => {
+    pendingRun = false;
     showProgress(null);
     setState('ready');
-    showError(restarted ? 'Cancelled; the mesh was unloaded, drop it again to continue.' : null);
+    showNotes(['Cancelled: change a parameter to compute again.']);
   },
-  onError: ({ message }) => fail(message),
+  // Core messages are one sentence without the file name: prefix it.
+  onError: ({ message, kind }) => fail(app.mesh?.name && kind !== 'Internal' ? `${app.mesh.name}: ${message}` : message),
 });
 
 function fail(message) {
@@ -73,7 +76,9 @@ function compute() {
     return;
   }
   setState('busy');
-  client.setOptions(pipelineOptions(params));
+  // After a cancel that had to restart the worker, the mesh is sent again.
+  if (client.hasMesh) client.setOptions(pipelineOptions(params));
+  else if (app.soup) sendSoup(app.soup);
 }
 
 function applyDisplay() {
@@ -122,12 +127,19 @@ function loadSoup({ name, positions, indices }) {
   rescaleThreshold = true;
   showProgress('repair', 0);
   app.mesh = { name };
+  // A copy stays here: the worker may have to be restarted (cancel, crash).
+  app.soup = { name, positions: positions.slice(), indices: indices.slice() };
   client.load(name, positions, indices, pipelineOptions(params));
+}
+
+function sendSoup({ name, positions, indices }) {
+  showProgress('repair', 0);
+  client.load(name, positions.slice(), indices.slice(), pipelineOptions(params));
 }
 
 async function openFiles(files) {
   if (!files.length) return;
-  client.cancel();
+  if (client.busy) client.restart(); // a new mesh replaces the running job
   setState('busy');
   showError(null);
   showProgress('reading', 0);

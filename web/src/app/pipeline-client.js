@@ -8,7 +8,7 @@ export class PipelineClient {
     this.handlers = handlers;
     this.job = 0;
     this.busy = false;
-    this.lastLoad = null;
+    this.hasMesh = false;
     this.start();
   }
 
@@ -30,6 +30,7 @@ export class PipelineClient {
     if (message.job !== undefined && message.job !== this.job && message.type !== 'ready') return; // stale
     const name = { progress: 'onProgress', loaded: 'onLoaded', result: 'onResult', fields: 'onFields', cancelled: 'onCancelled', error: 'onError' }[message.type];
     if (['result', 'cancelled', 'error'].includes(message.type)) this.busy = false;
+    if (message.type === 'loaded') this.hasMesh = true;
     if (name) this.handlers[name]?.(message);
   }
 
@@ -42,7 +43,7 @@ export class PipelineClient {
 
   /** Takes ownership of the arrays (they are transferred). */
   load(name, positions, indices, options) {
-    this.lastLoad = { name, options };
+    this.hasMesh = false;
     return this.send({ type: 'load', name, positions, indices, options });
   }
 
@@ -55,17 +56,30 @@ export class PipelineClient {
     this.worker.postMessage({ type: 'fields', job: this.job });
   }
 
-  /** Stops the running job. Returns false when the worker had to be restarted (mesh lost). */
-  cancel() {
-    if (!this.busy) return true;
-    if (this.cancelFlag) {
-      Atomics.store(this.cancelFlag, 0, 1);
-      return true;
-    }
+  /** Drops whatever the worker is doing (and its mesh) at once: a fresh worker. */
+  restart() {
+    clearTimeout(this.cancelTimer);
     this.worker.terminate();
     this.busy = false;
+    this.hasMesh = false;
     this.start();
-    this.handlers.onCancelled?.({ job: this.job, restarted: true });
-    return false;
+  }
+
+  /**
+   * Stops the running job. The pipeline checks the shared flag between
+   * stages; a stage that runs on past `graceMs` (or a page without shared
+   * memory) gets the worker terminated and restarted, which unloads the mesh
+   * (`restarted: true`; hasMesh turns false).
+   */
+  cancel(graceMs = 1500) {
+    if (!this.busy) return;
+    const job = this.job;
+    if (this.cancelFlag) Atomics.store(this.cancelFlag, 0, 1);
+    clearTimeout(this.cancelTimer);
+    this.cancelTimer = setTimeout(() => {
+      if (!this.busy || this.job !== job) return;
+      this.restart();
+      this.handlers.onCancelled?.({ job, restarted: true });
+    }, this.cancelFlag ? graceMs : 0);
   }
 }

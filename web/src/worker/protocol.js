@@ -22,6 +22,9 @@
 // stage). Without cross-origin isolation there is no shared memory: the page
 // then terminates the worker and starts a new one.
 
+/** Pipeline stages in order (core stage_name()). */
+export const STAGES = ['presmooth', 'curvature', 'extremality', 'regularity', 'smoothing', 'tracing', 'singular', 'polylines', 'fairing', 'filter'];
+
 /** UI parameter names → Session.setOptions keys (see wasm/session.h). */
 export const OPTION_KEYS = [
   'presmoothSteps',

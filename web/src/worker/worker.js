@@ -6,6 +6,7 @@ import { createEngine } from './engine.js';
 import { transferables } from './protocol.js';
 
 let engine = null;
+let starting = null; // the engine's creation, shared by init and the first job
 let cancelFlag = null;
 let job = 0;
 let surfaceStale = false;
@@ -20,6 +21,11 @@ function progress(stage, fraction) {
     self.postMessage({ type: 'progress', job, stage, fraction });
   }
   return !(cancelFlag && Atomics.load(cancelFlag, 0) === 1);
+}
+
+async function start() {
+  starting ??= createEngine(createCrestline, { wasmUrl });
+  engine = await starting;
 }
 
 function run(options) {
@@ -37,7 +43,7 @@ function run(options) {
 
 async function handle(message) {
   job = message.job;
-  if (!engine) engine = await createEngine(createCrestline, { wasmUrl });
+  await start();
   switch (message.type) {
     case 'load': {
       const loaded = engine.load(message);
@@ -60,10 +66,10 @@ if (typeof WorkerGlobalScope !== 'undefined' && self instanceof WorkerGlobalScop
     if (data.type === 'init') {
       cancelFlag = data.cancelFlag ?? null;
       try {
-        engine = await createEngine(createCrestline, { wasmUrl });
+        await start();
         post({ type: 'ready' });
       } catch (error) {
-        post({ type: 'error', job: 0, message: `The WebAssembly module failed to start (${error.message}).`, kind: 'Internal' });
+        post({ type: 'error', message: `The WebAssembly module failed to start (${error.message}).`, kind: 'Internal' });
       }
       return;
     }
@@ -71,7 +77,7 @@ if (typeof WorkerGlobalScope !== 'undefined' && self instanceof WorkerGlobalScop
       await handle(data);
     } catch (error) {
       // An abort (RuntimeError) leaves the module unusable: start a fresh one next time.
-      if (!error.kind) engine = null;
+      if (error instanceof WebAssembly.RuntimeError) [engine, starting] = [null, null];
       const message = error instanceof WebAssembly.RuntimeError
         ? `The computation failed inside WebAssembly (${error.message}); the page has reset the engine.`
         : error.message;
