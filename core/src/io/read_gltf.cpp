@@ -11,7 +11,8 @@
 // - EXT_meshopt_compression bufferViews are decoded with meshoptimizer.
 //
 // What is read: every mesh of the default scene (else scene 0, else every
-// root node) with node transforms applied, instances expanded.
+// root node) with node transforms applied, instances expanded (nodes
+// sharing a mesh, and EXT_mesh_gpu_instancing).
 #define TINYGLTF_IMPLEMENTATION
 #define TINYGLTF_NO_STB_IMAGE
 #define TINYGLTF_NO_STB_IMAGE_WRITE
@@ -143,12 +144,13 @@ std::string first_line(const std::string& text) {
   return line;
 }
 
-#ifndef __EMSCRIPTEN__
 int value_int(const tinygltf::Value& object, const char* key, int fallback) {
   if (!object.IsObject() || !object.Has(key)) return fallback;
   const tinygltf::Value& v = object.Get(key);
   return v.IsNumber() || v.IsInt() ? int(v.GetNumberAsInt()) : fallback;
 }
+
+#ifndef __EMSCRIPTEN__
 
 std::string value_string(const tinygltf::Value& object, const char* key) {
   if (!object.IsObject() || !object.Has(key) || !object.Get(key).IsString()) return "";
@@ -222,28 +224,66 @@ class GltfReader {
       on_path[n] = visited[n] = 1;
       const tinygltf::Node& node = model_.nodes[n];
       const Eigen::Matrix4d world = frame.parent * local_transform(node);
-      if (node.mesh >= 0) add_instance(node.mesh, world);
+      if (node.mesh >= 0) {
+        auto gpu = node.extensions.find("EXT_mesh_gpu_instancing");
+        if (gpu == node.extensions.end()) {
+          add_instance(node.mesh, world);
+        } else {
+          for (const Eigen::Matrix4d& instance : gpu_instances(gpu->second, n)) add_instance(node.mesh, world * instance);
+        }
+      }
       stack.push_back({frame.node, Eigen::Matrix4d::Identity(), true});
       for (auto c = node.children.rbegin(); c != node.children.rend(); ++c) stack.push_back({*c, world, false});
     }
   }
 
   static Eigen::Matrix4d local_transform(const tinygltf::Node& node) {
-    Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
     if (node.matrix.size() == 16) return Eigen::Map<const Eigen::Matrix4d>(node.matrix.data());  // column-major
-    if (node.scale.size() == 3) m = Eigen::Vector4d(node.scale[0], node.scale[1], node.scale[2], 1).asDiagonal();
-    if (node.rotation.size() == 4) {
-      Eigen::Quaterniond q(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
+    return trs(node.translation.size() == 3 ? node.translation.data() : nullptr,
+               node.rotation.size() == 4 ? node.rotation.data() : nullptr,
+               node.scale.size() == 3 ? node.scale.data() : nullptr);
+  }
+
+  /// T * R * S; a null part is the identity, a quaternion is (x, y, z, w).
+  static Eigen::Matrix4d trs(const double* translation, const double* rotation, const double* scale) {
+    Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
+    if (scale) m = Eigen::Vector4d(scale[0], scale[1], scale[2], 1).asDiagonal();
+    if (rotation) {
+      Eigen::Quaterniond q(rotation[3], rotation[0], rotation[1], rotation[2]);
       if (q.norm() > 0) {
         Eigen::Matrix4d r = Eigen::Matrix4d::Identity();
         r.topLeftCorner<3, 3>() = q.normalized().toRotationMatrix();
         m = r * m;
       }
     }
-    if (node.translation.size() == 3) {
-      m.topRightCorner<3, 1>() += Eigen::Vector3d(node.translation[0], node.translation[1], node.translation[2]);
-    }
+    if (translation) m.topRightCorner<3, 1>() += Eigen::Vector3d(translation[0], translation[1], translation[2]);
     return m;
+  }
+
+  /// The per-instance transforms of EXT_mesh_gpu_instancing.
+  std::vector<Eigen::Matrix4d> gpu_instances(const tinygltf::Value& extension, size_t node) const {
+    const std::string where = "node " + std::to_string(node) + " (EXT_mesh_gpu_instancing)";
+    const tinygltf::Value none;
+    const tinygltf::Value& attributes = extension.Has("attributes") ? extension.Get("attributes") : none;
+    std::vector<double> parts[3];
+    const char* names[3] = {"TRANSLATION", "ROTATION", "SCALE"};
+    const int types[3] = {TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4, TINYGLTF_TYPE_VEC3};
+    size_t count = 0;
+    for (int k = 0; k < 3; ++k) {
+      const int accessor = value_int(attributes, names[k], -1);
+      if (accessor < 0) continue;
+      read_accessor(accessor, types[k], where + " " + names[k], parts[k]);
+      const size_t n = parts[k].size() / size_t(k == 1 ? 4 : 3);
+      if (count != 0 && n != count) invalid(where + " has attributes of different lengths.");
+      count = n;
+    }
+    std::vector<Eigen::Matrix4d> instances;
+    for (size_t i = 0; i < count; ++i) {
+      instances.push_back(trs(parts[0].empty() ? nullptr : &parts[0][3 * i],
+                              parts[1].empty() ? nullptr : &parts[1][4 * i],
+                              parts[2].empty() ? nullptr : &parts[2][3 * i]));
+    }
+    return instances;
   }
 
   void add_instance(int mesh_index, const Eigen::Matrix4d& world) {
@@ -372,8 +412,8 @@ class GltfReader {
   void check_range(size_t offset, size_t count, size_t stride, size_t element, size_t size,
                    const std::string& what) const {
     if (count == 0) return;
-    const uint64_t end = uint64_t(offset) + uint64_t(stride) * (count - 1) + element;
-    if (stride < element || offset > size || end > size || (count - 1) > size) {
+    if (stride < element || offset > size || size - offset < element ||
+        (count - 1) > (size - offset - element) / stride) {
       invalid(what + " reaches past the end of its bufferView.");
     }
   }

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <new>
 
 #include "readers.h"
 
@@ -196,8 +197,6 @@ void finish_soup(TriangleSoup& soup, const Input& in) {
 
 // --- format detection -------------------------------------------------------
 
-namespace {
-
 bool looks_like_text(const uint8_t* data, size_t size) {
   const size_t n = std::min<size_t>(size, 4096);
   for (size_t i = 0; i < n; ++i) {
@@ -206,6 +205,8 @@ bool looks_like_text(const uint8_t* data, size_t size) {
   }
   return true;
 }
+
+namespace {
 
 bool starts_with(const uint8_t* data, size_t size, const char* prefix) {
   const size_t n = std::strlen(prefix);
@@ -275,7 +276,7 @@ MeshFormat detect_format(const std::string& name, const uint8_t* bytes, size_t s
 
 namespace {
 
-TriangleSoup dispatch(const detail::Input& in, const ReadOptions& options) {
+TriangleSoup dispatch_format(const detail::Input& in, const ReadOptions& options) {
   using namespace detail;
   const MeshFormat format =
       options.format == MeshFormat::Auto ? detect_format(in.name, in.data, in.size) : options.format;
@@ -291,6 +292,19 @@ TriangleSoup dispatch(const detail::Input& in, const ReadOptions& options) {
   if (in.size == 0) fail(ErrorKind::InvalidInput, in, "the file is empty.");
   fail(ErrorKind::Unsupported, in,
        "the format is not recognised (Crestline reads OBJ, glTF/GLB, PLY, STL and OFF).");
+}
+
+// Whatever a library throws becomes one sentence about the file too.
+TriangleSoup dispatch(const detail::Input& in, const ReadOptions& options) {
+  try {
+    return dispatch_format(in, options);
+  } catch (const Error&) {
+    throw;
+  } catch (const std::bad_alloc&) {
+    detail::fail(ErrorKind::TooLarge, in, "there is not enough memory to read the file.");
+  } catch (const std::exception& e) {
+    detail::fail(ErrorKind::InvalidInput, in, std::string("the file cannot be read (") + e.what() + ").");
+  }
 }
 
 }  // namespace

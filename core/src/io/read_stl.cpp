@@ -59,13 +59,19 @@ TriangleSoup read_ascii(const Input& in, const ReadOptions& options) {
   return soup;
 }
 
+bool starts_with_solid(const Input& in) {
+  size_t i = 0;
+  while (i < in.size && (in.data[i] == ' ' || in.data[i] == '\t' || in.data[i] == '\r' || in.data[i] == '\n')) ++i;
+  return in.size - i >= 5 && std::memcmp(in.data + i, "solid", 5) == 0;
+}
+
 }  // namespace
 
 TriangleSoup read_stl(const Input& in, const ReadOptions& options) {
   TriangleSoup soup;
   if (is_binary_stl_size(in.size, in.data)) {
     soup = read_binary(in, options);
-  } else if (in.size >= 5 && std::memcmp(in.data, "solid", 5) == 0) {
+  } else if (starts_with_solid(in) && looks_like_text(in.data, in.size)) {
     soup = read_ascii(in, options);
   } else if (in.size >= 84) {
     uint32_t count = 0;

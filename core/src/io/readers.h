@@ -136,6 +136,9 @@ TriangleSoup read_ply(const Input& in, const ReadOptions& options);
 TriangleSoup read_stl(const Input& in, const ReadOptions& options);
 TriangleSoup read_off(const Input& in, const ReadOptions& options);
 
+/// True when the first 4 KB hold no control characters other than white space.
+bool looks_like_text(const uint8_t* data, size_t size);
+
 /// True when `size` bytes are a binary STL: 84-byte header and 50 bytes per
 /// triangle exactly (the only reliable test: many binary STL headers start
 /// with "solid" too).

@@ -139,6 +139,8 @@ TEST_CASE("STL: binary with a 'solid' header is detected by its size", "[io][stl
                                        "solid a\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n"
                                        "   vertex 1 0 0\n   vertex 0 1 0\n  endloop\n endfacet\nendsolid a\n");
   CHECK(ascii.triangle_count() == 1);
+  CHECK(read_text("indented.stl", "\n  solid x\nfacet\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\n")
+            .triangle_count() == 1);
   CHECK(ascii.positions[3] == 1.0);
 }
 
@@ -316,6 +318,9 @@ TEST_CASE("glTF: data URIs, strips, instancing with transforms, companions", "[i
   overlong.replace(overlong.find("\"count\":4"), 9, "\"count\":400000");
   CHECK(error_kind("long.gltf", bytes_of(overlong)) == ErrorKind::InvalidInput);
   CHECK(error_kind("broken.gltf", bytes_of("{\"asset\":")) == ErrorKind::InvalidInput);
+  // JSON of the wrong type where the reader looks itself (not through tinygltf).
+  CHECK(error_kind("typed.gltf", bytes_of(R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":1,
+      "extensions":{"EXT_meshopt_compression":{"fallback":"yes"}}}]})")) == ErrorKind::InvalidInput);
   // An accessor without a bufferView (zeros) claiming 10^8 vertices is
   // refused before allocating them.
   std::string phantom = square_gltf(uri, 4, R"([{"mesh":0}])");
@@ -331,6 +336,23 @@ TEST_CASE("glTF: data URIs, strips, instancing with transforms, companions", "[i
   } catch (const Error& e) {
     CHECK(std::string(e.what()) == "short.gltf: the buffer 'square.bin' has 48 bytes but the glTF declares 64.");
   }
+}
+
+TEST_CASE("glTF: EXT_mesh_gpu_instancing is expanded", "[io][gltf]") {
+  std::vector<uint8_t> buffer = square_buffer();
+  for (float c : {0.f, 0.f, 0.f, 10.f, 0.f, 0.f, 0.f, 10.f, 0.f}) put(buffer, c);  // 3 translations
+  const std::string json = R"({"asset":{"version":"2.0"},"extensionsUsed":["EXT_mesh_gpu_instancing"],
+  "buffers":[{"byteLength":84,"uri":"data:application/octet-stream;base64,)" + base64(buffer) + R"("}],
+  "bufferViews":[{"buffer":0,"byteLength":48},{"buffer":0,"byteOffset":48,"byteLength":36}],
+  "accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3"},
+               {"bufferView":1,"componentType":5126,"count":3,"type":"VEC3"}],
+  "meshes":[{"primitives":[{"attributes":{"POSITION":0},"mode":5}]}],
+  "nodes":[{"mesh":0,"scale":[2,2,2],"extensions":{"EXT_mesh_gpu_instancing":{"attributes":{"TRANSLATION":1}}}}]})";
+  const TriangleSoup soup = read_text("instances.gltf", json);
+  CHECK(soup.vertex_count() == 12);
+  CHECK(soup.triangle_count() == 6);
+  CHECK(area(soup) == Approx(3 * 4.0));  // node scale 2 applies after the instance offsets
+  CHECK(soup.positions[3 * 4] == Approx(20.0));  // instance 1, vertex 0: (10,0,0) scaled by 2
 }
 
 TEST_CASE("glTF read from memory with its .bin companion", "[io][gltf][meshes]") {
