@@ -73,6 +73,11 @@ int run(const CliOptions& options) {
       report_error(options.output, "the folder " + directory.string() + " does not exist.");
       return 1;
     }
+    std::error_code same_error;
+    if (std::filesystem::equivalent(options.input, options.output, same_error)) {
+      report_error(options.output, "this is the input mesh; choose another output name.");
+      return 2;
+    }
     Progress progress(!options.quiet);
     const TriangleSoup soup = io::read_mesh(options.input);
     progress.phase("repairing");

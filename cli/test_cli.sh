@@ -46,6 +46,13 @@ grep -q '^l [0-9]* [0-9]*' "$work/lines.obj" || fail "OBJ has no polyline"
 grep -q '"ridges":\[' "$work/lines.json" || fail "JSON has no ridges"
 grep -q '<g id="valleys"' "$work/lines.svg" || fail "SVG has no valleys group"
 
+# Whatever we wrote as JSON parses as JSON (when node is there to check).
+if command -v node > /dev/null; then
+  node -e 'const j = JSON.parse(require("fs").readFileSync(process.argv[1], "utf8"));
+    if (!Array.isArray(j.ridges) || !Array.isArray(j.valleys) || typeof j.stats !== "object") process.exit(1);' \
+    "$work/lines.json" || fail "lines.json does not parse as the documented JSON"
+fi
+
 # --stats: one JSON object on stdout.
 expect 0 "--stats" -- "$work/wave.obj" -o "$work/stats.obj" --stats --quiet
 [ "$(wc -l < "$work/stdout")" -eq 1 ] || fail "--stats: stdout is not one line"
@@ -54,6 +61,10 @@ for key in vertices triangles singular_max singular_min ridges valleys ridge_len
 done
 grep -q "\"vertices\":$vertices," "$work/stdout" || fail "--stats: vertices is not $vertices"
 grep -q '"seconds":{"presmooth":' "$work/stdout" || fail "--stats: seconds not keyed by stage"
+if command -v node > /dev/null; then
+  node -e 'JSON.parse(require("fs").readFileSync(process.argv[1], "utf8"))' "$work/stdout" ||
+    fail "--stats output does not parse as JSON"
+fi
 
 # Every parameter, including a weights file with one number per vertex.
 awk -v n="$vertices" 'BEGIN { for (i = 0; i < n; i++) print (i % 2 ? 0.5 : 1) }' > "$work/weights.txt"
@@ -102,6 +113,9 @@ expect 1 "failure keeps old output" -- "$work/broken.obj" -o "$work/keep.obj"
 [ "$(cat "$work/keep.obj")" = keep ] || fail "a failed run changed an existing output"
 
 # Usage errors: exit code 2.
+cp "$work/wave.obj" "$work/same.obj"
+expect 2 "output is the input" -- "$work/same.obj" -o "$work/same.obj"
+cmp -s "$work/wave.obj" "$work/same.obj" || fail "the input mesh was overwritten"
 expect 2 "unsupported extension" -- "$work/wave.obj" -o "$work/out.png"
 one_line_naming "unsupported extension" ".obj, .json or .svg"
 absent "unsupported extension" "$work/out.png"

@@ -4,3 +4,4 @@ add_library(crestline_writers
   src/io/svg_writer.cpp
 )
 target_link_libraries(crestline_writers PUBLIC crestline_core)
+target_compile_options(crestline_writers PRIVATE $<$<CXX_COMPILER_ID:GNU,Clang>:-Wall -Wextra>)

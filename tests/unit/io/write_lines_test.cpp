@@ -156,6 +156,14 @@ TEST_CASE("stats JSON is one object on one line", "[io][writers]") {
     CHECK(json.contains(key));
 }
 
+TEST_CASE("JSON output without lines has empty arrays", "[io][writers]") {
+  const auto json = nlohmann::json::parse(crestline::io::write_lines_json({}, {}));
+  CHECK(json["ridges"].is_array());
+  CHECK(json["ridges"].empty());
+  CHECK(json["valleys"].empty());
+  CHECK(json["stats"]["ridges"] == 0);
+}
+
 TEST_CASE("JSON output writes non-finite numbers as null, never NaN", "[io][writers]") {
   std::vector<Polyline> lines = {make_line(LineType::Ridge, {{0, 0, 0}, {1, 1, 1}}, false, 0)};
   lines[0].strength = std::numeric_limits<double>::quiet_NaN();
