@@ -58,9 +58,9 @@ val guarded(size_t triangles, F&& body) {
   } catch (const Error& e) {
     return error_value(error_kind_name(e.kind()), e.what());
   } catch (const std::bad_alloc&) {
-    return error_value("TooLarge", too_large(triangles));
+    return error_value(error_kind_name(ErrorKind::TooLarge), too_large(triangles));
   } catch (const std::exception& e) {
-    return error_value("Internal", e.what());
+    return error_value("internal", e.what());
   }
 }
 
@@ -118,7 +118,7 @@ val Session::load(val positions, val indices, val options) {
 }
 
 val Session::setOptions(val o) {
-  if (!pipeline_) return error_value("InvalidInput", "no mesh is loaded");
+  if (!pipeline_) return error_value(error_kind_name(ErrorKind::InvalidInput), "no mesh is loaded");
   return guarded(triangles_, [&] {
     PipelineOptions p = pipeline_->options();
     read(o, "presmoothSteps", p.presmooth.steps);
@@ -156,7 +156,7 @@ val Session::options() const {
 }
 
 val Session::run(val progress) {
-  if (!pipeline_) return error_value("InvalidInput", "no mesh is loaded");
+  if (!pipeline_) return error_value(error_kind_name(ErrorKind::InvalidInput), "no mesh is loaded");
   return guarded(triangles_, [&] {
     std::vector<bool> ran(kStages, false);
     const PipelineStats before = pipeline_->stats();
@@ -264,7 +264,7 @@ std::string Session::statsJson() const {
 }
 
 val Session::linesSvg(val o) const {
-  if (!pipeline_) return error_value("InvalidInput", "no mesh is loaded");
+  if (!pipeline_) return error_value(error_kind_name(ErrorKind::InvalidInput), "no mesh is loaded");
   static const char* kViews[] = {"front", "back", "left", "right", "top", "bottom"};
   io::SvgOptions options;
   std::string view = "front";
@@ -279,7 +279,7 @@ val Session::linesSvg(val o) const {
       known = true;
     }
   }
-  if (!known) return error_value("InvalidInput", "unknown view \"" + view + "\"");
+  if (!known) return error_value(error_kind_name(ErrorKind::InvalidInput), "unknown view \"" + view + "\"");
   return guarded(triangles_, [&] {
     return val(io::write_lines_svg(pipeline_->lines(), pipeline_->surface(), options));
   });

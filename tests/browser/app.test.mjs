@@ -165,6 +165,29 @@ test('curvature colour map and singular triangles views', async () => {
   await page.evaluate(() => window.crestline.update({ view: 'shaded' }));
 });
 
+test('smoothing brush: painting frozen weights re-runs from the smoothing stage', async () => {
+  const before = await page.evaluate(() => window.crestline.lastResult);
+  await page.evaluate(() => {
+    const { brush } = window.crestline;
+    brush.setEnabled(true);
+    brush.radius = 0.6;
+    brush.value = 0;
+  });
+  const box = await page.locator('#view canvas').boundingBox();
+  const result = await nextResult(async () => {
+    await page.mouse.move(box.x + box.width * 0.5, box.y + box.height * 0.5);
+    await page.mouse.down();
+    await page.mouse.move(box.x + box.width * 0.55, box.y + box.height * 0.45, { steps: 4 });
+    await page.mouse.up();
+  });
+  assert.equal(result.ran[0], 'smoothing', `ran ${result.ran}`);
+  assert.ok(!result.ran.includes('curvature'));
+  const frozen = await page.evaluate(() => window.crestline.brush.weights.filter((w) => w < 0.5).length);
+  assert.ok(frozen > 0, 'some vertices were painted');
+  assert.notDeepEqual([result.stats.ridges, result.stats.valleys, result.stats.ridgeLength], [before.stats.ridges, before.stats.valleys, before.stats.ridgeLength]);
+  await page.evaluate(() => window.crestline.brush.setEnabled(false));
+});
+
 test('cancel stops a long computation and the page stays usable', { skip: noMeshes }, async () => {
   await drop(['large/dragon-draco.glb']);
   await page.waitForFunction(() => document.getElementById('progress-text').textContent === 'smoothing', null, { timeout: 60000 });

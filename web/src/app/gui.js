@@ -10,6 +10,7 @@ export const VIEWS = {
   'extremality e min': 'eMin',
   'singular triangles (max dirs)': 'singularMax',
   'singular triangles (min dirs)': 'singularMin',
+  'smoothing weights (brush)': 'weights',
 };
 
 export function defaultParams() {
@@ -26,6 +27,9 @@ export function defaultParams() {
     valleyColor: '#1f5fbf',
     dark: false,
     view: 'shaded',
+    brush: false,
+    brushRadius: 0.08,
+    brushValue: 0,
   };
 }
 
@@ -39,7 +43,7 @@ export function pipelineOptions(params) {
   };
 }
 
-export function createGui(params, { onCompute, onDisplay, onFit, onOpen }) {
+export function createGui(params, { onCompute, onDisplay, onFit, onOpen, onBrush, onClearWeights }) {
   const gui = new GUI({ title: 'Crestline' });
   const lines = gui.addFolder('Feature lines');
   lines.add(params, 'smoothingSteps', 0, 10, 1).name('smoothing steps').onFinishChange(onCompute);
@@ -59,6 +63,12 @@ export function createGui(params, { onCompute, onDisplay, onFit, onOpen }) {
   display.addColor(params, 'valleyColor').name('valley colour').onChange(onDisplay);
   display.add(params, 'view', VIEWS).name('surface').onChange(onDisplay);
   display.add(params, 'dark').name('dark background').onChange(onDisplay);
+  const brush = gui.addFolder('Smoothing brush (paper Fig. 6)');
+  brush.add(params, 'brush').name('paint (drag on surface)').onChange(onBrush);
+  brush.add(params, 'brushRadius', 0.01, 0.5, 0.01).name('radius (of model size)').onChange(onBrush);
+  brush.add(params, 'brushValue', 0, 3, 0.05).name('strength painted').onChange(onBrush);
+  brush.add({ clear: onClearWeights }, 'clear').name('clear weights');
+  brush.close();
   gui.add({ fit: onFit }, 'fit').name('fit to view');
   gui.add({ open: onOpen }, 'open').name('open mesh…');
 

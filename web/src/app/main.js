@@ -3,6 +3,7 @@
 import { DRACOLoader } from 'three/examples/jsm/loaders/DRACOLoader.js';
 import { loadMeshFiles } from '../io/load-files.js';
 import { sampleMesh } from '../io/sample.js';
+import { WeightBrush } from '../viewer/brush.js';
 import { Viewer } from '../viewer/viewer.js';
 import { setState, showError, showFile, showNotes, showProgress, showStats } from './dom.js';
 import { installDrop } from './drop.js';
@@ -20,6 +21,10 @@ const viewer = new Viewer(document.getElementById('view'), {
   onContextRestored: () => showError(null),
 });
 
+const brush = new WeightBrush(viewer, { onStroke: () => compute() });
+/** What the worker gets: the panel's values and the brushed weights (a copy: it is transferred). */
+const currentOptions = () => ({ ...pipelineOptions(params), vertexWeights: brush.current()?.slice() ?? null });
+
 let pendingRun = false;
 let rescaleThreshold = false;
 
@@ -31,7 +36,10 @@ const client = new PipelineClient({
     showNotes(notes);
   },
   onResult: (result) => {
-    if (result.surface) viewer.setSurface(result.surface);
+    if (result.surface) {
+      viewer.setSurface(result.surface);
+      brush.reset(result.surface.positions.length / 3);
+    }
     viewer.setLines(result.lines);
     app.lastResult = { name: app.mesh?.name, ran: result.ran, stats: result.stats, lineCount: result.lines.types.length, milliseconds: result.milliseconds };
     app.results.push(app.lastResult);
@@ -60,7 +68,7 @@ const client = new PipelineClient({
     showNotes(['Cancelled: change a parameter to compute again.']);
   },
   // Core messages are one sentence without the file name: prefix it.
-  onError: ({ message, kind }) => fail(app.mesh?.name && kind !== 'Internal' ? `${app.mesh.name}: ${message}` : message),
+  onError: ({ message, kind }) => fail(app.mesh?.name && kind !== 'internal' ? `${app.mesh.name}: ${message}` : message),
 });
 
 function fail(message) {
@@ -77,7 +85,7 @@ function compute() {
   }
   setState('busy');
   // After a cancel that had to restart the worker, the mesh is sent again.
-  if (client.hasMesh) client.setOptions(pipelineOptions(params));
+  if (client.hasMesh) client.setOptions(currentOptions());
   else if (app.soup) sendSoup(app.soup);
 }
 
@@ -93,7 +101,10 @@ function applyDisplay() {
 /** Colour map or singular-triangle overlay; fetches fields from the worker when needed. */
 function applyView() {
   const view = params.view;
-  if (view === 'shaded' || !app.mesh) {
+  if (view === 'weights' && brush.weights) {
+    viewer.surface.setSingular(null);
+    viewer.surface.setColors(brush.weights.map((w) => w - 1));
+  } else if (view === 'shaded' || view === 'weights' || !app.mesh) {
     viewer.surface.setColors(null);
     viewer.surface.setSingular(null);
   } else if (!app.fields) {
@@ -115,6 +126,17 @@ const gui = createGui(params, {
   onDisplay: applyDisplay,
   onFit: () => viewer.fitView(),
   onOpen: () => picker.click(),
+  onBrush: () => {
+    brush.setEnabled(params.brush);
+    brush.radius = params.brushRadius;
+    brush.value = params.brushValue;
+    if (params.brush && params.view !== 'weights') app.update({ view: 'weights' });
+  },
+  onClearWeights: () => {
+    brush.clear();
+    applyView();
+    compute();
+  },
 });
 
 function loadSoup({ name, positions, indices }) {
@@ -129,12 +151,13 @@ function loadSoup({ name, positions, indices }) {
   app.mesh = { name };
   // A copy stays here: the worker may have to be restarted (cancel, crash).
   app.soup = { name, positions: positions.slice(), indices: indices.slice() };
-  client.load(name, positions, indices, pipelineOptions(params));
+  brush.weights = null; // a new mesh starts homogeneous
+  client.load(name, positions, indices, { ...pipelineOptions(params), vertexWeights: null });
 }
 
 function sendSoup({ name, positions, indices }) {
   showProgress('repair', 0);
-  client.load(name, positions.slice(), indices.slice(), pipelineOptions(params));
+  client.load(name, positions.slice(), indices.slice(), currentOptions());
 }
 
 async function openFiles(files) {
@@ -153,6 +176,7 @@ async function openFiles(files) {
 
 // Test hooks: change parameters as the panel would.
 app.viewer = viewer;
+app.brush = brush;
 app.update = (partial) => {
   Object.assign(params, partial);
   gui.gui.controllersRecursive().forEach((c) => c.updateDisplay());

@@ -21,7 +21,7 @@ export class PipelineClient {
     this.worker.onerror = (event) => {
       event.preventDefault?.();
       this.busy = false;
-      this.handlers.onError?.({ message: `The pipeline worker failed (${event.message ?? 'unknown error'}).`, kind: 'Internal' });
+      this.handlers.onError?.({ message: `The pipeline worker failed (${event.message ?? 'unknown error'}).`, kind: 'internal' });
     };
     this.worker.postMessage({ type: 'init', cancelFlag: this.cancelFlag });
   }

@@ -48,7 +48,10 @@ export class Engine {
     if (!this.session) throw new Error('no mesh is loaded');
     check(this.session.setOptions(pickOptions(options)));
     const start = performance.now();
-    const result = check(this.session.run(onProgress ?? (() => true)));
+    const result = this.session.run(onProgress ?? (() => true));
+    // Out of memory: free what the half-run pipeline holds before reporting.
+    if (result.kind === 'too large') this.dispose();
+    check(result);
     if (result.cancelled) return { cancelled: true };
     return {
       ran: result.ran,

@@ -69,7 +69,7 @@ if (typeof WorkerGlobalScope !== 'undefined' && self instanceof WorkerGlobalScop
         await start();
         post({ type: 'ready' });
       } catch (error) {
-        post({ type: 'error', message: `The WebAssembly module failed to start (${error.message}).`, kind: 'Internal' });
+        post({ type: 'error', message: `The WebAssembly module failed to start (${error.message}).`, kind: 'internal' });
       }
       return;
     }
@@ -81,7 +81,7 @@ if (typeof WorkerGlobalScope !== 'undefined' && self instanceof WorkerGlobalScop
       const message = error instanceof WebAssembly.RuntimeError
         ? `The computation failed inside WebAssembly (${error.message}); the page has reset the engine.`
         : error.message;
-      post({ type: 'error', job: data.job, message, kind: error.kind ?? 'Internal' });
+      post({ type: 'error', job: data.job, message, kind: error.kind ?? 'internal' });
     }
   };
 }
