@@ -4,7 +4,7 @@
 // Same options and output (the core's writers) as the native build/cli/crestline;
 // the input is decoded by web/src/io (what the browser app uses; no Draco in node).
 import { readFileSync, renameSync, writeFileSync } from 'node:fs';
-import { basename, extname } from 'node:path';
+import { basename, dirname, extname, join } from 'node:path';
 import { loadMeshFiles } from '../web/src/io/load-files.js';
 import { Engine } from '../web/src/worker/engine.js';
 import { loadCrestline } from './node.mjs';
@@ -69,6 +69,27 @@ function parseArgs(argv) {
   return args;
 }
 
+/** A .gltf's external buffers, read from beside it (the browser gets them dropped together). */
+function gltfCompanions(path, bytes) {
+  if (extname(path).toLowerCase() !== '.gltf') return [];
+  let json;
+  try {
+    json = JSON.parse(new TextDecoder().decode(bytes));
+  } catch {
+    return []; // the reader reports the broken JSON
+  }
+  return (json.buffers ?? [])
+    .filter((b) => b.uri && !b.uri.startsWith('data:'))
+    .flatMap((b) => {
+      try {
+        const data = readFileSync(join(dirname(path), decodeURIComponent(b.uri)));
+        return [{ name: basename(b.uri), bytes: data.buffer.slice(data.byteOffset, data.byteOffset + data.byteLength) }];
+      } catch {
+        return []; // named as missing by the reader
+      }
+    });
+}
+
 function readWeights(path, vertices) {
   let text;
   try {
@@ -81,6 +102,14 @@ function readWeights(path, vertices) {
   if (weights.length !== vertices) throw new Error(`${path}: has ${weights.length} weights but the repaired mesh has ${vertices} vertices.`);
   return weights;
 }
+
+// three's FileLoader (companion .bin files) reports progress with a DOM event node lacks.
+globalThis.ProgressEvent ??= class ProgressEvent extends Event {
+  constructor(type, init = {}) {
+    super(type);
+    Object.assign(this, init);
+  }
+};
 
 async function main(argv) {
   const args = parseArgs(argv);
@@ -95,7 +124,7 @@ async function main(argv) {
   } catch (error) {
     throw new Error(`${args.input}: cannot be read (${error.code ?? error.message}).`);
   }
-  const soup = await loadMeshFiles([{ name: basename(args.input), bytes }]);
+  const soup = await loadMeshFiles([{ name: basename(args.input), bytes }, ...gltfCompanions(args.input, bytes)]);
   const engine = new Engine(await loadCrestline());
   const loaded = engine.load(soup);
   if (args.repairReport) for (const [key, count] of Object.entries(loaded.report)) console.error(`${key}: ${count}`);

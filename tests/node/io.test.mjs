@@ -40,6 +40,18 @@ test('merging applies world transforms (and fixes mirrored winding)', () => {
   assert.deepEqual(Array.from(indices), [0, 1, 2, 3, 5, 4]);
 });
 
+test('STL and PLY go through three.js loaders into an indexed soup', async () => {
+  const stl = 'solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid t\n';
+  const fromStl = await loadMeshFiles([{ name: 'tri.stl', bytes: bytes(stl) }]);
+  assert.deepEqual(Array.from(fromStl.positions), [0, 0, 0, 1, 0, 0, 0, 1, 0]);
+  assert.equal(fromStl.indices.length, 3);
+  const ply = 'ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n' +
+    'element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n';
+  const fromPly = await loadMeshFiles([{ name: 'quad.ply', bytes: bytes(ply) }]);
+  assert.equal(fromPly.positions.length, 12);
+  assert.equal(fromPly.indices.length, 6);
+});
+
 test('unsupported files and broken files name the file in one sentence', async () => {
   assert.throws(() => pickMainFile([{ name: 'notes.txt', bytes: bytes('hello') }]), /notes\.txt: unsupported format/);
   await assert.rejects(loadMeshFiles([{ name: 'broken.glb', bytes: bytes('glTF garbage') }]), /broken\.glb: cannot be read as GLB/);

@@ -7,6 +7,7 @@ import { GLTFLoader } from 'three/examples/jsm/loaders/GLTFLoader.js';
 import { PLYLoader } from 'three/examples/jsm/loaders/PLYLoader.js';
 import { STLLoader } from 'three/examples/jsm/loaders/STLLoader.js';
 import { MeshoptDecoder } from 'three/examples/jsm/libs/meshopt_decoder.module.js';
+import { geometryOnlyGlb, geometryOnlyGltf } from './gltf-geometry.js';
 import { mergeScene } from './merge-scene.js';
 import { MeshError } from './mesh-error.js';
 import { parseObj } from './obj.js';
@@ -46,6 +47,8 @@ export async function loadMeshFiles(files, { dracoLoader } = {}) {
     soup = await decode(main, ext, files, dracoLoader);
   } catch (error) {
     if (error instanceof MeshError) throw error;
+    if (!dracoLoader && /DRACOLoader/.test(error?.message))
+      throw new MeshError(`${main.name}: is Draco-compressed, which only the browser app and the native CLI decode.`, 'Unsupported');
     throw new MeshError(`${main.name}: cannot be read as ${ext.toUpperCase()} (${firstSentence(error)}).`);
   }
   if (soup.indices.length < 3) throw new MeshError(`${main.name}: contains no triangles.`);
@@ -103,7 +106,8 @@ async function parseGltf(main, ext, files, dracoLoader) {
   const loader = new GLTFLoader(manager).setMeshoptDecoder(MeshoptDecoder);
   if (dracoLoader) loader.setDRACOLoader(dracoLoader);
   try {
-    const gltf = await loader.parseAsync(ext === 'glb' ? main.bytes : new TextDecoder().decode(main.bytes), '');
+    const source = ext === 'glb' ? geometryOnlyGlb(main.bytes) : geometryOnlyGltf(new TextDecoder().decode(main.bytes));
+    const gltf = await loader.parseAsync(source, '');
     return gltf.scene;
   } finally {
     for (const url of urls) URL.revokeObjectURL(url);

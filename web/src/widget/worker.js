@@ -1,0 +1,90 @@
+// The widget's pipeline worker: one WASM module shared by the sessions of
+// every <crestline-viewer> assigned to this worker (see pool.js), one Engine
+// (Session + Pipeline) per viewer. Messages carry the viewer's `id`:
+//
+// page → worker
+//   {type: 'load', id, job, name, positions, indices, options}
+//   {type: 'options', id, job, options}      only the dirty stages re-run
+//   {type: 'export', id, request, format: 'obj'|'json'}
+//   {type: 'dispose', id}
+// worker → page
+//   {type: 'progress', id, job, stage, fraction}
+//   {type: 'loaded', id, job, vertices, triangles, notes}
+//   {type: 'result', id, job, ran, stats, lines, surface?}
+//   {type: 'export', id, request, text}
+//   {type: 'error', id, job | request, message, kind}
+import createCrestline from '../../../wasm/dist/crestline.js';
+import wasmUrl from '../../../wasm/dist/crestline.wasm?url';
+import { Engine, createEngine } from '../worker/engine.js';
+import { transferables } from '../worker/protocol.js';
+
+let first = null; // the module's creation; its Engine serves the first viewer
+const engines = new Map();
+
+const post = (message) => self.postMessage(message, transferables(message));
+
+async function engineFor(id) {
+  if (engines.has(id)) return engines.get(id);
+  first ??= createEngine(createCrestline, { wasmUrl });
+  const shared = await first;
+  const engine = [...engines.values()].includes(shared) ? new Engine(shared.module) : shared;
+  engines.set(id, engine);
+  return engine;
+}
+
+function run(engine, { id, job, options }, sendSurface) {
+  let last = '';
+  const progress = (stage, fraction) => {
+    if (stage !== last || fraction === 1) self.postMessage({ type: 'progress', id, job, stage, fraction });
+    last = stage;
+    return true;
+  };
+  const result = engine.run(options, progress);
+  const surface = sendSurface || result.ran.includes('presmooth') ? engine.surface() : undefined;
+  post({ type: 'result', id, job, ran: result.ran, stats: result.stats, lines: result.lines, surface });
+}
+
+async function handle(message) {
+  const { id, job } = message;
+  if (message.type === 'dispose') {
+    engines.get(id)?.dispose();
+    engines.delete(id);
+    return;
+  }
+  const engine = await engineFor(id);
+  switch (message.type) {
+    case 'load': {
+      const loaded = engine.load(message);
+      post({ type: 'loaded', id, job, vertices: loaded.vertices, triangles: loaded.triangles, notes: loaded.notes });
+      run(engine, message, true);
+      break;
+    }
+    case 'options':
+      run(engine, message, false);
+      break;
+    case 'export': {
+      if (!engine.session) throw new Error('no mesh is loaded');
+      const text = message.format === 'json' ? engine.session.linesJson() : engine.linesObj();
+      post({ type: 'export', id, request: message.request, text });
+      break;
+    }
+  }
+}
+
+if (typeof WorkerGlobalScope !== 'undefined' && self instanceof WorkerGlobalScope) {
+  self.onmessage = async ({ data }) => {
+    try {
+      await handle(data);
+    } catch (error) {
+      // An abort leaves the module unusable: every session of this worker starts over.
+      if (error instanceof WebAssembly.RuntimeError) {
+        engines.clear();
+        first = null;
+      }
+      const message = error instanceof WebAssembly.RuntimeError
+        ? `The computation failed inside WebAssembly (${error.message}).`
+        : error.message;
+      post({ type: 'error', id: data.id, job: data.job, request: data.request, message, kind: error.kind ?? 'internal' });
+    }
+  };
+}
