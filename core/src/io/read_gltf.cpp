@@ -509,6 +509,16 @@ class GltfReader {
         invalid(what + " claims " + std::to_string(uint64_t(count) * uint64_t(stride)) + " bytes from " +
                 std::to_string(length) + " compressed bytes.");
       }
+      // meshoptimizer asserts these (the extension requires them).
+      const bool valid_layout =
+          mode == "ATTRIBUTES" ? stride % 4 == 0 && (filter.empty() || filter == "NONE" ||
+                                                      (filter == "OCTAHEDRAL" && (stride == 4 || stride == 8)) ||
+                                                      (filter == "QUATERNION" && stride == 8) ||
+                                                      filter == "EXPONENTIAL")
+          : mode == "TRIANGLES" ? (stride == 2 || stride == 4) && count % 3 == 0
+          : mode == "INDICES"   ? stride == 2 || stride == 4
+                                : false;
+      if (!valid_layout) invalid(what + " has an invalid mode, filter or byteStride.");
       std::vector<uint8_t> out(size_t(count) * size_t(stride));
       const unsigned char* source = data.data() + offset;
       int status = -1;
@@ -517,7 +527,7 @@ class GltfReader {
         if (status == 0 && filter == "OCTAHEDRAL") meshopt_decodeFilterOct(out.data(), size_t(count), size_t(stride));
         if (status == 0 && filter == "QUATERNION") meshopt_decodeFilterQuat(out.data(), size_t(count), size_t(stride));
         if (status == 0 && filter == "EXPONENTIAL") meshopt_decodeFilterExp(out.data(), size_t(count), size_t(stride));
-      } else if ((mode == "TRIANGLES" || mode == "INDICES") && (stride == 2 || stride == 4)) {
+      } else {
         status = mode == "TRIANGLES"
                      ? meshopt_decodeIndexBuffer(out.data(), size_t(count), size_t(stride), source, size_t(length))
                      : meshopt_decodeIndexSequence(out.data(), size_t(count), size_t(stride), source, size_t(length));

@@ -367,4 +367,12 @@ TEST_CASE("glTF read from memory with its .bin companion", "[io][gltf][meshes]")
   CHECK(duck.triangle_count() == 4212);
   const TriangleSoup glb = read_mesh_bytes("whatever.bin", load("glb/Box-draco.glb"));
   CHECK(glb.triangle_count() == 12);
+  // A meshopt byteStride the codec would assert on (6 is not a multiple of 4)
+  // is refused first; same length, so the GLB container stays valid.
+  std::vector<uint8_t> meshopt = load("glb/BoxMeshopt.glb");
+  const std::string needle = R"("byteLength":71,"byteStride":4)";
+  auto at = std::search(meshopt.begin(), meshopt.end(), needle.begin(), needle.end());
+  REQUIRE(at != meshopt.end());
+  *(at + long(needle.size()) - 1) = '6';
+  CHECK(error_kind("BoxMeshopt.glb", meshopt) == ErrorKind::InvalidInput);
 }
