@@ -7,4 +7,6 @@ if [ ! -f wasm/dist/crestline.wasm ]; then
   exit 1
 fi
 npx vite build --config web/vite.config.js --logLevel warn
+# The embeddable <crestline-viewer> into the same folder (after: the app build empties it).
+npx vite build --config web/vite.widget.config.js --logLevel warn
 echo "web: web/dist built"

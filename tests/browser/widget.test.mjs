@@ -1,0 +1,167 @@
+// <crestline-viewer> in headless Chromium, loaded from another origin than
+// the page (two static servers): load then lines, a re-threshold that changes
+// the count, the exports, 20 viewers on one page without WebGL context loss,
+// clear errors for bad sources, and the iframe embed. Needs web/dist
+// (web/build.sh builds the widget after the app).
+import assert from 'node:assert/strict';
+import { existsSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { after, before, test } from 'node:test';
+import { launch } from './browser.mjs';
+import { serve } from './server.mjs';
+import { MESHES, ROOT, haveMeshes, sineHeightField } from '../node/helpers.mjs';
+import { glbFromSoup } from './widget-glb.mjs';
+
+const DIST = join(ROOT, 'web/dist');
+// The page's site (its pages, its meshes) and the widget's (a CDN, say).
+const SITE_HEADERS = { 'Cross-Origin-Opener-Policy': null, 'Cross-Origin-Embedder-Policy': null, 'Cross-Origin-Resource-Policy': null, 'Access-Control-Allow-Origin': '*' };
+const CDN_HEADERS = { ...SITE_HEADERS, 'Cross-Origin-Resource-Policy': 'cross-origin' };
+let site, cdn, browser, pages, siteUrl, cdnUrl;
+
+// Real meshes when ../shared/meshes is there, otherwise a generated GLB.
+const MAIN_MESH = haveMeshes ? '/meshes/glb/fandisk.glb' : '/pages/sine.glb';
+const SECOND_MESH = haveMeshes ? '/meshes/glb/pmndrs-bunny-draco.glb' : '/pages/sine.glb';
+
+before(async () => {
+  assert.ok(existsSync(join(DIST, 'crestline-viewer.js')), 'web/dist/crestline-viewer.js is missing: run web/build.sh');
+  pages = mkdtempSync(join(tmpdir(), 'crestline-widget-'));
+  writeFileSync(join(pages, 'sine.glb'), glbFromSoup(sineHeightField({ n: 40 })));
+  writeFileSync(join(pages, 'garbage.glb'), 'this is not a mesh');
+  site = await serve({ '/meshes/': MESHES, '/pages/': pages }, SITE_HEADERS);
+  cdn = await serve({ '/': DIST }, CDN_HEADERS);
+  siteUrl = `http://127.0.0.1:${site.address().port}`;
+  // "localhost" vs "127.0.0.1": another origin even on the same port range.
+  cdnUrl = `http://localhost:${cdn.address().port}`;
+  browser = await launch();
+});
+
+after(async () => {
+  await browser?.close();
+  site?.close();
+  cdn?.close();
+  if (pages) rmSync(pages, { recursive: true, force: true });
+});
+
+/** A page on the site that loads the element from the CDN; events are recorded in window.events. */
+async function openPage(name, body, viewport = { width: 1000, height: 700 }) {
+  writeFileSync(join(pages, name), `<!doctype html>
+<html><head><meta charset="utf-8"><link rel="icon" href="data:,">
+<script type="module" src="${cdnUrl}/crestline-viewer.js"></script>
+<script>
+  window.events = [];
+  for (const type of ['load', 'lines', 'error']) {
+    document.addEventListener(type, (e) => {
+      if (e.target.localName === 'crestline-viewer')
+        window.events.push({ type, id: e.target.id, detail: type === 'lines' ? { counts: e.detail.counts, lengths: e.detail.lengths, threshold: e.detail.stats.threshold } : e.detail });
+    }, true);
+  }
+</script></head><body style="margin:0">${body}</body></html>`);
+  const page = await browser.newPage({ viewport });
+  const problems = [];
+  page.on('pageerror', (error) => problems.push(`page error: ${error.message}`));
+  page.on('console', (message) => {
+    if (/context (was )?lost|too many active webgl contexts|CONTEXT_LOST/i.test(message.text())) problems.push(`console: ${message.text()}`);
+  });
+  await page.goto(`${siteUrl}/pages/${name}`);
+  await page.waitForFunction(() => customElements.get('crestline-viewer'));
+  return { page, problems };
+}
+
+const eventsOf = (page, id, type) => page.evaluate(([id, type]) => window.events.filter((e) => e.id === id && e.type === type), [id, type]);
+
+function waitForEvents(page, id, type, count, timeout = 30000) {
+  return page.waitForFunction(
+    ([id, type, count]) => window.events.filter((e) => e.id === id && e.type === type).length >= count || window.events.some((e) => e.id === id && e.type === 'error'),
+    [id, type, count],
+    { timeout },
+  );
+}
+
+const total = (counts) => counts.ridges + counts.valleys;
+
+test('a viewer from another origin loads a GLB, re-thresholds and exports', async () => {
+  const { page, problems } = await openPage('one.html', '<crestline-viewer id="v" alt="A fan disk" interaction="orbit" style="width:480px;height:320px"></crestline-viewer>');
+  assert.notEqual(new URL(siteUrl).origin, new URL(cdnUrl).origin);
+  await page.evaluate((src) => (document.getElementById('v').src = src), MAIN_MESH);
+  await waitForEvents(page, 'v', 'lines', 1);
+  const order = await page.evaluate(() => window.events.map((e) => e.type));
+  assert.deepEqual(order, ['load', 'lines'], `events: ${order}`);
+  const [first] = await eventsOf(page, 'v', 'lines');
+  assert.ok(total(first.detail.counts) > 0, 'the first result has lines');
+  assert.ok(first.detail.lengths.ridges + first.detail.lengths.valleys > 0);
+
+  // A higher threshold, set as a property (reflected to the attribute), keeps fewer lines.
+  const threshold = first.detail.threshold * 4 || 1;
+  await page.evaluate((t) => (document.getElementById('v').threshold = t), threshold);
+  assert.equal(await page.getAttribute('#v', 'threshold'), String(threshold));
+  await waitForEvents(page, 'v', 'lines', 2);
+  const [, second] = await eventsOf(page, 'v', 'lines');
+  assert.ok(total(second.detail.counts) < total(first.detail.counts), `${total(second.detail.counts)} lines after raising the threshold, ${total(first.detail.counts)} before`);
+
+  const exported = await page.evaluate(async () => {
+    const v = document.getElementById('v');
+    const png = await v.toPNG({ width: 960 });
+    return { svg: await v.toSVG(), obj: await v.toOBJ(), json: JSON.parse(await v.toJSON()), png: [png.type, png.size], label: v.shadowRoot.querySelector('canvas').getAttribute('aria-label') };
+  });
+  assert.match(exported.svg, /<path id="(ridges|valleys)" stroke="#[0-9a-f]{6}" d="M[\d.]+ [\d.]+L/);
+  assert.match(exported.svg, /viewBox="0 0 480 320"/);
+  assert.match(exported.obj, /^v /m);
+  assert.equal(exported.json.ridges.length + exported.json.valleys.length, total(second.detail.counts));
+  assert.equal(exported.png[0], 'image/png');
+  assert.ok(exported.png[1] > 1000);
+  assert.equal(exported.label, 'A fan disk');
+  if (process.env.CRESTLINE_SHOTS) {
+    writeFileSync(join(ROOT, 'test-results/widget.svg'), exported.svg);
+    await page.screenshot({ path: join(ROOT, 'test-results/widget-one.png') });
+  }
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
+test('20 viewers on one page load without WebGL context loss', async () => {
+  const body = Array.from({ length: 20 }, (_, i) =>
+    `<crestline-viewer id="v${i}" src="${i % 2 ? SECOND_MESH : MAIN_MESH}" style="width:190px;height:120px" ${i % 3 ? '' : 'auto-rotate'}></crestline-viewer>`).join('');
+  const { page, problems } = await openPage('twenty.html', `<div style="display:flex;flex-wrap:wrap">${body}</div>`, { width: 1000, height: 700 });
+  await page.waitForFunction(() => new Set(window.events.filter((e) => e.type === 'lines' || e.type === 'error').map((e) => e.id)).size === 20, null, { timeout: 60000 });
+  const errors = await page.evaluate(() => window.events.filter((e) => e.type === 'error'));
+  assert.deepEqual(errors, []);
+  // Every viewer has drawn something into its canvas.
+  await page.waitForTimeout(300);
+  const blank = await page.evaluate(() => [...document.querySelectorAll('crestline-viewer')].filter((v) => {
+    const canvas = v.shadowRoot.querySelector('canvas');
+    const { data } = canvas.getContext('2d').getImageData(0, 0, canvas.width, canvas.height);
+    for (let i = 3; i < data.length; i += 4) if (data[i]) return false;
+    return true;
+  }).map((v) => v.id));
+  assert.deepEqual(blank, []);
+  assert.deepEqual(problems, []);
+  if (process.env.CRESTLINE_SHOTS) await page.screenshot({ path: join(ROOT, 'test-results/widget-twenty.png') });
+  await page.close();
+});
+
+test('a bad src fires error with a clear message', async () => {
+  const { page } = await openPage('bad.html', '<crestline-viewer id="missing" src="/meshes/no-such-mesh.glb"></crestline-viewer><crestline-viewer id="garbage" src="/pages/garbage.glb"></crestline-viewer>');
+  await waitForEvents(page, 'missing', 'error', 1);
+  await waitForEvents(page, 'garbage', 'error', 1);
+  const [missing] = await eventsOf(page, 'missing', 'error');
+  const [garbage] = await eventsOf(page, 'garbage', 'error');
+  assert.match(missing.detail.message, /^no-such-mesh\.glb: could not be fetched \(HTTP 404/);
+  assert.match(garbage.detail.message, /^garbage\.glb: cannot be read as GLB/);
+  assert.equal(await page.evaluate(() => document.getElementById('missing').shadowRoot.querySelector('[part=error]').textContent), missing.detail.message);
+  await page.close();
+});
+
+test('the iframe embed shows one mesh full-frame with the fragment parameters', async () => {
+  const src = `${siteUrl}${MAIN_MESH}`;
+  const { page } = await openPage('embed.html', `<iframe id="frame" style="width:400px;height:300px;border:0" src="${cdnUrl}/embed.html#src=${encodeURIComponent(src)}&threshold=0&ridge-color=%2300aa00"></iframe>`);
+  const frame = page.frames().find((f) => f.url().startsWith(cdnUrl));
+  await frame.waitForFunction(() => document.querySelector('crestline-viewer')?.lines, null, { timeout: 30000 });
+  const state = await frame.evaluate(() => {
+    const v = document.querySelector('crestline-viewer');
+    const { width, height } = v.getBoundingClientRect();
+    return { width, height, threshold: v.threshold, ridgeColor: v.ridgeColor, lines: v.lines.types.length };
+  });
+  assert.deepEqual({ ...state, lines: state.lines > 0 }, { width: 400, height: 300, threshold: 0, ridgeColor: '#00aa00', lines: true });
+  await page.close();
+});

@@ -1,0 +1,81 @@
+// The element's attributes, each reflected as a camelCase property, in the
+// style of <model-viewer>. `parse` turns the attribute text (or null when
+// absent) into the property value; `unparse` the other way.
+
+const number = (fallback) => ({
+  parse: (text) => (text === null || text.trim() === '' || !Number.isFinite(Number(text)) ? fallback : Number(text)),
+  unparse: String,
+});
+const text = (fallback) => ({ parse: (t) => t ?? fallback, unparse: String });
+const shown = { parse: (t) => t === null || t.trim().toLowerCase() !== 'false', unparse: String };
+const presence = { parse: (t) => t !== null, unparse: (v) => (v ? '' : null) };
+const oneOf = (values) => ({
+  parse: (t) => (values.includes(t?.toLowerCase()) ? t.toLowerCase() : values[0]),
+  unparse: String,
+});
+
+/** attribute → {property, parse, unparse, kind}; kind says what a change re-does. */
+export const ATTRIBUTES = {
+  src: { ...text(''), kind: 'source' },
+  alt: { ...text(''), kind: 'label' },
+  smoothing: { ...number(3), kind: 'pipeline' },
+  // 'auto' (or absent): the core picks the threshold; otherwise ∫|κ| ds.
+  threshold: {
+    parse: (t) => (t === null || t.trim().toLowerCase() === 'auto' || !Number.isFinite(Number(t)) ? 'auto' : Number(t)),
+    unparse: String,
+    kind: 'pipeline',
+  },
+  fairing: { ...number(0.25), kind: 'pipeline' },
+  ridges: { ...shown, kind: 'display' },
+  valleys: { ...shown, kind: 'display' },
+  'ridge-color': { ...text(null), kind: 'display' },
+  'valley-color': { ...text(null), kind: 'display' },
+  'line-width': { ...number(null), kind: 'display' },
+  background: { ...text(null), kind: 'display' },
+  'camera-orbit': { ...text('0deg 75deg 100%'), kind: 'orbit' },
+  'auto-rotate': { ...presence, kind: 'motion' },
+  interaction: { ...oneOf(['orbit', 'none']), kind: 'interaction' },
+  loading: { ...oneOf(['eager', 'lazy']), kind: 'loading' },
+  poster: { ...text(''), kind: 'poster' },
+};
+
+export const propertyName = (attribute) => attribute.replace(/-(\w)/g, (_, c) => c.toUpperCase());
+
+/** Defines the reflecting properties on `klass.prototype`. */
+export function reflectAttributes(klass) {
+  for (const [attribute, { parse, unparse }] of Object.entries(ATTRIBUTES)) {
+    Object.defineProperty(klass.prototype, propertyName(attribute), {
+      get() {
+        return parse(this.getAttribute(attribute));
+      },
+      set(value) {
+        const text = value === null || value === undefined ? null : unparse(value);
+        if (text === null) this.removeAttribute(attribute);
+        else this.setAttribute(attribute, text);
+      },
+      configurable: true,
+    });
+  }
+}
+
+const ANGLE = /^(-?[\d.]+)(deg|rad)?$/;
+
+/**
+ * camera-orbit "θ φ r" as in <model-viewer>: azimuth and polar angle (deg or
+ * rad, degrees when unitless) and distance as a percentage of the framing
+ * distance ("auto" = 100%). Missing or bad parts keep the default.
+ */
+export function parseOrbit(text) {
+  const [theta, phi, radius] = (text ?? '').trim().split(/\s+/);
+  const angle = (part, fallback) => {
+    const m = ANGLE.exec(part ?? '');
+    if (!m || !Number.isFinite(Number(m[1]))) return fallback;
+    return m[2] === 'rad' ? Number(m[1]) : (Number(m[1]) * Math.PI) / 180;
+  };
+  const r = /^([\d.]+)%$/.exec(radius ?? '');
+  return {
+    theta: angle(theta, 0),
+    phi: Math.min(Math.PI - 1e-3, Math.max(1e-3, angle(phi, (75 * Math.PI) / 180))),
+    radius: r && Number(r[1]) > 0 ? Number(r[1]) / 100 : 1,
+  };
+}

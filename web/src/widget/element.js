@@ -1,0 +1,287 @@
+// <crestline-viewer>: a mesh and its ridges and valleys, computed client-side
+// by the shared worker pool and drawn by the page's one WebGL context.
+import { DRACOLoader } from 'three/examples/jsm/loaders/DRACOLoader.js';
+import { loadMeshFiles } from '../io/load-files.js';
+import { STAGES } from '../worker/protocol.js';
+import { ATTRIBUTES, parseOrbit, reflectAttributes } from './attributes.js';
+import { linesSummary, renderPng } from './exports.js';
+import { fetchMesh } from './fetch-mesh.js';
+import { PipelineSession } from './pool.js';
+import { viewToSvg } from './svg.js';
+import { DISPLAY_DEFAULTS, TEMPLATE } from './template.js';
+import { WidgetView } from './view.js';
+
+// Its decoder files are located relative to this module (DRACOLoader's defaults).
+let dracoLoader = null;
+const sharedDraco = () => (dracoLoader ??= new DRACOLoader());
+const reducedMotion = globalThis.matchMedia?.('(prefers-reduced-motion: reduce)');
+// Fetching and decoding take the first part of the progress bar, the pipeline the rest.
+const READ_SHARE = 0.2;
+
+export class CrestlineViewer extends HTMLElement {
+  static get observedAttributes() {
+    return Object.keys(ATTRIBUTES);
+  }
+
+  constructor() {
+    super();
+    this.attachShadow({ mode: 'open' }).innerHTML = TEMPLATE;
+    const $ = (part) => this.shadowRoot.querySelector(`[part=${part}]`);
+    this.parts = { canvas: $('canvas'), poster: $('poster'), progress: $('progress'), error: $('error') };
+    this.view = new WidgetView(this.parts.canvas);
+    this.session = null;
+    this.loadedSrc = null; // the src whose mesh the worker holds (or is loading)
+    this.lines = null;
+    this.stats = null;
+    this.busy = false;
+    this.pendingOptions = false;
+    this.near = false; // within the lazy-loading margin of the viewport
+    this.changes = new Set();
+    this.parts.canvas.addEventListener('keydown', (event) => {
+      if (this.view.handleKey(event.key)) event.preventDefault();
+    });
+    reducedMotion?.addEventListener?.('change', () => this.queue('motion'));
+  }
+
+  connectedCallback() {
+    clearTimeout(this.releaseTimer);
+    this.resizeObserver = new ResizeObserver(([entry]) => {
+      const { width, height } = entry.contentRect;
+      this.view.resize(width, height, Math.min(globalThis.devicePixelRatio || 1, 2));
+    });
+    this.resizeObserver.observe(this);
+    // Drawn only while on screen; lazy loading starts a screen ahead.
+    this.onScreen = new IntersectionObserver(([entry]) => {
+      this.view.visible = entry.isIntersecting;
+      if (entry.isIntersecting) this.view.draw();
+    });
+    this.onScreen.observe(this);
+    this.nearScreen = new IntersectionObserver(([entry]) => {
+      this.near = entry.isIntersecting;
+      if (this.near) this.queue('loading');
+    }, { rootMargin: '100%' });
+    this.nearScreen.observe(this);
+    for (const kind of ['label', 'display', 'orbit', 'motion', 'interaction', 'poster', 'source']) this.queue(kind);
+  }
+
+  disconnectedCallback() {
+    this.resizeObserver.disconnect();
+    this.onScreen.disconnect();
+    this.nearScreen.disconnect();
+    this.view.visible = false;
+    // Moved elements come back at once; removed ones free their worker session.
+    this.releaseTimer = setTimeout(() => this.release(), 0);
+  }
+
+  attributeChangedCallback(name, previous, value) {
+    if (previous !== value) this.queue(ATTRIBUTES[name].kind);
+  }
+
+  /** Changes are applied together, once per task. */
+  queue(kind) {
+    if (!this.changes.size) queueMicrotask(() => this.applyChanges());
+    this.changes.add(kind);
+  }
+
+  applyChanges() {
+    const changes = this.changes;
+    this.changes = new Set();
+    if (!this.isConnected) return;
+    const canvas = this.parts.canvas;
+    if (changes.has('label')) canvas.setAttribute('aria-label', this.alt || 'A 3D model with its ridge and valley lines');
+    if (changes.has('display')) this.applyDisplay();
+    if (changes.has('orbit')) this.view.setOrbit(parseOrbit(this.cameraOrbit));
+    if (changes.has('motion')) this.view.setAutoRotate(this.autoRotate && !reducedMotion?.matches);
+    if (changes.has('interaction')) {
+      const orbit = this.interaction === 'orbit';
+      this.view.setInteractive(orbit);
+      if (orbit) canvas.tabIndex = 0;
+      else canvas.removeAttribute('tabindex');
+      canvas.setAttribute('aria-roledescription', orbit ? '3D view: arrow keys turn the model, + and - zoom' : '3D view');
+    }
+    if (changes.has('poster')) {
+      if (this.poster) this.parts.poster.src = new URL(this.poster, document.baseURI).href;
+      else this.parts.poster.removeAttribute('src');
+    }
+    if (changes.has('source') || changes.has('loading')) this.maybeLoad();
+    else if (changes.has('pipeline')) this.compute();
+  }
+
+  /** Colours and widths: attribute, else CSS custom property, else default. */
+  displayStyle() {
+    const css = getComputedStyle(this);
+    const value = (attribute) => this.getAttribute(attribute) ?? (css.getPropertyValue(`--crestline-${attribute}`).trim() || DISPLAY_DEFAULTS[attribute]);
+    return {
+      ridges: this.ridges,
+      valleys: this.valleys,
+      ridgeColor: value('ridge-color'),
+      valleyColor: value('valley-color'),
+      lineWidth: Number(value('line-width')) || DISPLAY_DEFAULTS['line-width'],
+      background: value('background'),
+    };
+  }
+
+  applyDisplay() {
+    const style = this.displayStyle();
+    this.view.lines.setShown(style.ridges, style.valleys);
+    this.view.lines.setColors(style.ridgeColor, style.valleyColor);
+    this.view.lines.setWidth(style.lineWidth);
+    this.view.setBackground(style.background);
+  }
+
+  pipelineOptions() {
+    return { smoothingSteps: this.smoothing, hausdorffBound: this.fairing, threshold: this.threshold === 'auto' ? -1 : this.threshold };
+  }
+
+  maybeLoad() {
+    if (!this.src) return;
+    if (this.src === this.loadedSrc) return this.compute();
+    if (this.loading === 'lazy' && !this.near) return;
+    this.load(this.src);
+  }
+
+  async load(src) {
+    this.loadedSrc = src;
+    this.lines = null;
+    this.shownLoad = false;
+    this.showError('');
+    this.parts.poster.hidden = false;
+    this.session ??= new PipelineSession((message) => this.receive(message));
+    this.progress('fetch', 0);
+    try {
+      const files = await fetchMesh(src);
+      if (this.loadedSrc !== src) return;
+      this.progress('decode', READ_SHARE / 2);
+      const soup = await loadMeshFiles(files, { dracoLoader: sharedDraco() });
+      if (this.loadedSrc !== src || !this.session) return;
+      this.meshName = soup.name;
+      this.busy = true;
+      this.pendingOptions = false;
+      this.session.send({ type: 'load', name: soup.name, positions: soup.positions, indices: soup.indices, options: this.pipelineOptions() });
+    } catch (error) {
+      if (this.loadedSrc !== src) return;
+      this.fail(error.kind ? error.message : `${fileName(src)}: could not be read (${error.message}).`);
+    }
+  }
+
+  /** A parameter changed: one re-run at a time, the latest parameters win. */
+  compute() {
+    if (!this.session || !this.lines) {
+      this.pendingOptions = this.busy;
+      return;
+    }
+    if (this.busy) {
+      this.pendingOptions = true;
+      return;
+    }
+    this.busy = true;
+    this.session.send({ type: 'options', options: this.pipelineOptions() });
+  }
+
+  receive(message) {
+    switch (message.type) {
+      case 'progress': {
+        const overall = (STAGES.indexOf(message.stage) + message.fraction) / STAGES.length;
+        this.progress(message.stage, READ_SHARE + (1 - READ_SHARE) * overall);
+        break;
+      }
+      case 'result':
+        this.busy = false;
+        this.showResult(message);
+        if (this.pendingOptions) {
+          this.pendingOptions = false;
+          this.compute();
+        }
+        break;
+      case 'error':
+        this.busy = false;
+        this.pendingOptions = false;
+        this.fail(this.meshName && message.kind !== 'internal' ? `${this.meshName}: ${message.message}` : message.message);
+        break;
+    }
+  }
+
+  showResult({ surface, lines, stats }) {
+    if (surface) this.view.setSurface(surface);
+    this.lines = lines;
+    this.stats = stats;
+    this.applyDisplay();
+    this.view.setLines(lines);
+    this.progress(null);
+    if (!this.shownLoad) {
+      this.shownLoad = true;
+      this.parts.poster.hidden = true;
+      this.dispatchEvent(new CustomEvent('load', { detail: { src: this.loadedSrc } }));
+    }
+    this.dispatchEvent(new CustomEvent('lines', { detail: linesSummary(lines, stats) }));
+  }
+
+  progress(stage, fraction) {
+    const bar = this.parts.progress;
+    bar.hidden = stage === null;
+    if (stage === null) return;
+    bar.style.transform = `scaleX(${fraction})`;
+    bar.setAttribute('aria-valuenow', fraction.toFixed(2));
+    this.dispatchEvent(new CustomEvent('progress', { detail: { stage, fraction } }));
+  }
+
+  showError(message) {
+    this.parts.error.textContent = message;
+  }
+
+  fail(message) {
+    this.progress(null);
+    this.showError(message);
+    this.dispatchEvent(new CustomEvent('error', { detail: { message } }));
+  }
+
+  release() {
+    if (this.isConnected) return;
+    this.session?.dispose();
+    this.session = null;
+    this.loadedSrc = null;
+    this.busy = false;
+    this.view.dispose();
+    this.view = new WidgetView(this.parts.canvas);
+  }
+
+  requireLines() {
+    if (!this.lines) throw new Error('crestline-viewer: no lines yet (wait for the "lines" event).');
+  }
+
+  /** SVG of the visible lines in the current view (hidden parts removed). */
+  async toSVG() {
+    this.requireLines();
+    const { width, height } = this.getBoundingClientRect();
+    return viewToSvg(this.view, this.lines, this.displayStyle(), Math.max(1, Math.round(width)), Math.max(1, Math.round(height)));
+  }
+
+  /** PNG of the current view; {width, height} in pixels (default: the element's size × devicePixelRatio). */
+  async toPNG(options = {}) {
+    this.requireLines();
+    const { width, height } = this.getBoundingClientRect();
+    return renderPng(this.view, { cssWidth: width, cssHeight: height, ...options });
+  }
+
+  /** The lines as OBJ polylines (the CLI's format). */
+  async toOBJ() {
+    this.requireLines();
+    return (await this.session.request({ type: 'export', format: 'obj' })).text;
+  }
+
+  /** The lines and stats as JSON text (the CLI's format). */
+  async toJSON() {
+    this.requireLines();
+    return (await this.session.request({ type: 'export', format: 'json' })).text;
+  }
+}
+
+function fileName(src) {
+  try {
+    return decodeURIComponent(new URL(src, document.baseURI).pathname.split('/').pop()) || src;
+  } catch {
+    return src;
+  }
+}
+
+reflectAttributes(CrestlineViewer);

@@ -1,0 +1,142 @@
+// One viewer's scene: camera, lights, the surface and line layers of
+// ../viewer, orbit controls on the element's own 2D canvas. Drawing goes
+// through the shared renderer (renderer.js).
+import { Color, DirectionalLight, HemisphereLight, PerspectiveCamera, Scene, Spherical } from 'three';
+import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+import { LineLayer } from '../viewer/line-layer.js';
+import { SurfaceLayer } from '../viewer/surface-layer.js';
+import { forget, requestDraw } from './renderer.js';
+
+const KEY_STEP = Math.PI / 18; // 10° per arrow key
+
+export class WidgetView {
+  /** @param {HTMLCanvasElement} canvas the element's 2D canvas (also the controls' target) */
+  constructor(canvas) {
+    this.canvas = canvas;
+    this.visible = false;
+    this.scene = new Scene();
+    this.camera = new PerspectiveCamera(35, 2, 0.01, 100);
+    this.scene.add(this.camera);
+    this.scene.add(new HemisphereLight(0xffffff, 0x606070, 1.6));
+    const key = new DirectionalLight(0xffffff, 1.8);
+    key.position.set(1, 1.5, 2);
+    this.camera.add(key);
+    this.surface = new SurfaceLayer();
+    this.lines = new LineLayer();
+    this.scene.add(this.surface.mesh, this.lines.group);
+    this.origin = [0, 0, 0];
+    this.radius = 1;
+    this.orbit = { theta: 0, phi: (75 * Math.PI) / 180, radius: 1 };
+    this.controls = new OrbitControls(this.camera, canvas);
+    this.controls.addEventListener('change', () => this.draw());
+    this.controls.addEventListener('start', () => (this.interacting = true));
+    this.controls.addEventListener('end', () => (this.interacting = false));
+    this.autoRotate = false;
+  }
+
+  /** Surface in double precision, centred before conversion to float32. */
+  setSurface({ positions, indices }) {
+    const min = [Infinity, Infinity, Infinity];
+    const max = [-Infinity, -Infinity, -Infinity];
+    for (let i = 0; i < positions.length; i++) {
+      const k = i % 3;
+      if (positions[i] < min[k]) min[k] = positions[i];
+      if (positions[i] > max[k]) max[k] = positions[i];
+    }
+    this.origin = min.map((m, k) => (m + max[k]) / 2);
+    const local = new Float32Array(positions.length);
+    for (let i = 0; i < positions.length; i++) local[i] = positions[i] - this.origin[i % 3];
+    this.surface.setMesh(local, indices);
+    this.radius = this.surface.mesh.geometry.boundingSphere.radius || 1;
+    this.applyOrbit();
+  }
+
+  setLines(lines) {
+    this.lines.setLines(lines, this.origin);
+    this.draw();
+  }
+
+  /** {theta, phi} in radians around the model's centre, radius as a factor of the framing distance. */
+  setOrbit(orbit) {
+    this.orbit = orbit;
+    this.applyOrbit();
+  }
+
+  applyOrbit() {
+    const fit = this.radius / Math.sin((this.camera.fov * Math.PI) / 360);
+    const distance = fit * this.orbit.radius * 1.05;
+    this.camera.near = fit / 100;
+    this.camera.far = fit * 20;
+    this.camera.updateProjectionMatrix();
+    this.controls.target.set(0, 0, 0);
+    this.camera.position.setFromSpherical(new Spherical(distance, this.orbit.phi, this.orbit.theta));
+    this.controls.minDistance = fit * 0.2;
+    this.controls.maxDistance = fit * 10;
+    this.controls.update();
+    this.draw();
+  }
+
+  setBackground(color) {
+    this.scene.background = color && color !== 'transparent' ? new Color(color) : null;
+    this.draw();
+  }
+
+  /** CSS size → canvas pixels, camera aspect and line resolution. */
+  resize(width, height, pixelRatio) {
+    if (!width || !height) return;
+    this.canvas.width = Math.round(width * pixelRatio);
+    this.canvas.height = Math.round(height * pixelRatio);
+    this.camera.aspect = width / height;
+    this.camera.updateProjectionMatrix();
+    this.lines.setResolution(width, height);
+    this.draw();
+  }
+
+  setInteractive(enabled) {
+    this.controls.enabled = enabled;
+  }
+
+  /** Arrow keys orbit, +/- zoom; returns true when the key was used. */
+  handleKey(key) {
+    const c = this.controls;
+    const actions = {
+      ArrowLeft: () => c.rotateLeft(KEY_STEP),
+      ArrowRight: () => c.rotateLeft(-KEY_STEP),
+      ArrowUp: () => c.rotateUp(KEY_STEP),
+      ArrowDown: () => c.rotateUp(-KEY_STEP),
+      '+': () => c.dollyIn(1.1),
+      '=': () => c.dollyIn(1.1),
+      '-': () => c.dollyOut(1.1),
+    };
+    if (!actions[key] || !c.enabled) return false;
+    actions[key]();
+    c.update();
+    return true;
+  }
+
+  setAutoRotate(enabled) {
+    this.autoRotate = enabled;
+    this.controls.autoRotate = enabled;
+    this.draw();
+  }
+
+  draw() {
+    requestDraw(this);
+  }
+
+  /** Called by the renderer before each frame: advances auto-rotation. */
+  beforeDraw() {
+    if (this.autoRotate && !this.interacting) this.controls.update();
+  }
+
+  afterDraw() {
+    if (this.autoRotate) this.draw(); // next frame
+  }
+
+  dispose() {
+    forget(this);
+    this.controls.dispose();
+    this.surface.dispose();
+    this.lines.dispose();
+  }
+}

@@ -1,0 +1,47 @@
+// The embeddable <crestline-viewer> (web/src/widget) as one ES module,
+// web/dist/crestline-viewer.js, with its worker (crestline-viewer-worker.js)
+// and crestline.wasm beside it as separate files, plus embed.html. Not Vite's
+// library mode, which would inline the .wasm. Runs after the app build (same
+// outDir, not emptied). three's DRACOLoader brings its decoder along (assets/).
+import { readFileSync } from 'node:fs';
+import { dirname, resolve } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { defineConfig } from 'vite';
+
+const here = dirname(fileURLToPath(import.meta.url));
+const isCore = (info) => (info.names ?? [info.name]).includes('crestline.wasm');
+const output = (entry) => ({
+  entryFileNames: entry,
+  chunkFileNames: 'crestline-viewer-[name]-[hash].js',
+  assetFileNames: (info) => (isCore(info) ? 'crestline.wasm' : 'assets/[name]-[hash][extname]'),
+});
+
+/** Copies embed.html (it loads ./crestline-viewer.js as it is). */
+function embedPage() {
+  return {
+    name: 'crestline-embed-page',
+    generateBundle() {
+      this.emitFile({ type: 'asset', fileName: 'embed.html', source: readFileSync(resolve(here, 'embed.html')) });
+    },
+  };
+}
+
+export default defineConfig({
+  root: here,
+  base: './',
+  publicDir: false,
+  plugins: [embedPage()],
+  worker: { format: 'es', rollupOptions: { output: output('crestline-viewer-worker.js') } },
+  build: {
+    outDir: resolve(here, 'dist'),
+    emptyOutDir: false,
+    target: 'es2022',
+    assetsInlineLimit: 0,
+    chunkSizeWarningLimit: 2000,
+    rollupOptions: {
+      input: { 'crestline-viewer': resolve(here, 'src/widget/index.js') },
+      preserveEntrySignatures: 'exports-only',
+      output: output('[name].js'),
+    },
+  },
+});
