@@ -48,10 +48,6 @@ struct Files {
 bool file_exists(const std::string&, void*) { return true; }  // ReadWholeFile decides
 std::string expand_path(const std::string& path, void*) { return path; }
 bool write_file(std::string*, const std::string&, const std::vector<unsigned char>&, void*) { return false; }
-bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int,
-                void*) {
-  return true;
-}
 
 bool read_companion(std::vector<unsigned char>* out, std::string*, const std::string& uri, void* user) {
   auto& files = *static_cast<Files*>(user);
@@ -100,9 +96,14 @@ std::string split_glb(const Input& in, Files& files) {
 // EXT_meshopt_compression fallback buffers (no data by design) become
 // one-byte placeholders, and Draco primitives lose their "indices" accessor
 // (it has no bufferView, which tinygltf rejects; the faces come from Draco).
+// Everything but geometry goes too, so a broken texture or animation cannot
+// stop a mesh from loading and embedded images are never decoded.
 std::string prepare_json(const Input& in, const std::string& text, bool binary, Files& files) {
   Json json = Json::parse(text, nullptr, false);
   if (json.is_discarded() || !json.is_object()) fail(ErrorKind::InvalidInput, in, "the glTF JSON cannot be parsed.");
+  for (const char* unused : {"images", "textures", "samplers", "materials", "animations", "skins", "cameras"}) {
+    json.erase(unused);
+  }
   auto buffers = json.find("buffers");
   if (buffers != json.end() && buffers->is_array()) {
     for (size_t i = 0; i < buffers->size(); ++i) {
@@ -597,7 +598,6 @@ TriangleSoup read_gltf(const Input& in, const ReadOptions& options) {
       files);
 
   tinygltf::TinyGLTF loader;
-  loader.SetImageLoader(skip_image, nullptr);
   loader.SetFsCallbacks({file_exists, expand_path, read_companion, write_file, &files});
   tinygltf::Model model;
   std::string error, warning;
