@@ -18,8 +18,21 @@ struct ReadOptions {
   size_t max_triangles = 50'000'000;
 };
 
-/// Reads a file. Multi-file glTF resolves .bin and images relative to `path`.
-/// Throws crestline::Error with a one-sentence message naming the file.
+/// Reads a file. Multi-file glTF resolves .bin files relative to `path`.
+/// Throws crestline::Error with a one-sentence message naming the file
+/// (its basename): InvalidInput for broken data (indices out of range, no
+/// triangles, every vertex NaN/infinite, truncated data), Unsupported for a
+/// format or variant we do not read (and, in the WASM build, Draco/meshopt
+/// compressed glTF, which the browser decodes), TooLarge for claims beyond
+/// `max_triangles` or beyond memory, Io when the file or a .bin is missing.
+///
+/// The soup is as stored: OBJ/PLY/OFF vertices in file order, one vertex per
+/// STL facet corner, glTF vertices per primitive instance (world space).
+/// Polygons are ear-clipped in their best-fit plane (n - 2 triangles each).
+/// Vertices with NaN/infinite coordinates are kept (noted); repair_mesh
+/// drops their triangles. glTF: the default scene (else scene 0, else all
+/// root nodes), instances expanded, TRIANGLES/STRIP/FAN primitives; points
+/// and lines are skipped with a note.
 TriangleSoup read_mesh(const std::string& path, const ReadOptions& options = {});
 
 /// Reads from memory (the browser). `name` is used for messages and for the
