@@ -123,7 +123,12 @@ test('threshold change re-filters only, and changes the count', { skip: noMeshes
   const smoothed = await nextResult(() => page.evaluate(() => window.crestline.update({ autoThreshold: true, smoothingSteps: 4 })));
   assert.equal(smoothed.ran[0], 'smoothing', 'a smoothing change re-runs from smoothing on');
   assert.ok(!smoothed.ran.includes('curvature'));
-  await page.evaluate(() => window.crestline.update({ smoothingSteps: 3 }));
+  const camera = () => page.evaluate(() => window.crestline.viewer.camera.position.toArray());
+  const view = await camera();
+  const presmoothed = await nextResult(() => page.evaluate(() => window.crestline.update({ smoothingSteps: 3, presmoothSteps: 1 })));
+  assert.equal(presmoothed.ran[0], 'presmooth');
+  assert.deepEqual(await camera(), view, 'a new surface of the same mesh keeps the view');
+  await nextResult(() => page.evaluate(() => window.crestline.update({ presmoothSteps: 0 })));
 });
 
 test('a broken file and an unsupported one: one sentence each, and the page recovers', async () => {

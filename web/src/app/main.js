@@ -37,7 +37,8 @@ const client = new PipelineClient({
   },
   onResult: (result) => {
     if (result.surface) {
-      viewer.setSurface(result.surface);
+      viewer.setSurface(result.surface, { fit: !app.surfaceShown });
+      app.surfaceShown = true;
       brush.reset(result.surface.positions.length / 3);
     }
     viewer.setLines(result.lines);
@@ -145,6 +146,7 @@ function loadSoup({ name, positions, indices }) {
   setState('busy');
   app.mesh = null;
   app.fields = null;
+  app.surfaceShown = false; // the next surface is framed
   pendingRun = false;
   rescaleThreshold = true;
   showProgress('repair', 0);

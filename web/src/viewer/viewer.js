@@ -53,8 +53,9 @@ export class Viewer {
     this.resize();
   }
 
-  /** Surface in double precision; it is centred before conversion to float32. */
-  setSurface({ positions, indices }) {
+  /** Surface in double precision; it is centred before conversion to float32.
+   *  `fit`: frame it (a new mesh), else keep the view (pre-smoothing changed). */
+  setSurface({ positions, indices }, { fit = true } = {}) {
     const box = new Box3();
     const p = new Vector3();
     for (let i = 0; i < positions.length; i += 3) box.expandByPoint(p.set(positions[i], positions[i + 1], positions[i + 2]));
@@ -63,7 +64,8 @@ export class Viewer {
     const local = new Float32Array(positions.length);
     for (let i = 0; i < positions.length; i++) local[i] = positions[i] - this.origin[i % 3];
     this.surface.setMesh(local, indices);
-    this.fitView();
+    if (fit) this.fitView();
+    else this.render();
   }
 
   setLines(lines) {
