@@ -116,7 +116,10 @@ function applyView() {
     viewer.surface.setSingular(view === 'singularMax' ? app.fields.regularMax : app.fields.regularMin);
   } else {
     viewer.surface.setSingular(null);
-    viewer.surface.setColors(app.fields[view]);
+    // An extremality's sign follows the arbitrary sign of its direction
+    // (core/…/extremality.h): only |e| means something on its own.
+    const values = app.fields[view];
+    viewer.surface.setColors(view.startsWith('e') ? values.map(Math.abs) : values);
   }
   viewer.render();
 }
