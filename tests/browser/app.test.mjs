@@ -196,6 +196,20 @@ test('smoothing brush: painting frozen weights re-runs from the smoothing stage'
 test('cancel stops a long computation and the page stays usable', { skip: noMeshes }, async () => {
   await drop(['large/dragon-draco.glb']);
   await page.waitForFunction(() => document.getElementById('progress-text').textContent === 'smoothing', null, { timeout: 60000 });
+  // The main thread keeps drawing frames while the worker computes.
+  const longestFrame = await page.evaluate(() => new Promise((resolve) => {
+    let last = performance.now();
+    let longest = 0;
+    const end = last + 1000;
+    const tick = (now) => {
+      longest = Math.max(longest, now - last);
+      last = now;
+      if (now < end) requestAnimationFrame(tick);
+      else resolve(longest);
+    };
+    requestAnimationFrame(tick);
+  }));
+  assert.ok(longestFrame < 250, `longest frame while computing: ${longestFrame} ms`);
   const started = Date.now();
   await page.click('#cancel');
   await page.waitForFunction(() => document.body.dataset.state === 'ready', null, { timeout: 10000 });
