@@ -102,10 +102,12 @@ test('a viewer from another origin loads a GLB, re-thresholds and exports', asyn
   const exported = await page.evaluate(async () => {
     const v = document.getElementById('v');
     const png = await v.toPNG({ width: 960 });
-    return { svg: await v.toSVG(), obj: await v.toOBJ(), json: JSON.parse(await v.toJSON()), png: [png.type, png.size], label: v.shadowRoot.querySelector('canvas').getAttribute('aria-label') };
+    return { svg: await v.toSVG(), outlined: await v.toSVG({ silhouette: '#222222' }), obj: await v.toOBJ(), json: JSON.parse(await v.toJSON()), png: [png.type, png.size], label: v.shadowRoot.querySelector('canvas').getAttribute('aria-label') };
   });
   assert.match(exported.svg, /<path id="(ridges|valleys)" stroke="#[0-9a-f]{6}" d="M[\d.]+ [\d.]+L/);
   assert.match(exported.svg, /viewBox="0 0 480 320"/);
+  assert.doesNotMatch(exported.svg, /silhouette/);
+  assert.match(exported.outlined, /<path id="silhouette" stroke="#222222" stroke-width="[\d.]+" d="M/);
   assert.match(exported.obj, /^v /m);
   assert.equal(exported.json.ridges.length + exported.json.valleys.length, total(second.detail.counts));
   assert.equal(exported.png[0], 'image/png');

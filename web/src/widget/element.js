@@ -249,11 +249,17 @@ export class CrestlineViewer extends HTMLElement {
     if (!this.lines) throw new Error('crestline-viewer: no lines yet (wait for the "lines" event).');
   }
 
-  /** SVG of the visible lines in the current view (hidden parts removed). */
-  async toSVG() {
+  /**
+   * SVG text of the lines shown in the current view, the parts hidden by the
+   * surface removed, sized like the element. {silhouette: true or a colour}
+   * adds the surface's outline.
+   */
+  async toSVG({ silhouette = false } = {}) {
     this.requireLines();
     const { width, height } = this.getBoundingClientRect();
-    return viewToSvg(this.view, this.lines, this.displayStyle(), Math.max(1, Math.round(width)), Math.max(1, Math.round(height)));
+    const css = getComputedStyle(this).getPropertyValue('--crestline-silhouette-color').trim();
+    const style = { ...this.displayStyle(), silhouette: silhouette === true ? css || '#3a3a3a' : silhouette || null };
+    return viewToSvg(this.view, this.lines, style, Math.max(1, Math.round(width)), Math.max(1, Math.round(height)));
   }
 
   /** PNG of the current view; {width, height} in pixels (default: the element's size × devicePixelRatio). */
