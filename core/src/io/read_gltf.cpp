@@ -139,9 +139,11 @@ std::string prepare_json(const Input& in, const std::string& text, bool binary, 
   return json.dump();
 }
 
+// tinygltf's first message as a clause: one line, no full stops.
 std::string first_line(const std::string& text) {
   std::string line = text.substr(0, text.find('\n'));
   while (!line.empty() && (line.back() == '.' || line.back() == ' ' || line.back() == '\r')) line.pop_back();
+  for (size_t stop = line.find(". "); stop != std::string::npos; stop = line.find(". ", stop)) line[stop] = ';';
   return line;
 }
 
