@@ -64,8 +64,11 @@ test('multi-file glTF: a missing .bin is named', { skip: !haveMeshes && `SKIPPED
     /Duck\.gltf: needs its companion file "Duck0\.bin"/);
 });
 
-test('GLB (meshopt-compressed) decodes to the documented triangle count', { skip: !haveMeshes && `SKIPPED: ${MESHES} is absent` }, async () => {
-  const glb = readFileSync(join(MESHES, 'glb/pirate-meshopt.glb'));
-  const soup = await loadMeshFiles([{ name: 'pirate-meshopt.glb', bytes: glb.buffer.slice(glb.byteOffset, glb.byteOffset + glb.length) }]);
-  assert.equal(soup.indices.length / 3, 5010);
-});
+for (const [file, triangles] of [['glb/pirate-meshopt.glb', 5010], ['glb/Duck-quantized.glb', 4212], ['glb/DamagedHelmet.glb', 15452]]) {
+  test(`${file} (meshopt / quantized / textured) decodes to ${triangles} triangles`, { skip: !haveMeshes && `SKIPPED: ${MESHES} is absent` }, async () => {
+    const glb = readFileSync(join(MESHES, file));
+    const soup = await loadMeshFiles([{ name: file, bytes: glb.buffer.slice(glb.byteOffset, glb.byteOffset + glb.length) }]);
+    assert.equal(soup.indices.length / 3, triangles);
+    assert.ok(soup.positions.every(Number.isFinite));
+  });
+}
