@@ -41,7 +41,8 @@ export default defineConfig({
     rollupOptions: {
       input: { 'crestline-viewer': resolve(here, 'src/widget/index.js') },
       preserveEntrySignatures: 'exports-only',
-      output: output('[name].js'),
+      // One file: the GLB exporter's dynamic import stays inside it.
+      output: { ...output('[name].js'), codeSplitting: false },
     },
   },
 });

@@ -102,7 +102,9 @@ test('a viewer from another origin loads a GLB, re-thresholds and exports', asyn
   const exported = await page.evaluate(async () => {
     const v = document.getElementById('v');
     const png = await v.toPNG({ width: 960 });
-    return { svg: await v.toSVG(), outlined: await v.toSVG({ silhouette: '#222222' }), obj: await v.toOBJ(), json: JSON.parse(await v.toJSON()), png: [png.type, png.size], label: v.shadowRoot.querySelector('canvas').getAttribute('aria-label') };
+    const glb = await v.toGLB();
+    const glbJson = JSON.parse(new TextDecoder().decode(new Uint8Array(await glb.arrayBuffer(), 20, new DataView(await glb.arrayBuffer()).getUint32(12, true))));
+    return { svg: await v.toSVG(), outlined: await v.toSVG({ silhouette: '#222222' }), obj: await v.toOBJ(), json: JSON.parse(await v.toJSON()), png: [png.type, png.size], glb: glbJson.meshes.map((m) => m.name ?? m.primitives[0].mode), label: v.shadowRoot.querySelector('canvas').getAttribute('aria-label') };
   });
   assert.match(exported.svg, /<path id="(ridges|valleys)" stroke="#[0-9a-f]{6}" d="M[\d.]+ [\d.]+L/);
   assert.match(exported.svg, /viewBox="0 0 480 320"/);
@@ -112,6 +114,7 @@ test('a viewer from another origin loads a GLB, re-thresholds and exports', asyn
   assert.equal(exported.json.ridges.length + exported.json.valleys.length, total(second.detail.counts));
   assert.equal(exported.png[0], 'image/png');
   assert.ok(exported.png[1] > 1000);
+  assert.ok(exported.glb.length >= 2, `GLB meshes: ${exported.glb}`);
   assert.equal(exported.label, 'A fan disk');
   if (process.env.CRESTLINE_SHOTS) {
     writeFileSync(join(ROOT, 'test-results/widget.svg'), exported.svg);
@@ -165,5 +168,45 @@ test('the iframe embed shows one mesh full-frame with the fragment parameters', 
     return { width, height, threshold: v.threshold, ridgeColor: v.ridgeColor, lines: v.lines.types.length };
   });
   assert.deepEqual({ ...state, lines: state.lines > 0 }, { width: 400, height: 300, threshold: 0, ridgeColor: '#00aa00', lines: true });
+  await page.close();
+});
+
+test('lazy loading waits for the viewport; keyboard orbit; reduced motion stops auto-rotate', async () => {
+  const { page } = await openPage('lazy.html', `
+    <crestline-viewer id="near" src="${MAIN_MESH}" interaction="orbit" auto-rotate poster="data:image/gif;base64,R0lGODlhAQABAAAAACw="></crestline-viewer>
+    <crestline-viewer id="still" src="${MAIN_MESH}" interaction="none"></crestline-viewer>
+    <div style="height:3000px"></div>
+    <crestline-viewer id="far" src="${MAIN_MESH}" loading="lazy"></crestline-viewer>`);
+  await page.emulateMedia({ reducedMotion: 'reduce' });
+  await waitForEvents(page, 'near', 'lines', 1);
+  await waitForEvents(page, 'still', 'lines', 1);
+  const camera = (id) => page.evaluate((id) => document.getElementById(id).view.camera.position.toArray(), id);
+  const state = await page.evaluate(() => {
+    const near = document.getElementById('near');
+    const canvas = near.shadowRoot.querySelector('canvas');
+    const { width, height } = near.getBoundingClientRect();
+    return { size: [width, height], tabIndex: canvas.tabIndex, label: canvas.getAttribute('aria-label'), posterHidden: near.shadowRoot.querySelector('[part=poster]').hidden };
+  });
+  assert.deepEqual(state, { size: [300, 150], tabIndex: 0, label: 'A 3D model with its ridge and valley lines', posterHidden: true });
+  // Reduced motion: auto-rotate is off, so the camera stands still.
+  const before = await camera('near');
+  await page.waitForTimeout(300);
+  assert.deepEqual(await camera('near'), before);
+  // Arrow keys orbit an interactive viewer, and nothing else.
+  await page.focus('#near >> canvas');
+  await page.keyboard.press('ArrowLeft');
+  assert.notDeepEqual(await camera('near'), before);
+  const still = await camera('still');
+  await page.evaluate(() => document.getElementById('still').shadowRoot.querySelector('canvas').dispatchEvent(new KeyboardEvent('keydown', { key: 'ArrowLeft' })));
+  assert.deepEqual(await camera('still'), still);
+  // Without reduced motion, auto-rotate turns the model.
+  await page.emulateMedia({ reducedMotion: 'no-preference' });
+  const turned = await camera('near');
+  await page.waitForFunction((p) => document.getElementById('near').view.camera.position.toArray().some((v, i) => Math.abs(v - p[i]) > 1e-6), turned, { timeout: 5000 });
+  // The lazy viewer three screens down has not even fetched its mesh.
+  await page.waitForTimeout(300);
+  assert.deepEqual(await eventsOf(page, 'far', 'load'), []);
+  await page.evaluate(() => document.getElementById('far').scrollIntoView());
+  await waitForEvents(page, 'far', 'lines', 1);
   await page.close();
 });

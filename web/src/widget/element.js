@@ -4,7 +4,7 @@ import { DRACOLoader } from 'three/examples/jsm/loaders/DRACOLoader.js';
 import { loadMeshFiles } from '../io/load-files.js';
 import { STAGES } from '../worker/protocol.js';
 import { ATTRIBUTES, parseOrbit, reflectAttributes } from './attributes.js';
-import { linesSummary, renderPng } from './exports.js';
+import { exportGlb, linesSummary, renderPng } from './exports.js';
 import { fetchMesh } from './fetch-mesh.js';
 import { PipelineSession } from './pool.js';
 import { viewToSvg } from './svg.js';
@@ -267,6 +267,12 @@ export class CrestlineViewer extends HTMLElement {
     this.requireLines();
     const { width, height } = this.getBoundingClientRect();
     return renderPng(this.view, { cssWidth: width, cssHeight: height, ...options });
+  }
+
+  /** GLB Blob: the surface and the shown lines (line primitives "ridges", "valleys"). */
+  async toGLB() {
+    this.requireLines();
+    return new Blob([await exportGlb(this.view, this.lines, this.displayStyle())], { type: 'model/gltf-binary' });
   }
 
   /** The lines as OBJ polylines (the CLI's format). */

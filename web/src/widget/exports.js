@@ -1,6 +1,7 @@
-// What the element hands out besides SVG: the `lines` event's summary and
-// PNG renderings at a chosen size.
-import { RIDGE, VALLEY } from '../viewer/line-layer.js';
+// What the element hands out besides SVG: the `lines` event's summary, PNG
+// renderings at a chosen size, and GLB with the surface and the lines.
+import { BufferAttribute, BufferGeometry, Group, LineBasicMaterial, LineSegments, Mesh } from 'three';
+import { RIDGE, VALLEY, segmentPositions } from '../viewer/line-layer.js';
 import { renderInto, sharedRenderer } from './renderer.js';
 
 /** {counts, lengths, stats} of a result: per type, the number and total length of the lines. */
@@ -45,4 +46,35 @@ export async function renderPng(view, { cssWidth, cssHeight, width, height }) {
     view.lines.setResolution(cssWidth, cssHeight);
   }
   return new Promise((resolve, reject) => canvas.toBlob((blob) => (blob ? resolve(blob) : reject(new Error('crestline-viewer: the PNG could not be encoded.'))), 'image/png'));
+}
+
+/**
+ * GLB (ArrayBuffer) of the surface the lines lie on and the lines shown, as
+ * line primitives named "ridges" and "valleys", in the model's coordinates.
+ * The exporter is loaded on first use.
+ */
+export async function exportGlb(view, lines, style) {
+  const { GLTFExporter } = await import('three/examples/jsm/exporters/GLTFExporter.js');
+  const root = new Group();
+  root.name = 'crestline';
+  root.position.fromArray(view.origin);
+  const surface = new Mesh(view.surface.mesh.geometry, view.surface.material);
+  surface.name = 'surface';
+  root.add(surface);
+  const made = [];
+  for (const [type, name, shown, color] of [[RIDGE, 'ridges', style.ridges, style.ridgeColor], [VALLEY, 'valleys', style.valleys, style.valleyColor]]) {
+    const positions = segmentPositions(lines, type, view.origin);
+    if (!shown || !positions.length) continue;
+    const geometry = new BufferGeometry().setAttribute('position', new BufferAttribute(positions, 3));
+    const material = new LineBasicMaterial({ color });
+    const object = new LineSegments(geometry, material);
+    object.name = name;
+    root.add(object);
+    made.push(geometry, material);
+  }
+  try {
+    return await new GLTFExporter().parseAsync(root, { binary: true });
+  } finally {
+    for (const resource of made) resource.dispose();
+  }
 }
