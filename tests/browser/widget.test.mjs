@@ -50,6 +50,15 @@ async function openPage(name, body, viewport = { width: 1000, height: 700 }) {
 <script type="module" src="${cdnUrl}/crestline-viewer.js"></script>
 <script>
   window.events = [];
+  window.progress = [];
+  // Counts the canvases that get a WebGL context (the widget should need one).
+  window.webglCanvases = new Set();
+  const getContext = HTMLCanvasElement.prototype.getContext;
+  HTMLCanvasElement.prototype.getContext = function (type, ...rest) {
+    if (/webgl/.test(type)) window.webglCanvases.add(this);
+    return getContext.call(this, type, ...rest);
+  };
+  document.addEventListener('progress', (e) => e.target.localName === 'crestline-viewer' && window.progress.push(e.detail), true);
   for (const type of ['load', 'lines', 'error']) {
     document.addEventListener(type, (e) => {
       if (e.target.localName === 'crestline-viewer')
@@ -88,6 +97,8 @@ test('a viewer from another origin loads a GLB, re-thresholds and exports', asyn
   const order = await page.evaluate(() => window.events.map((e) => e.type));
   assert.deepEqual(order, ['load', 'lines'], `events: ${order}`);
   const [first] = await eventsOf(page, 'v', 'lines');
+  const progress = await page.evaluate(() => window.progress);
+  assert.ok(progress.length > 3 && progress.every(({ stage, fraction }) => typeof stage === 'string' && fraction >= 0 && fraction <= 1), JSON.stringify(progress));
   assert.ok(total(first.detail.counts) > 0, 'the first result has lines');
   assert.ok(first.detail.lengths.ridges + first.detail.lengths.valleys > 0);
 
@@ -140,6 +151,7 @@ test('20 viewers on one page load without WebGL context loss', async () => {
     return true;
   }).map((v) => v.id));
   assert.deepEqual(blank, []);
+  assert.equal(await page.evaluate(() => window.webglCanvases.size), 1, 'one WebGL context for all viewers');
   assert.deepEqual(problems, []);
   if (process.env.CRESTLINE_SHOTS) await page.screenshot({ path: join(ROOT, 'test-results/widget-twenty.png') });
   await page.close();
