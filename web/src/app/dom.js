@@ -28,7 +28,8 @@ export function showNotes(notes) {
 
 const fmt = (x, digits = 3) => (Number.isFinite(x) ? Number(x.toPrecision(digits)).toString() : '–');
 
-export function showStats({ stats, ran, milliseconds }) {
+/** Pipeline statistics; `mesh` adds the time to read the file and to repair the mesh. */
+export function showStats({ stats, ran, milliseconds }, mesh = {}) {
   const times = ran
     .map((stage) => `${stage} ${(1000 * (stats.seconds[stage] ?? 0)).toFixed(1)} ms`)
     .join(', ');
@@ -38,5 +39,6 @@ export function showStats({ stats, ran, milliseconds }) {
     `valleys ${stats.valleys} (length ${fmt(stats.valleyLength)})`,
     `threshold ${fmt(stats.threshold)}, singular triangles ${stats.singularMax} max / ${stats.singularMin} min`,
     `ran: ${times} — ${milliseconds.toFixed(1)} ms in total`,
-  ].join('\n');
+    mesh.repairMs === undefined ? '' : `file read ${(mesh.readMs ?? 0).toFixed(0)} ms, repair ${mesh.repairMs.toFixed(0)} ms`,
+  ].filter(Boolean).join('\n');
 }

@@ -30,8 +30,8 @@ let rescaleThreshold = false;
 
 const client = new PipelineClient({
   onProgress: ({ stage, fraction }) => showProgress(stage, (STAGES.indexOf(stage) + fraction) / STAGES.length),
-  onLoaded: ({ name, vertices, triangles, notes }) => {
-    app.mesh = { name, vertices, triangles };
+  onLoaded: ({ name, vertices, triangles, notes, milliseconds }) => {
+    app.mesh = { name, vertices, triangles, readMs: app.mesh?.readMs, repairMs: milliseconds };
     showFile(`${name}: ${triangles.toLocaleString()} triangles`);
     showNotes(notes);
   },
@@ -46,7 +46,7 @@ const client = new PipelineClient({
     app.results.push(app.lastResult);
     gui.showThreshold(result.stats.threshold, rescaleThreshold);
     rescaleThreshold = false;
-    showStats(result);
+    showStats(result, app.mesh);
     showProgress(null);
     const upstream = ['presmooth', 'curvature', 'extremality', 'regularity', 'smoothing'];
     if (result.ran.some((s) => upstream.includes(s))) app.fields = null;
@@ -143,7 +143,7 @@ const gui = createGui(params, {
   },
 });
 
-function loadSoup({ name, positions, indices }) {
+function loadSoup({ name, positions, indices }, readMs = 0) {
   showError(null);
   showNotes([]);
   setState('busy');
@@ -153,7 +153,7 @@ function loadSoup({ name, positions, indices }) {
   pendingRun = false;
   rescaleThreshold = true;
   showProgress('repair', 0);
-  app.mesh = { name };
+  app.mesh = { name, readMs };
   // A copy stays here: the worker may have to be restarted (cancel, crash).
   app.soup = { name, positions: positions.slice(), indices: indices.slice() };
   brush.weights = null; // a new mesh starts homogeneous
@@ -172,8 +172,10 @@ async function openFiles(files) {
   showError(null);
   showProgress('reading', 0);
   try {
+    const started = performance.now();
     const buffers = await Promise.all(files.map(async (f) => ({ name: f.name, bytes: await f.arrayBuffer() })));
-    loadSoup(await loadMeshFiles(buffers, { dracoLoader }));
+    const soup = await loadMeshFiles(buffers, { dracoLoader });
+    loadSoup(soup, performance.now() - started);
   } catch (error) {
     fail(error.kind ? error.message : `${files[0].name}: could not be read (${error.message}).`);
   }

@@ -38,8 +38,10 @@ export class Engine {
   load({ name, positions, indices, repair = {} }) {
     this.dispose();
     this.session = new this.module.Session();
+    const start = performance.now();
     const loaded = check(this.session.load(positions, indices, repair));
-    return { name, vertices: loaded.vertices, triangles: loaded.triangles, notes: loaded.notes, report: loaded.report };
+    const milliseconds = performance.now() - start; // repair + adjacency
+    return { name, vertices: loaded.vertices, triangles: loaded.triangles, notes: loaded.notes, report: loaded.report, milliseconds };
   }
 
   /** set_options + run. `onProgress(stage, fraction)` returns false to cancel.
