@@ -125,3 +125,17 @@ test('a scaled mesh gives the same lines, scaled (unitless parameters)', () => {
   assert.ok(maxNearestDistance(unscaled, a.lines.points) < 1e-6 * diagonal);
   engine.dispose();
 });
+
+test('out of memory (60M triangles past the 2 GB heap) is a sentence, and the module survives', () => {
+  const session = new module.Session();
+  const triangles = 60_000_000;
+  const indices = new Uint32Array(3 * triangles);
+  for (let i = 0; i < indices.length; i++) indices[i] = i % 3;
+  const result = session.load(new Float64Array([0, 0, 0, 1, 0, 0, 0, 1, 0]), indices, { maxTriangles: 1e9 });
+  assert.equal(result.error, 'mesh too large for the browser (60000000 triangles)');
+  assert.equal(result.kind, 'too large');
+  const mesh = sineHeightField({ n: 10 });
+  assert.ok(session.load(mesh.positions, mesh.indices, {}).ok);
+  assert.ok(session.run(() => true).ok);
+  session.delete();
+});
