@@ -3,7 +3,7 @@
 // rendered from the viewer's camera by the shared renderer and read back:
 // a line point is visible when it is not behind the nearest surface at its
 // pixel (with a tolerance, since the lines lie on that surface).
-import { MeshDepthMaterial, NoBlending, RGBADepthPacking, Vector3, WebGLRenderTarget } from 'three';
+import { Color, MeshDepthMaterial, NoBlending, RGBADepthPacking, Vector3, WebGLRenderTarget } from 'three';
 import { RIDGE, VALLEY } from '../viewer/line-layer.js';
 import { sharedRenderer } from './renderer.js';
 
@@ -14,12 +14,11 @@ const escape = (value) => String(value).replace(/[&<>"]/g, (c) => `&#${c.charCod
 const UNPACK = [255 / 256, 255 / 256 / 256, 255 / 256 / 65536, 1 / 16777216];
 
 /** Window depths (0 near … 1 far / empty) of the surface, row 0 at the bottom. */
-function surfaceDepth(view, width, height) {
-  const renderer = sharedRenderer();
+function surfaceDepth(view, width, height, renderer) {
   const target = new WebGLRenderTarget(width, height);
   const material = new MeshDepthMaterial({ depthPacking: RGBADepthPacking, blending: NoBlending });
   const { scene, camera } = view;
-  const saved = { background: scene.background, override: scene.overrideMaterial, lines: view.lines.group.visible };
+  const saved = { background: scene.background, override: scene.overrideMaterial, lines: view.lines.group.visible, clear: renderer.getClearColor(new Color()), alpha: renderer.getClearAlpha() };
   Object.assign(scene, { background: null, overrideMaterial: material });
   view.lines.group.visible = false;
   renderer.setRenderTarget(target);
@@ -29,6 +28,7 @@ function surfaceDepth(view, width, height) {
   const bytes = new Uint8Array(width * height * 4);
   renderer.readRenderTargetPixels(target, 0, 0, width, height, bytes);
   renderer.setRenderTarget(null);
+  renderer.setClearColor(saved.clear, saved.alpha);
   Object.assign(scene, { background: saved.background, overrideMaterial: saved.override });
   view.lines.group.visible = saved.lines;
   target.dispose();
@@ -178,13 +178,16 @@ function silhouetteChains(geometry, eye, project) {
  * The SVG document of what the viewer shows. `style`: {ridges, valleys (shown),
  * ridgeColor, valleyColor, lineWidth (CSS px), background (CSS colour or
  * 'transparent'), silhouette (colour, or null for none)}; `width`×`height`
- * in CSS pixels.
+ * in CSS pixels. `view` is a WidgetView or anything with its scene, camera,
+ * surface and lines layers and origin (the app's Viewer), and `renderer` any
+ * WebGLRenderer (by default the widgets' shared one).
  */
-export function viewToSvg(view, lines, style, width, height) {
-  const depth = surfaceDepth(view, width, height);
+export function viewToSvg(view, lines, style, width, height, renderer = sharedRenderer()) {
+  const depth = surfaceDepth(view, width, height, renderer);
+  const radius = view.radius ?? view.surface.mesh.geometry.boundingSphere?.radius ?? 1;
   // Faired lines may stray from the surface by the fairing bound: allow a
   // hundredth of the model's radius.
-  const { project, visible } = visibilityTest(view, depth, width, height, view.radius * 0.01);
+  const { project, visible } = visibilityTest(view, depth, width, height, radius * 0.01);
   const paths = [];
   const add = (name, color, widthFactor, chains) => {
     const d = visiblePath(chains, visible);
