@@ -52,8 +52,11 @@ std::vector<uint8_t> mutate(const std::vector<uint8_t>& original, bool glb, std:
       break;
     default:
       for (int k = 0; k < 1 + int(random() % 3); ++k) {
+        // Text files change length with each replacement; GLB JSON does not.
         const size_t start = glb ? 20 : 0;
-        replace_number(bytes, start + random() % (json_end - start), json_end,
+        const size_t end = glb ? json_end : bytes.size();
+        if (end <= start) break;
+        replace_number(bytes, start + random() % (end - start), end,
                        glb ? std::to_string(random() % 64) : numbers[random() % 13], glb);
       }
   }
