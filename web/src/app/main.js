@@ -1,7 +1,6 @@
 // Wires the page: files → decode (three loaders) → worker (repair + Pipeline)
 // → viewer; the panel re-runs only what a changed parameter needs.
-import { DRACOLoader } from 'three/examples/jsm/loaders/DRACOLoader.js';
-import { loadMeshFiles } from '../io/load-files.js';
+import { pickMainFile } from '../io/load-files.js';
 import { sampleMesh } from '../io/sample.js';
 import { WeightBrush } from '../viewer/brush.js';
 import { Viewer } from '../viewer/viewer.js';
@@ -12,7 +11,8 @@ import { PipelineClient } from './pipeline-client.js';
 import { STAGES } from '../worker/protocol.js';
 
 const params = defaultParams();
-const dracoLoader = new DRACOLoader().setDecoderPath(`${import.meta.env.BASE_URL}draco/`);
+// Three.js's Draco decoder, served from draco/ beside the app (vite.config.js).
+const dracoPath = new URL(`${import.meta.env.BASE_URL}draco/`, location.href).href;
 // Test and debugging hooks: the last result, the stages each run re-computed.
 const app = (window.crestline = { results: [], params, lastResult: null, fields: null, mesh: null });
 
@@ -30,8 +30,8 @@ let rescaleThreshold = false;
 
 const client = new PipelineClient({
   onProgress: ({ stage, fraction }) => showProgress(stage, (STAGES.indexOf(stage) + fraction) / STAGES.length),
-  onLoaded: ({ name, vertices, triangles, notes, milliseconds }) => {
-    app.mesh = { name, vertices, triangles, readMs: app.mesh?.readMs, repairMs: milliseconds };
+  onLoaded: ({ name, vertices, triangles, notes, milliseconds, readMs }) => {
+    app.mesh = { name, vertices, triangles, readMs, repairMs: milliseconds };
     showFile(`${name}: ${triangles.toLocaleString()} triangles`);
     showNotes(notes);
   },
@@ -69,7 +69,8 @@ const client = new PipelineClient({
     showNotes(['Cancelled: change a parameter to compute again.']);
   },
   // Core messages are one sentence without the file name: prefix it.
-  onError: ({ message, kind }) => fail(app.mesh?.name && kind !== 'internal' ? `${app.mesh.name}: ${message}` : message),
+  onError: ({ message, kind, named }) =>
+    fail(app.mesh?.name && !named && kind !== 'internal' ? `${app.mesh.name}: ${message}` : message),
 });
 
 function fail(message) {
@@ -87,8 +88,11 @@ function compute() {
   setState('busy');
   // After a cancel that had to restart the worker, the mesh is sent again.
   if (client.hasMesh) client.setOptions(currentOptions());
-  else if (app.soup) sendSoup(app.soup);
+  else if (app.files) client.open(copies(app.files), dracoPath, currentOptions());
+  else if (app.soup) client.load(app.soup.name, app.soup.positions.slice(), app.soup.indices.slice(), currentOptions());
 }
+
+const copies = (files) => files.map(({ name, bytes }) => ({ name, bytes: bytes.slice(0) }));
 
 function applyDisplay() {
   viewer.lines.setShown(params.showRidges, params.showValleys);
@@ -143,41 +147,39 @@ const gui = createGui(params, {
   },
 });
 
-function loadSoup({ name, positions, indices }, readMs = 0) {
+/** A new mesh: state reset, then `send` starts the worker on it. */
+function startMesh(name, send) {
   showError(null);
   showNotes([]);
   setState('busy');
-  app.mesh = null;
   app.fields = null;
   app.surfaceShown = false; // the next surface is framed
+  app.mesh = { name };
   pendingRun = false;
   rescaleThreshold = true;
-  showProgress('repair', 0);
-  app.mesh = { name, readMs };
-  // A copy stays here: the worker may have to be restarted (cancel, crash).
-  app.soup = { name, positions: positions.slice(), indices: indices.slice() };
   brush.weights = null; // a new mesh starts homogeneous
-  client.load(name, positions, indices, { ...pipelineOptions(params), vertexWeights: null });
+  send({ ...pipelineOptions(params), vertexWeights: null });
 }
 
-function sendSoup({ name, positions, indices }) {
-  showProgress('repair', 0);
-  client.load(name, positions.slice(), indices.slice(), currentOptions());
+/** The built-in sample, already a soup. A copy stays here in case the worker restarts. */
+function loadSoup({ name, positions, indices }) {
+  app.files = null;
+  app.soup = { name, positions: positions.slice(), indices: indices.slice() };
+  startMesh(name, (options) => client.load(name, positions, indices, options));
 }
 
-async function openFiles(files) {
-  if (!files.length) return;
+/** Dropped or picked files: decoded in the worker, so the page never blocks. */
+async function openFiles(fileList) {
+  if (!fileList.length) return;
   if (client.busy) client.restart(); // a new mesh replaces the running job
-  setState('busy');
-  showError(null);
-  showProgress('reading', 0);
   try {
-    const started = performance.now();
-    const buffers = await Promise.all(files.map(async (f) => ({ name: f.name, bytes: await f.arrayBuffer() })));
-    const soup = await loadMeshFiles(buffers, { dracoLoader });
-    loadSoup(soup, performance.now() - started);
+    const files = await Promise.all(fileList.map(async (f) => ({ name: f.name, bytes: await f.arrayBuffer() })));
+    const main = pickMainFile(files); // unsupported formats fail here, before any work
+    app.files = copies(files); // kept in case the worker restarts
+    app.soup = null;
+    startMesh(main.name, (options) => client.open(files, dracoPath, options));
   } catch (error) {
-    fail(error.kind ? error.message : `${files[0].name}: could not be read (${error.message}).`);
+    fail(error.kind ? error.message : `${fileList[0].name}: could not be read (${error.message}).`);
   }
 }
 
@@ -192,7 +194,10 @@ app.update = (partial) => {
 };
 
 installDrop(document.body, openFiles);
-picker.addEventListener('change', () => openFiles([...picker.files]));
+picker.addEventListener('change', () => {
+  openFiles([...picker.files]);
+  picker.value = ''; // the same file can be picked again
+});
 document.getElementById('cancel').addEventListener('click', () => client.cancel());
 applyDisplay();
 loadSoup(sampleMesh());

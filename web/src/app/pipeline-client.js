@@ -47,6 +47,12 @@ export class PipelineClient {
     return this.send({ type: 'load', name, positions, indices, options });
   }
 
+  /** Files to decode in the worker (their buffers are transferred). */
+  open(files, dracoPath, options) {
+    this.hasMesh = false;
+    return this.send({ type: 'open', files, dracoPath, options });
+  }
+
   setOptions(options) {
     return this.send({ type: 'options', options });
   }

@@ -240,6 +240,7 @@ export class CrestlineViewer extends HTMLElement {
     this.session?.dispose();
     this.session = null;
     this.loadedSrc = null;
+    this.lines = null;
     this.busy = false;
     this.view.dispose();
     this.view = new WidgetView(this.parts.canvas);

@@ -3,6 +3,8 @@
 //
 // page → worker
 //   {type: 'init', cancelFlag?: Int32Array over a SharedArrayBuffer}
+//   {type: 'open', job, files: [{name, bytes: ArrayBuffer}], dracoPath, options}
+//       decode the dropped files (web/src/io), then as 'load'
 //   {type: 'load', job, name, positions: Float64Array, indices: Uint32Array, options}
 //       repair (weld) the soup, build a Pipeline, run it with `options`
 //   {type: 'options', job, options}   set_options + run: only dirty stages re-run
@@ -10,12 +12,12 @@
 // worker → page
 //   {type: 'ready'}
 //   {type: 'progress', job, stage, fraction}
-//   {type: 'loaded', job, name, vertices, triangles, notes, report}
+//   {type: 'loaded', job, name, vertices, triangles, notes, report, milliseconds (repair), readMs?}
 //   {type: 'result', job, ran: [stage], stats, lines, milliseconds, surface?}
 //       surface {positions: Float64Array, indices: Uint32Array} when pre-smoothing ran
 //   {type: 'fields', job, fields}
 //   {type: 'cancelled', job}
-//   {type: 'error', job, message, kind}
+//   {type: 'error', job, message, kind, named}   named: the message already names the file
 //
 // Cancel: the page sets cancelFlag[0] = 1; the worker's progress callback
 // sees it and the pipeline stops (staying valid up to its last finished

@@ -2,6 +2,9 @@
 // Protocol in protocol.js.
 import createCrestline from '../../../wasm/dist/crestline.js';
 import wasmUrl from '../../../wasm/dist/crestline.wasm?url';
+import { DRACOLoader } from 'three/examples/jsm/loaders/DRACOLoader.js';
+import { loadMeshFiles } from '../io/load-files.js';
+import { MeshError } from '../io/mesh-error.js';
 import { createEngine } from './engine.js';
 import { transferables } from './protocol.js';
 
@@ -11,6 +14,7 @@ let cancelFlag = null;
 let job = 0;
 let surfaceStale = false;
 let lastPost = { stage: '', fraction: -1 };
+let dracoLoader = null;
 
 const post = (message) => self.postMessage(message, transferables(message));
 
@@ -41,17 +45,30 @@ function run(options) {
   }
 }
 
+function load(soup, options) {
+  self.postMessage({ type: 'progress', job, stage: 'repair', fraction: 0 });
+  const loaded = engine.load(soup);
+  surfaceStale = true;
+  post({ type: 'loaded', job, ...loaded, readMs: soup.readMs });
+  run(options);
+}
+
 async function handle(message) {
   job = message.job;
   await start();
   switch (message.type) {
-    case 'load': {
-      const loaded = engine.load(message);
-      surfaceStale = true;
-      post({ type: 'loaded', job, ...loaded });
-      run(message.options);
+    case 'open': {
+      // Decoding here keeps the page responsive even for a large OBJ.
+      self.postMessage({ type: 'progress', job, stage: 'reading', fraction: 0 });
+      dracoLoader ??= new DRACOLoader().setDecoderPath(message.dracoPath);
+      const started = performance.now();
+      const soup = await loadMeshFiles(message.files, { dracoLoader });
+      load({ ...soup, readMs: performance.now() - started }, message.options);
       break;
     }
+    case 'load':
+      load(message, message.options);
+      break;
     case 'options':
       run(message.options);
       break;
@@ -81,7 +98,8 @@ if (typeof WorkerGlobalScope !== 'undefined' && self instanceof WorkerGlobalScop
       const message = error instanceof WebAssembly.RuntimeError
         ? `The computation failed inside WebAssembly (${error.message}); the page has reset the engine.`
         : error.message;
-      post({ type: 'error', job: data.job, message, kind: error.kind ?? 'internal' });
+      // A MeshError already names the file; core errors do not.
+      post({ type: 'error', job: data.job, message, kind: error.kind ?? 'internal', named: error instanceof MeshError });
     }
   };
 }
