@@ -1,9 +1,11 @@
 // <crestline-viewer> in headless Chromium, loaded from another origin than
 // the page (two static servers): load then lines, a re-threshold that changes
 // the count, the exports, 20 viewers on one page without WebGL context loss,
-// clear errors for bad sources, and the iframe embed. Needs web/dist
-// (web/build.sh builds the widget after the app).
+// clear errors for bad sources, and the iframe embed. The widget is built
+// afresh (web/vite.widget.config.js, as web/build.sh does) into a private
+// folder: web/dist is rebuilt by other work while tests run. Needs wasm/dist.
 import assert from 'node:assert/strict';
+import { execFileSync } from 'node:child_process';
 import { existsSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
@@ -13,7 +15,7 @@ import { serve } from './server.mjs';
 import { MESHES, ROOT, haveMeshes, sineHeightField } from '../node/helpers.mjs';
 import { glbFromSoup } from './widget-glb.mjs';
 
-const DIST = join(ROOT, 'web/dist');
+let dist;
 // The page's site (its pages, its meshes) and the widget's (a CDN, say).
 const SITE_HEADERS = { 'Cross-Origin-Opener-Policy': null, 'Cross-Origin-Embedder-Policy': null, 'Cross-Origin-Resource-Policy': null, 'Access-Control-Allow-Origin': '*' };
 const CDN_HEADERS = { ...SITE_HEADERS, 'Cross-Origin-Resource-Policy': 'cross-origin' };
@@ -24,12 +26,14 @@ const MAIN_MESH = haveMeshes ? '/meshes/glb/fandisk.glb' : '/pages/sine.glb';
 const SECOND_MESH = haveMeshes ? '/meshes/glb/pmndrs-bunny-draco.glb' : '/pages/sine.glb';
 
 before(async () => {
-  assert.ok(existsSync(join(DIST, 'crestline-viewer.js')), 'web/dist/crestline-viewer.js is missing: run web/build.sh');
+  assert.ok(existsSync(join(ROOT, 'wasm/dist/crestline.wasm')), 'wasm/dist is missing: run wasm/build.sh');
+  dist = mkdtempSync(join(tmpdir(), 'crestline-widget-dist-'));
+  execFileSync(join(ROOT, 'node_modules/.bin/vite'), ['build', '--config', join(ROOT, 'web/vite.widget.config.js'), '--outDir', dist, '--logLevel', 'error'], { cwd: ROOT, stdio: ['ignore', 'ignore', 'inherit'] });
   pages = mkdtempSync(join(tmpdir(), 'crestline-widget-'));
   writeFileSync(join(pages, 'sine.glb'), glbFromSoup(sineHeightField({ n: 40 })));
   writeFileSync(join(pages, 'garbage.glb'), 'this is not a mesh');
   site = await serve({ '/meshes/': MESHES, '/pages/': pages }, SITE_HEADERS);
-  cdn = await serve({ '/': DIST }, CDN_HEADERS);
+  cdn = await serve({ '/': dist }, CDN_HEADERS);
   siteUrl = `http://127.0.0.1:${site.address().port}`;
   // "localhost" vs "127.0.0.1": another origin even on the same port range.
   cdnUrl = `http://localhost:${cdn.address().port}`;
@@ -40,7 +44,7 @@ after(async () => {
   await browser?.close();
   site?.close();
   cdn?.close();
-  if (pages) rmSync(pages, { recursive: true, force: true });
+  for (const folder of [pages, dist]) if (folder) rmSync(folder, { recursive: true, force: true });
 });
 
 /** A page on the site that loads the element from the CDN; events are recorded in window.events. */
@@ -79,12 +83,17 @@ async function openPage(name, body, viewport = { width: 1000, height: 700 }) {
 
 const eventsOf = (page, id, type) => page.evaluate(([id, type]) => window.events.filter((e) => e.id === id && e.type === type), [id, type]);
 
-function waitForEvents(page, id, type, count, timeout = 30000) {
-  return page.waitForFunction(
-    ([id, type, count]) => window.events.filter((e) => e.id === id && e.type === type).length >= count || window.events.some((e) => e.id === id && e.type === 'error'),
-    [id, type, count],
-    { timeout },
-  );
+async function waitForEvents(page, id, type, count, timeout = 30000) {
+  try {
+    await page.waitForFunction(
+      ([id, type, count]) => window.events.filter((e) => e.id === id && e.type === type).length >= count || window.events.some((e) => e.id === id && e.type === 'error'),
+      [id, type, count],
+      { timeout },
+    );
+  } catch (error) {
+    const seen = await page.evaluate(() => ({ events: window.events, progress: window.progress.slice(-3) }));
+    throw new Error(`${id}: no ${count}× ${type} within ${timeout} ms; saw ${JSON.stringify(seen)}`);
+  }
 }
 
 const total = (counts) => counts.ridges + counts.valleys;
@@ -186,7 +195,7 @@ test('the iframe embed shows one mesh full-frame with the fragment parameters', 
 test('lazy loading waits for the viewport; keyboard orbit; reduced motion stops auto-rotate', async () => {
   const { page } = await openPage('lazy.html', `
     <crestline-viewer id="near" src="${MAIN_MESH}" interaction="orbit" auto-rotate poster="data:image/gif;base64,R0lGODlhAQABAAAAACw="></crestline-viewer>
-    <crestline-viewer id="still" src="${MAIN_MESH}" interaction="none"></crestline-viewer>
+    <crestline-viewer id="still" src="${MAIN_MESH}" interaction="none" threshold="0" style="--crestline-ridge-color: #00ff00; --crestline-valley-color: #ff00ff"></crestline-viewer>
     <div style="height:3000px"></div>
     <crestline-viewer id="far" src="${MAIN_MESH}" loading="lazy"></crestline-viewer>`);
   await page.emulateMedia({ reducedMotion: 'reduce' });
@@ -209,6 +218,8 @@ test('lazy loading waits for the viewport; keyboard orbit; reduced motion stops 
   await page.keyboard.press('ArrowLeft');
   assert.notDeepEqual(await camera('near'), before);
   const still = await camera('still');
+  // CSS custom properties colour the lines (and so the SVG).
+  assert.match(await page.evaluate(() => document.getElementById('still').toSVG()), /stroke="#00ff00"[^]*stroke="#ff00ff"/);
   await page.evaluate(() => document.getElementById('still').shadowRoot.querySelector('canvas').dispatchEvent(new KeyboardEvent('keydown', { key: 'ArrowLeft' })));
   assert.deepEqual(await camera('still'), still);
   // Without reduced motion, auto-rotate turns the model.
