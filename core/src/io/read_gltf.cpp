@@ -340,7 +340,7 @@ class GltfReader {
         if (!indexed) return uint32_t(k);
         const double index = indices[k];
         if (!(index >= 0 && index < double(vertices))) {
-          invalid(where + " refers to vertex " + std::to_string(int64_t(index)) + " but has only " +
+          invalid(where + " refers to vertex " + number_text(index) + " but has only " +
                   std::to_string(vertices) + " vertices.");
         }
         return uint32_t(index);

@@ -231,7 +231,7 @@ TriangleSoup read_ply(const Input& in, const ReadOptions& options) {
           if (!wanted) continue;
           if (!(v >= 0 && v < double(vertices))) {
             fail(ErrorKind::InvalidInput, in,
-                 "face " + std::to_string(i) + " refers to vertex " + std::to_string(int64_t(v)) +
+                 "face " + std::to_string(i) + " refers to vertex " + number_text(v) +
                      " but the file has " + std::to_string(vertices) + " vertices.");
           }
           polygon.push_back(uint32_t(v));

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <string>
@@ -49,6 +50,14 @@ void add_polygon(TriangleSoup& soup, const uint32_t* poly, size_t n);
 /// referenced vertex non-finite. Non-finite vertices are otherwise passed
 /// through with a note; repair_mesh drops their triangles.
 void finish_soup(TriangleSoup& soup, const Input& in);
+
+/// A number read from a file, for messages: integers exactly, anything else
+/// (huge, fractional, NaN) as %g would, never through an integer cast.
+inline std::string number_text(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.15g", value);
+  return text;
+}
 
 /// Reads a whole file; throws Error(Io) naming `display_name` on failure.
 std::vector<uint8_t> read_file(const std::string& path, const std::string& display_name);

@@ -48,13 +48,22 @@ struct Union {
 };
 
 // Merges vertices closer than `tolerance` with a hash grid of that cell size;
-// the first vertex of a cluster (in input order) represents it.
-std::vector<uint32_t> weld(const std::vector<Vec3>& points, const std::vector<uint8_t>& finite, const Vec3& lo,
+// the first vertex of a cluster (in input order) represents it. Only
+// `weldable` vertices (finite and used by a triangle, so inside the bounding
+// box) take part: unreferenced ones far away would share clamped cells.
+std::vector<uint32_t> weld(const std::vector<Vec3>& points, const std::vector<uint8_t>& weldable, const Vec3& lo,
                            double tolerance, size_t& welded) {
   std::vector<uint32_t> representative(points.size());
   std::iota(representative.begin(), representative.end(), 0u);
   if (!(tolerance > 0)) return representative;
   const double inv = 1.0 / tolerance;
+  if (!std::isfinite(inv)) return representative;  // a subnormal tolerance: nothing to weld
+  // Grid cell of a scaled coordinate, clamped so the conversion is defined.
+  auto cell = [](double q) {
+    constexpr double limit = 4e18;
+    const double c = std::floor(q);
+    return c >= limit ? int64_t(limit) : c <= -limit ? -int64_t(limit) : int64_t(c);
+  };
   auto cell_key = [](int64_t x, int64_t y, int64_t z) {
     return static_cast<uint64_t>(x) * 73856093u ^ static_cast<uint64_t>(y) * 19349663u ^
            static_cast<uint64_t>(z) * 83492791u;
@@ -63,10 +72,9 @@ std::vector<uint32_t> weld(const std::vector<Vec3>& points, const std::vector<ui
   grid.reserve(points.size());
   const double tol2 = tolerance * tolerance;
   for (uint32_t i = 0; i < points.size(); ++i) {
-    if (!finite[i]) continue;
+    if (!weldable[i]) continue;
     const Vec3 q = (points[i] - lo) * inv;
-    const int64_t cx = static_cast<int64_t>(std::floor(q.x())), cy = static_cast<int64_t>(std::floor(q.y())),
-                  cz = static_cast<int64_t>(std::floor(q.z()));
+    const int64_t cx = cell(q.x()), cy = cell(q.y()), cz = cell(q.z());
     uint32_t found = i;
     for (int64_t dx = -1; dx <= 1 && found == i; ++dx)
       for (int64_t dy = -1; dy <= 1 && found == i; ++dy)
@@ -252,15 +260,16 @@ RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options)
     points[i] = Vec3(soup.positions[3 * i], soup.positions[3 * i + 1], soup.positions[3 * i + 2]);
     finite[i] = points[i].allFinite();
   }
+  std::vector<uint8_t> weldable(nv, 0);
   for (uint32_t v : soup.indices)
-    if (finite[v]) lo = lo.cwiseMin(points[v]), hi = hi.cwiseMax(points[v]);
+    if (finite[v]) lo = lo.cwiseMin(points[v]), hi = hi.cwiseMax(points[v]), weldable[v] = 1;
   const double diagonal = (hi - lo).norm();
   if (!std::isfinite(diagonal)) {
     if (!lo.allFinite()) throw Error(ErrorKind::InvalidInput, "no vertex of any triangle has finite coordinates.");
     throw Error(ErrorKind::InvalidInput, "the coordinates are too large to compute with (the bounding box overflows).");
   }
 
-  const std::vector<uint32_t> rep = weld(points, finite, lo, options.weld_tolerance * diagonal, report.welded_vertices);
+  const std::vector<uint32_t> rep = weld(points, weldable, lo, options.weld_tolerance * diagonal, report.welded_vertices);
 
   // Triangles on welded vertices; drop non-finite, degenerate and duplicates.
   std::vector<Triangle> tris;
