@@ -144,7 +144,7 @@ test('a viewer from another origin loads a GLB, re-thresholds and exports', asyn
   await page.close();
 });
 
-test('20 viewers on one page load without WebGL context loss', async () => {
+test('20 viewers share one WebGL context, load without context loss and redraw after one', async () => {
   const body = Array.from({ length: 20 }, (_, i) =>
     `<crestline-viewer id="v${i}" src="${i % 2 ? SECOND_MESH : MAIN_MESH}" style="width:190px;height:120px" ${i % 3 ? '' : 'auto-rotate'}></crestline-viewer>`).join('');
   const { page, problems } = await openPage('twenty.html', `<div style="display:flex;flex-wrap:wrap">${body}</div>`, { width: 1000, height: 700 });
@@ -152,16 +152,35 @@ test('20 viewers on one page load without WebGL context loss', async () => {
   const errors = await page.evaluate(() => window.events.filter((e) => e.type === 'error'));
   assert.deepEqual(errors, []);
   // Every viewer has drawn something into its canvas.
-  await page.waitForTimeout(300);
-  const blank = await page.evaluate(() => [...document.querySelectorAll('crestline-viewer')].filter((v) => {
+  const blankViewers = () => page.evaluate(() => [...document.querySelectorAll('crestline-viewer')].filter((v) => {
     const canvas = v.shadowRoot.querySelector('canvas');
     const { data } = canvas.getContext('2d').getImageData(0, 0, canvas.width, canvas.height);
     for (let i = 3; i < data.length; i += 4) if (data[i]) return false;
     return true;
   }).map((v) => v.id));
+  await page.waitForTimeout(300);
+  const blank = await blankViewers();
   assert.deepEqual(blank, []);
   assert.equal(await page.evaluate(() => window.webglCanvases.size), 1, 'one WebGL context for all viewers');
   assert.deepEqual(problems, []);
+  // When the browser takes the context away, every viewer draws again (on a new one).
+  await page.evaluate(async () => {
+    const [canvas] = window.webglCanvases;
+    const lose = canvas.getContext('webgl2').getExtension('WEBGL_lose_context');
+    const lost = new Promise((resolve) => canvas.addEventListener('webglcontextlost', resolve, { once: true }));
+    lose.loseContext();
+    await lost;
+    for (const v of document.querySelectorAll('crestline-viewer')) {
+      const c = v.shadowRoot.querySelector('canvas');
+      c.getContext('2d').clearRect(0, 0, c.width, c.height);
+    }
+  });
+  let redrawn = false;
+  for (let wait = 0; wait < 10000 && !redrawn; wait += 250) {
+    await page.waitForTimeout(250);
+    redrawn = (await blankViewers()).length === 0;
+  }
+  assert.ok(redrawn, `still blank after the context was lost: ${await blankViewers()}`);
   if (process.env.CRESTLINE_SHOTS) await page.screenshot({ path: join(ROOT, 'test-results/widget-twenty.png') });
   await page.close();
 });

@@ -8,19 +8,21 @@ import { WebGLRenderer } from 'three';
 let renderer = null;
 const dirty = new Set();
 let frame = 0;
-let lost = false;
+let retry = 0;
 
+/** The shared renderer, created on first use and again after a context loss. */
 function shared() {
   if (renderer) return renderer;
   const canvas = document.createElement('canvas');
   renderer = new WebGLRenderer({ canvas, antialias: true, alpha: true, premultipliedAlpha: true });
   renderer.setPixelRatio(1);
   canvas.addEventListener('webglcontextlost', (event) => {
-    event.preventDefault(); // the browser may restore it
-    lost = true;
-  });
-  canvas.addEventListener('webglcontextrestored', () => {
-    lost = false;
+    event.preventDefault();
+    // A canvas outside the document does not reliably get its context back
+    // (Chromium never restores it): start over with a new one. Every view
+    // uploads its buffers again on its next draw.
+    renderer.dispose();
+    renderer = null;
     for (const view of views) dirty.add(view);
     schedule();
   });
@@ -47,7 +49,14 @@ function schedule() {
 
 function drawDirty(time) {
   frame = 0;
-  if (lost) return;
+  try {
+    shared();
+  } catch {
+    // No context now (the GPU is resetting, or too many pages use it): try again soon.
+    clearTimeout(retry);
+    retry = setTimeout(schedule, 1000);
+    return;
+  }
   const now = [...dirty];
   dirty.clear();
   for (const view of now) if (view.visible) drawView(view, time);
@@ -80,9 +89,4 @@ function drawView(view, time) {
 /** The shared renderer (for depth read-back by the SVG export). */
 export function sharedRenderer() {
   return shared();
-}
-
-/** True when the browser has taken the context away (and not yet given it back). */
-export function contextLost() {
-  return lost;
 }
