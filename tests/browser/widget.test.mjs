@@ -185,8 +185,17 @@ test('20 viewers share one WebGL context, load without context loss and redraw a
   await page.close();
 });
 
-test('a bad src fires error with a clear message', async () => {
-  const { page } = await openPage('bad.html', '<crestline-viewer id="missing" src="/meshes/no-such-mesh.glb"></crestline-viewer><crestline-viewer id="garbage" src="/pages/garbage.glb"></crestline-viewer>');
+test('a glTF with its .bin and an OBJ load; a bad src fires error with a clear message', async () => {
+  const good = haveMeshes ? `
+    <crestline-viewer id="gltf" src="/meshes/gltf/Duck/Duck.gltf"></crestline-viewer>
+    <crestline-viewer id="obj" src="/meshes/cad/fandisk-quads.obj"></crestline-viewer>` : '';
+  const { page } = await openPage('sources.html', `${good}
+    <crestline-viewer id="missing" src="/meshes/no-such-mesh.glb"></crestline-viewer>
+    <crestline-viewer id="garbage" src="/pages/garbage.glb"></crestline-viewer>`);
+  for (const id of haveMeshes ? ['gltf', 'obj'] : []) {
+    await waitForEvents(page, id, 'lines', 1);
+    assert.deepEqual(await eventsOf(page, id, 'error'), []);
+  }
   await waitForEvents(page, 'missing', 'error', 1);
   await waitForEvents(page, 'garbage', 'error', 1);
   const [missing] = await eventsOf(page, 'missing', 'error');
