@@ -138,6 +138,12 @@ test('a broken file and an unsupported one: one sentence each, and the page reco
   await drop([{ name: 'readme.txt', text: 'hello' }]);
   await page.waitForFunction(() => /readme/.test(document.getElementById('error').textContent));
   assert.match(await page.textContent('#error'), /readme\.txt: unsupported format/);
+  // The previous mesh is still loaded and re-filters without a recompute.
+  const previous = await page.evaluate(() => window.crestline.lastResult);
+  const result = await nextResult(() => page.evaluate((t) => window.crestline.update({ autoThreshold: false, threshold: t }), previous.stats.threshold * 0.9));
+  assert.equal(result.name, previous.name);
+  assert.deepEqual(result.ran, ['filter']);
+  await nextResult(() => page.evaluate(() => window.crestline.update({ autoThreshold: true })));
 });
 
 test('OBJ (mannequin): lines match the native CLI', { skip: noMeshes }, async () => {

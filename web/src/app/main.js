@@ -48,6 +48,7 @@ const client = new PipelineClient({
     rescaleThreshold = false;
     showStats(result, app.mesh);
     showProgress(null);
+    showError(null); // a good result supersedes an earlier failure
     const upstream = ['presmooth', 'curvature', 'extremality', 'regularity', 'smoothing'];
     if (result.ran.some((s) => upstream.includes(s))) app.fields = null;
     if (pendingRun) {
@@ -69,8 +70,16 @@ const client = new PipelineClient({
     showNotes(['Cancelled: change a parameter to compute again.']);
   },
   // Core messages are one sentence without the file name: prefix it.
-  onError: ({ message, kind, named }) =>
-    fail(app.mesh?.name && !named && kind !== 'internal' ? `${app.mesh.name}: ${message}` : message),
+  onError: ({ message, kind, named }) => {
+    fail(app.mesh?.name && !named && kind !== 'internal' ? `${app.mesh.name}: ${message}` : message);
+    // A file that could not be decoded never reached the pipeline: the
+    // worker still holds the previous mesh, which stays usable.
+    if (named && app.previous) {
+      Object.assign(app, app.previous.state);
+      client.hasMesh = app.previous.hasMesh;
+    }
+    app.previous = null;
+  },
 });
 
 function fail(message) {
@@ -149,6 +158,7 @@ const gui = createGui(params, {
 
 /** A new mesh: state reset, then `send` starts the worker on it. */
 function startMesh(name, send) {
+  app.previous = { state: { mesh: app.mesh, files: app.files, soup: app.soup, surfaceShown: true }, hasMesh: client.hasMesh };
   showError(null);
   showNotes([]);
   setState('busy');
@@ -163,9 +173,10 @@ function startMesh(name, send) {
 
 /** The built-in sample, already a soup. A copy stays here in case the worker restarts. */
 function loadSoup({ name, positions, indices }) {
-  app.files = null;
-  app.soup = { name, positions: positions.slice(), indices: indices.slice() };
+  const kept = { name, positions: positions.slice(), indices: indices.slice() }; // before the transfer
   startMesh(name, (options) => client.load(name, positions, indices, options));
+  app.files = null;
+  app.soup = kept;
 }
 
 /** Dropped or picked files: decoded in the worker, so the page never blocks. */
@@ -175,9 +186,10 @@ async function openFiles(fileList) {
   try {
     const files = await Promise.all(fileList.map(async (f) => ({ name: f.name, bytes: await f.arrayBuffer() })));
     const main = pickMainFile(files); // unsupported formats fail here, before any work
-    app.files = copies(files); // kept in case the worker restarts
-    app.soup = null;
+    const kept = copies(files); // kept in case the worker restarts
     startMesh(main.name, (options) => client.open(files, dracoPath, options));
+    app.files = kept;
+    app.soup = null;
   } catch (error) {
     fail(error.kind ? error.message : `${fileList[0].name}: could not be read (${error.message}).`);
   }
