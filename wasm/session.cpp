@@ -130,8 +130,10 @@ val Session::setOptions(val o) {
     read(o, "fairingIterations", p.fairing.iterations);
     read(o, "threshold", p.filter.threshold);
     const val weights = o["vertexWeights"];
-    if (weights.isNull()) p.smoothing.vertex_weights.clear();
-    else if (!weights.isUndefined()) p.smoothing.vertex_weights = copy_in<double>(weights);
+    if (weights.isNull())
+      p.smoothing.vertex_weights.clear();
+    else if (!weights.isUndefined())
+      p.smoothing.vertex_weights = copy_in<double>(weights);
     pipeline_->set_options(p);
     val out = val::object();
     out.set("ok", true);
@@ -185,8 +187,8 @@ val Session::surface() const {
   if (!pipeline_) return out;
   const Mesh& mesh = pipeline_->surface();
   out.set("positions", positions_out(mesh.positions));
-  out.set("indices", copy_out(mesh.triangles.empty() ? nullptr : mesh.triangles.front().data(),
-                              mesh.triangles.size() * 3));
+  out.set("indices",
+          copy_out(mesh.triangles.empty() ? nullptr : mesh.triangles.front().data(), mesh.triangles.size() * 3));
   return out;
 }
 
@@ -251,17 +253,13 @@ val Session::stats() const {
   return out;
 }
 
-std::string Session::linesObj() const {
-  return pipeline_ ? io::write_lines_obj(pipeline_->lines()) : std::string();
-}
+std::string Session::linesObj() const { return pipeline_ ? io::write_lines_obj(pipeline_->lines()) : std::string(); }
 
 std::string Session::linesJson() const {
   return pipeline_ ? io::write_lines_json(pipeline_->lines(), pipeline_->stats()) : std::string();
 }
 
-std::string Session::statsJson() const {
-  return pipeline_ ? io::stats_json(pipeline_->stats()) : std::string();
-}
+std::string Session::statsJson() const { return pipeline_ ? io::stats_json(pipeline_->stats()) : std::string(); }
 
 val Session::linesSvg(val o) const {
   if (!pipeline_) return error_value(error_kind_name(ErrorKind::InvalidInput), "no mesh is loaded");
@@ -280,9 +278,8 @@ val Session::linesSvg(val o) const {
     }
   }
   if (!known) return error_value(error_kind_name(ErrorKind::InvalidInput), "unknown view \"" + view + "\"");
-  return guarded(triangles_, [&] {
-    return val(io::write_lines_svg(pipeline_->lines(), pipeline_->surface(), options));
-  });
+  return guarded(triangles_,
+                 [&] { return val(io::write_lines_svg(pipeline_->lines(), pipeline_->surface(), options)); });
 }
 
 }  // namespace crestline::wasm
