@@ -225,7 +225,14 @@ test('lazy loading waits for the viewport; keyboard orbit; reduced motion stops 
     <crestline-viewer id="near" src="${MAIN_MESH}" interaction="orbit" auto-rotate poster="data:image/gif;base64,R0lGODlhAQABAAAAACw="></crestline-viewer>
     <crestline-viewer id="still" src="${MAIN_MESH}" interaction="none" threshold="0" style="--crestline-ridge-color: #00ff00; --crestline-valley-color: #ff00ff"></crestline-viewer>
     <div style="height:3000px"></div>
-    <crestline-viewer id="far" src="${MAIN_MESH}" loading="lazy"></crestline-viewer>`);
+    <crestline-viewer id="far" src="${MAIN_MESH}" loading="lazy"></crestline-viewer>
+    <script>
+      // A property set before the definition arrives still reaches the attribute.
+      const early = document.createElement('crestline-viewer');
+      early.id = 'early';
+      early.threshold = 2.5;
+      document.body.append(early);
+    </script>`);
   await page.emulateMedia({ reducedMotion: 'reduce' });
   await waitForEvents(page, 'near', 'lines', 1);
   await waitForEvents(page, 'still', 'lines', 1);
@@ -236,6 +243,7 @@ test('lazy loading waits for the viewport; keyboard orbit; reduced motion stops 
     const { width, height } = near.getBoundingClientRect();
     return { size: [width, height], tabIndex: canvas.tabIndex, label: canvas.getAttribute('aria-label'), posterHidden: near.shadowRoot.querySelector('[part=poster]').hidden };
   });
+  assert.equal(await page.getAttribute('#early', 'threshold'), '2.5');
   assert.deepEqual(state, { size: [300, 150], tabIndex: 0, label: 'A 3D model with its ridge and valley lines', posterHidden: true });
   // Reduced motion: auto-rotate is off, so the camera stands still.
   const before = await camera('near');

@@ -58,6 +58,20 @@ export function reflectAttributes(klass) {
   }
 }
 
+/**
+ * Properties set on the element before its definition loaded are own
+ * properties that hide the accessors: pass them through the setters.
+ */
+export function upgradeProperties(element) {
+  for (const attribute of Object.keys(ATTRIBUTES)) {
+    const name = propertyName(attribute);
+    if (!Object.prototype.hasOwnProperty.call(element, name)) continue;
+    const value = element[name];
+    delete element[name];
+    element[name] = value;
+  }
+}
+
 const ANGLE = /^(-?[\d.]+)(deg|rad)?$/;
 
 /**

@@ -3,7 +3,7 @@
 import { DRACOLoader } from 'three/examples/jsm/loaders/DRACOLoader.js';
 import { loadMeshFiles } from '../io/load-files.js';
 import { STAGES } from '../worker/protocol.js';
-import { ATTRIBUTES, parseOrbit, reflectAttributes } from './attributes.js';
+import { ATTRIBUTES, parseOrbit, reflectAttributes, upgradeProperties } from './attributes.js';
 import { exportGlb, linesSummary, renderPng } from './exports.js';
 import { fetchMesh } from './fetch-mesh.js';
 import { PipelineSession } from './pool.js';
@@ -45,6 +45,7 @@ export class CrestlineViewer extends HTMLElement {
 
   connectedCallback() {
     clearTimeout(this.releaseTimer);
+    upgradeProperties(this);
     this.resizeObserver = new ResizeObserver(([entry]) => {
       const { width, height } = entry.contentRect;
       this.view.resize(width, height, Math.min(globalThis.devicePixelRatio || 1, 2));
@@ -149,7 +150,7 @@ export class CrestlineViewer extends HTMLElement {
     this.session ??= new PipelineSession((message) => this.receive(message));
     this.progress('fetch', 0);
     try {
-      const files = await fetchMesh(src);
+      const files = await fetchMesh(src, (fraction) => this.progress('fetch', (fraction * READ_SHARE) / 2));
       if (this.loadedSrc !== src) return;
       this.progress('decode', READ_SHARE / 2);
       const soup = await loadMeshFiles(files, { dracoLoader: sharedDraco() });

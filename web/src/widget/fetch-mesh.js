@@ -7,7 +7,29 @@ function nameOf(url) {
   return decodeURIComponent(url.pathname.split('/').pop() || url.hostname);
 }
 
-async function fetchBytes(url, name) {
+/** The body, reporting the fraction received when the size is known. */
+async function readBody(response, onProgress) {
+  const size = Number(response.headers.get('Content-Length'));
+  if (!onProgress || !size || !response.body) return response.arrayBuffer();
+  const bytes = new Uint8Array(size);
+  let received = 0;
+  const reader = response.body.getReader();
+  for (let chunk = await reader.read(); !chunk.done; chunk = await reader.read()) {
+    // Compressed transfers may not match the announced size: fall back to a list.
+    if (received + chunk.value.length > size) return concat([bytes.subarray(0, received), chunk.value], reader);
+    bytes.set(chunk.value, received);
+    received += chunk.value.length;
+    onProgress(received / size);
+  }
+  return bytes.buffer.slice(0, received);
+}
+
+async function concat(chunks, reader) {
+  for (let chunk = await reader.read(); !chunk.done; chunk = await reader.read()) chunks.push(chunk.value);
+  return new Blob(chunks).arrayBuffer();
+}
+
+async function fetchBytes(url, name, onProgress) {
   let response;
   try {
     response = await fetch(url);
@@ -15,14 +37,14 @@ async function fetchBytes(url, name) {
     throw new MeshError(`${name}: could not be fetched (network error, or the server does not allow cross-origin requests).`);
   }
   if (!response.ok) throw new MeshError(`${name}: could not be fetched (HTTP ${response.status}${response.statusText ? ` ${response.statusText}` : ''}).`);
-  return response.arrayBuffer();
+  return readBody(response, onProgress);
 }
 
-/** @returns {Promise<{name, bytes}[]>} */
-export async function fetchMesh(src, base = document.baseURI) {
+/** @returns {Promise<{name, bytes}[]>}; onProgress(fraction) while the main file arrives. */
+export async function fetchMesh(src, onProgress, base = document.baseURI) {
   const url = new URL(src, base);
   const name = nameOf(url);
-  const bytes = await fetchBytes(url, name);
+  const bytes = await fetchBytes(url, name, onProgress);
   const files = [{ name, bytes }];
   if (/\.gltf$/i.test(name)) {
     let json = null;
