@@ -258,6 +258,14 @@ test('lazy loading waits for the viewport; keyboard orbit; reduced motion stops 
   assert.match(await page.evaluate(() => document.getElementById('still').toSVG()), /stroke="#00ff00"[^]*stroke="#ff00ff"/);
   await page.evaluate(() => document.getElementById('still').shadowRoot.querySelector('canvas').dispatchEvent(new KeyboardEvent('keydown', { key: 'ArrowLeft' })));
   assert.deepEqual(await camera('still'), still);
+  // A removed viewer frees its worker session; put back, it loads again.
+  await page.evaluate(async () => {
+    const still = document.getElementById('still');
+    still.remove();
+    await new Promise((resolve) => setTimeout(resolve, 50));
+    document.body.prepend(still);
+  });
+  await waitForEvents(page, 'still', 'lines', 2);
   // Without reduced motion, auto-rotate turns the model.
   await page.emulateMedia({ reducedMotion: 'no-preference' });
   const turned = await camera('near');
