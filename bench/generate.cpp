@@ -1,0 +1,42 @@
+#include "generate.h"
+
+#include "crestline/mesh/cotan.h"
+#include "crestline/mesh/topology.h"
+
+namespace crestline::bench {
+
+TriangleSoup subdivide(const Mesh& mesh) {
+  const Topology topology = build_topology(mesh);
+  const size_t nv = mesh.positions.size(), ne = topology.edges.size(), nt = mesh.triangles.size();
+
+  std::vector<double> areas;
+  std::vector<Vec3> face_normals;
+  triangle_areas_normals(mesh.positions, mesh.triangles, areas, face_normals);
+  std::vector<Vec3> normals(nv, Vec3::Zero());
+  for (size_t t = 0; t < nt; ++t)
+    for (uint32_t v : mesh.triangles[t]) normals[v] += areas[t] * face_normals[t];
+  for (Vec3& n : normals) n = n.norm() > 0 ? Vec3(n.normalized()) : Vec3::Zero();
+
+  TriangleSoup soup;
+  soup.positions.reserve(3 * (nv + ne));
+  for (const Vec3& p : mesh.positions) soup.positions.insert(soup.positions.end(), {p.x(), p.y(), p.z()});
+  for (const auto& [a, b] : topology.edges) {
+    // Hermite midpoint: ½(p_a + p_b) + (m_a − m_b)/8 with m = e − ⟨e,n⟩n.
+    const Vec3 e = mesh.positions[b] - mesh.positions[a];
+    const Vec3 m = 0.5 * (mesh.positions[a] + mesh.positions[b]) +
+                   (e.dot(normals[b]) * normals[b] - e.dot(normals[a]) * normals[a]) / 8.0;
+    soup.positions.insert(soup.positions.end(), {m.x(), m.y(), m.z()});
+  }
+  soup.indices.reserve(12 * nt);
+  for (size_t t = 0; t < nt; ++t) {
+    const Triangle& f = mesh.triangles[t];
+    // Edge k joins corners k and k+1.
+    const uint32_t m0 = static_cast<uint32_t>(nv + topology.triangle_edges[t][0]);
+    const uint32_t m1 = static_cast<uint32_t>(nv + topology.triangle_edges[t][1]);
+    const uint32_t m2 = static_cast<uint32_t>(nv + topology.triangle_edges[t][2]);
+    soup.indices.insert(soup.indices.end(), {f[0], m0, m2, m0, f[1], m1, m2, m1, f[2], m0, m1, m2});
+  }
+  return soup;
+}
+
+}  // namespace crestline::bench
