@@ -1,0 +1,209 @@
+#include "quality_metrics.h"
+
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <unordered_map>
+
+#include "analytic_meshes.h"
+#include "crestline/mesh/repair.h"
+
+namespace crestline::quality {
+namespace {
+
+// Points in a uniform grid of cell size `cell`, for "anything within r ≤ cell?".
+class PointGrid {
+ public:
+  explicit PointGrid(double cell) : cell_(cell) {}
+  void add(const Vec3& p, uint32_t id) {
+    cells_[key(coord(p.x()), coord(p.y()), coord(p.z()))].push_back({p, id});
+  }
+  /// Calls f(id) for every stored point within r of p (r ≤ cell).
+  template <class F>
+  void near(const Vec3& p, double r, F&& f) const {
+    const int64_t cx = coord(p.x()), cy = coord(p.y()), cz = coord(p.z());
+    for (int64_t dx = -1; dx <= 1; ++dx)
+      for (int64_t dy = -1; dy <= 1; ++dy)
+        for (int64_t dz = -1; dz <= 1; ++dz) {
+          auto it = cells_.find(key(cx + dx, cy + dy, cz + dz));
+          if (it == cells_.end()) continue;
+          for (const auto& [q, id] : it->second)
+            if ((q - p).squaredNorm() <= r * r) f(id);
+        }
+  }
+  bool any_near(const Vec3& p, double r) const {
+    bool found = false;
+    near(p, r, [&](uint32_t) { found = true; });
+    return found;
+  }
+
+ private:
+  int64_t coord(double v) const { return static_cast<int64_t>(std::floor(v / cell_)); }
+  static int64_t key(int64_t x, int64_t y, int64_t z) {
+    return (x & 0x1fffff) | ((y & 0x1fffff) << 21) | ((z & 0x1fffff) << 42);
+  }
+  double cell_;
+  std::unordered_map<int64_t, std::vector<std::pair<Vec3, uint32_t>>> cells_;
+};
+
+// A polyline resampled at spacing ≤ step; each sample carries the length it stands for.
+struct Sample {
+  Vec3 point;
+  double length;
+};
+std::vector<Sample> resample(const Polyline& line, double step) {
+  std::vector<Sample> out;
+  const size_t n = line.points.size();
+  const size_t segments = line.closed ? n : (n ? n - 1 : 0);
+  for (size_t i = 0; i < segments; ++i) {
+    const Vec3 &a = line.points[i], &b = line.points[(i + 1) % n];
+    const double len = (b - a).norm();
+    const int pieces = std::max(1, static_cast<int>(std::ceil(len / step)));
+    for (int k = 0; k < pieces; ++k) out.push_back({a + (k + 0.5) / pieces * (b - a), len / pieces});
+  }
+  return out;
+}
+
+// The scored pieces of one type's true curves: maximal runs of samples
+// outside the excluded regions, at least 3 h long.
+struct TruthSample {
+  Vec3 point;
+  double length;
+  int piece;  // −1: excluded
+};
+std::vector<TruthSample> truth_samples(const Surface& s, LineType type, double h, int& pieces) {
+  std::vector<TruthSample> out;
+  pieces = 0;
+  for (const TrueCurve& c : s.curves) {
+    if (c.type != type) continue;
+    const size_t n = c.points.size();
+    std::vector<uint8_t> excluded(n);
+    for (size_t i = 0; i < n; ++i) excluded[i] = s.excluded(c.points[i], h);
+    // A closed curve is walked from an excluded sample, if any, so that a
+    // run never wraps around.
+    size_t start = 0;
+    if (c.closed)
+      for (size_t i = 0; i < n; ++i)
+        if (excluded[i]) {
+          start = i;
+          break;
+        }
+    std::vector<TruthSample> run;
+    auto flush = [&] {
+      double len = 0;
+      for (const TruthSample& t : run) len += t.length;
+      const int id = len >= 3 * h ? pieces++ : -1;
+      for (TruthSample& t : run) t.piece = id, out.push_back(t);
+      run.clear();
+    };
+    for (size_t k = 0; k < n; ++k) {
+      const size_t i = (start + k) % n;
+      const size_t next = (i + 1) % n;
+      const double len = (c.closed || i + 1 < n) ? (c.points[next] - c.points[i]).norm() : 0.0;
+      if (excluded[i]) {
+        flush();
+        out.push_back({c.points[i], len, -1});
+      } else {
+        run.push_back({c.points[i], len, 0});
+      }
+    }
+    flush();
+  }
+  return out;
+}
+
+TypeScore score_type(const Surface& s, LineType type, const std::vector<Polyline>& lines, double h) {
+  TypeScore score;
+  const double tol = kTolerance * h;
+  const std::vector<TruthSample> truth = truth_samples(s, type, h, score.true_curves);
+  PointGrid truth_grid(tol);
+  for (uint32_t i = 0; i < truth.size(); ++i) truth_grid.add(truth[i].point, i);
+
+  PointGrid line_grid(tol);
+  // (line, piece) → extracted length of the line running along the piece.
+  std::map<std::pair<uint32_t, int>, double> along;
+  double near_length = 0;
+  for (uint32_t l = 0; l < lines.size(); ++l) {
+    if (lines[l].type != type) continue;
+    bool scored = false;
+    for (const Sample& q : resample(lines[l], 0.25 * h)) {
+      line_grid.add(q.point, l);
+      if (s.excluded(q.point, h)) continue;
+      scored = true;
+      score.extracted_length += q.length;
+      bool near = false;
+      std::map<int, bool> pieces;
+      truth_grid.near(q.point, tol, [&](uint32_t i) {
+        near = true;
+        if (truth[i].piece >= 0) pieces[truth[i].piece] = true;
+      });
+      if (near) near_length += q.length;
+      for (const auto& [piece, yes] : pieces) along[{l, piece}] += q.length;
+    }
+    score.lines += scored;
+  }
+  if (score.extracted_length > 0) score.precision = near_length / score.extracted_length;
+
+  double covered = 0;
+  for (const TruthSample& t : truth) {
+    if (t.piece < 0) continue;
+    score.true_length += t.length;
+    if (line_grid.any_near(t.point, tol)) covered += t.length;
+  }
+  if (score.true_length > 0) score.coverage = covered / score.true_length;
+
+  std::vector<int> per_piece(score.true_curves, 0);
+  for (const auto& [key, length] : along)
+    if (length >= h) ++per_piece[key.second];
+  int touched = 0, total = 0;
+  for (int c : per_piece)
+    if (c > 0) ++touched, total += c;
+  score.fragments = touched ? static_cast<double>(total) / touched : 0.0;
+  return score;
+}
+
+}  // namespace
+
+Score score_lines(const Surface& surface, const std::vector<Polyline>& lines, double mean_edge) {
+  Score s;
+  s.convex = surface.convex;
+  s.control = surface.control;
+  s.mean_edge = mean_edge;
+  s.ridge = score_type(surface, LineType::Ridge, lines, mean_edge);
+  s.valley = score_type(surface, LineType::Valley, lines, mean_edge);
+  return s;
+}
+
+Score run_case(const Surface& surface, double noise, unsigned noise_seed, const PipelineOptions& options) {
+  Mesh mesh = repair_mesh(surface.soup).mesh;
+  const double h = mean_edge_length(mesh);
+  if (noise > 0) testing::add_normal_noise(mesh, noise * h, noise_seed);
+  const size_t vertices = mesh.positions.size();
+  const auto start = std::chrono::steady_clock::now();
+  Pipeline pipeline(std::move(mesh));
+  pipeline.set_options(options);
+  pipeline.run();
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  // Scored against the clean mesh's edge length: noise must not widen the tolerance.
+  Score s = score_lines(surface, pipeline.lines(), h);
+  s.vertices = vertices;
+  s.seconds = seconds;
+  return s;
+}
+
+std::string target_failures(const Score& score) {
+  std::ostringstream out;
+  if (score.control) return {};
+  auto check = [&](const char* type, const TypeScore& t) {
+    if (t.coverage < 0.95) out << type << " coverage " << t.coverage << " < 0.95; ";
+    if (t.precision < 0.90) out << type << " precision " << t.precision << " < 0.90; ";
+    if (t.fragments > 1.5) out << type << " fragments " << t.fragments << " > 1.5; ";
+  };
+  check("ridge", score.ridge);
+  check("valley", score.valley);
+  if (score.spurious_valleys() > 0) out << score.spurious_valleys() << " spurious valleys on a convex shape; ";
+  return out.str();
+}
+
+}  // namespace crestline::quality
