@@ -1,6 +1,238 @@
 #include "crestline/lines/polylines.h"
 
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "crestline/mesh/topology.h"
+
 namespace crestline {
+namespace {
+
+// Arms of a junction whose directions are at least this far from parallel
+// (cos 135°) are one line running through it; the remaining arms end there.
+constexpr double kStraightThrough = -0.7071;
+// Two line ends are bridged when they are at most this many mean segment
+// lengths apart (a segment crosses one triangle, so about an edge length)...
+constexpr double kMaxGapSegments = 2.0;
+// ...and both end tangents point across the gap and at each other (cos 60°).
+// Across a gap shorter than a segment the gap's own direction is
+// round-off; only the tangents are compared there.
+constexpr double kGapAlignment = 0.5;
+constexpr double kTinyGapSegments = 1.0;
+
+struct NodeIncidence {
+  std::vector<uint32_t> offsets, incident;
+  uint32_t degree(uint32_t node) const { return offsets[node + 1] - offsets[node]; }
+};
+
+NodeIncidence incidence(const FeatureGraph& graph) {
+  const size_t nn = graph.points.size(), ns = graph.segments.size();
+  NodeIncidence out;
+  out.offsets.assign(nn + 1, 0);
+  out.incident.resize(2 * ns);
+  for (const auto& s : graph.segments) ++out.offsets[s[0] + 1], ++out.offsets[s[1] + 1];
+  for (size_t i = 0; i < nn; ++i) out.offsets[i + 1] += out.offsets[i];
+  std::vector<uint32_t> fill(out.offsets.begin(), out.offsets.end() - 1);
+  for (uint32_t s = 0; s < ns; ++s) {
+    out.incident[fill[graph.segments[s][0]]++] = s;
+    out.incident[fill[graph.segments[s][1]]++] = s;
+  }
+  return out;
+}
+
+uint32_t other_end(const FeatureGraph& graph, uint32_t segment, uint32_t node) {
+  const auto& s = graph.segments[segment];
+  return s[0] == node ? s[1] : s[0];
+}
+
+// At every junction (degree ≥ 3), pairs the arms that continue each other
+// most straightly, greedily from the straightest pair. partner[k] refers to
+// the incidence slot k (offsets[node] + i); kNone where the arm ends.
+std::vector<uint32_t> pair_junction_arms(const FeatureGraph& graph, const NodeIncidence& inc) {
+  std::vector<uint32_t> partner(inc.incident.size(), kNone);
+  const size_t nn = graph.points.size();
+  for (uint32_t node = 0; node < nn; ++node) {
+    const uint32_t begin = inc.offsets[node], d = inc.degree(node);
+    if (d < 3) continue;
+    std::vector<Vec3> dir(d);
+    for (uint32_t i = 0; i < d; ++i) {
+      const Vec3 v = graph.points[other_end(graph, inc.incident[begin + i], node)] - graph.points[node];
+      const double len = v.norm();
+      dir[i] = len > 0 ? Vec3(v / len) : Vec3::Zero();
+    }
+    struct Pair {
+      double cosine;
+      uint32_t a, b;
+    };
+    std::vector<Pair> pairs;
+    for (uint32_t a = 0; a < d; ++a)
+      for (uint32_t b = a + 1; b < d; ++b) {
+        const double c = dir[a].dot(dir[b]);
+        if (c < kStraightThrough) pairs.push_back({c, a, b});
+      }
+    std::sort(pairs.begin(), pairs.end(), [](const Pair& x, const Pair& y) { return x.cosine < y.cosine; });
+    for (const Pair& p : pairs)
+      if (partner[begin + p.a] == kNone && partner[begin + p.b] == kNone) {
+        partner[begin + p.a] = begin + p.b;
+        partner[begin + p.b] = begin + p.a;
+      }
+  }
+  return partner;
+}
+
+std::vector<Polyline> walk_chains(const FeatureGraph& graph, const NodeIncidence& inc,
+                                  const std::vector<uint32_t>& partner, std::vector<uint8_t>& open_end_node) {
+  const size_t nn = graph.points.size(), ns = graph.segments.size();
+  std::vector<uint8_t> used(ns, 0);
+  std::vector<Polyline> lines;
+  // The slot of `segment` among `node`'s incidences.
+  auto slot = [&](uint32_t node, uint32_t segment) {
+    for (uint32_t k = inc.offsets[node]; k < inc.offsets[node + 1]; ++k)
+      if (inc.incident[k] == segment) return k;
+    return kNone;
+  };
+  // The segment that continues the line arriving at `node` along `segment`, or kNone.
+  auto next = [&](uint32_t node, uint32_t segment) -> uint32_t {
+    const uint32_t d = inc.degree(node);
+    if (d == 2) {
+      const uint32_t a = inc.incident[inc.offsets[node]], b = inc.incident[inc.offsets[node] + 1];
+      return a == segment ? b : a;
+    }
+    if (d < 2) return kNone;
+    const uint32_t p = partner[slot(node, segment)];
+    return p == kNone ? kNone : inc.incident[p];
+  };
+  auto walk = [&](uint32_t start, uint32_t first_segment) {
+    Polyline line;
+    line.type = graph.type;
+    auto add = [&](uint32_t n) {
+      line.points.push_back(graph.points[n]);
+      line.curvature.push_back(graph.curvature[n]);
+    };
+    uint32_t node = start, segment = first_segment;
+    add(node);
+    while (true) {
+      used[segment] = 1;
+      node = other_end(graph, segment, node);
+      segment = next(node, segment);
+      if (node == start && segment == first_segment) {  // back where we began: a loop
+        line.closed = true;
+        break;
+      }
+      add(node);
+      if (segment == kNone || used[segment]) break;
+    }
+    // Line ends at degree-1 nodes may be bridged to a neighbouring line later.
+    open_end_node.push_back(!line.closed && inc.degree(start) == 1);
+    open_end_node.push_back(!line.closed && inc.degree(node) == 1);
+    measure_polyline(line);
+    lines.push_back(std::move(line));
+  };
+  // Open chains start at ends and at junction arms that end there; whatever
+  // remains are loops (possibly running through junctions).
+  for (uint32_t node = 0; node < nn; ++node) {
+    if (inc.degree(node) == 2) continue;
+    for (uint32_t k = inc.offsets[node]; k < inc.offsets[node + 1]; ++k)
+      if (!used[inc.incident[k]] && (inc.degree(node) == 1 || partner[k] == kNone)) walk(node, inc.incident[k]);
+  }
+  for (uint32_t s = 0; s < ns; ++s)
+    if (!used[s]) walk(graph.segments[s][0], s);
+  return lines;
+}
+
+// Unit tangent pointing out of the line at one end, over about two segments.
+Vec3 end_tangent(const Polyline& line, bool back) {
+  const size_t n = line.points.size();
+  const size_t reach = std::min<size_t>(2, n - 1);
+  const Vec3 end = back ? line.points[n - 1] : line.points[0];
+  const Vec3 inner = back ? line.points[n - 1 - reach] : line.points[reach];
+  const Vec3 t = end - inner;
+  const double len = t.norm();
+  return len > 0 ? Vec3(t / len) : Vec3::Zero();
+}
+
+// Bridges small gaps between line ends (a start/end singular triangle on
+// each side of a noisy spot leaves one): greedily from the smallest gap, two
+// free ends are linked when close and aligned; chains of linked lines are
+// concatenated, and a chain whose ends meet becomes a closed line.
+std::vector<Polyline> bridge_gaps(std::vector<Polyline> lines, const std::vector<uint8_t>& open_end, double segment) {
+  const double max_gap = kMaxGapSegments * segment, tiny_gap = kTinyGapSegments * segment;
+  struct End {
+    Vec3 point, tangent;
+    uint32_t id;  // 2 · line + (1 for the back end)
+  };
+  std::vector<End> ends;
+  for (uint32_t l = 0; l < lines.size(); ++l)
+    for (int back = 0; back < 2; ++back)
+      if (open_end[2 * l + back] && lines[l].points.size() >= 2)
+        ends.push_back({back ? lines[l].points.back() : lines[l].points.front(), end_tangent(lines[l], back), 2 * l + back});
+  std::sort(ends.begin(), ends.end(), [](const End& a, const End& b) { return a.point.x() < b.point.x(); });
+  struct Gap {
+    double length;
+    uint32_t a, b;
+  };
+  std::vector<Gap> gaps;
+  for (size_t i = 0; i < ends.size(); ++i)
+    for (size_t j = i + 1; j < ends.size() && ends[j].point.x() - ends[i].point.x() <= max_gap; ++j) {
+      const End &a = ends[i], &b = ends[j];
+      if (a.id / 2 == b.id / 2 && lines[a.id / 2].points.size() < 4) continue;  // too short to close
+      const Vec3 g = b.point - a.point;
+      const double len = g.norm();
+      if (len > max_gap) continue;
+      if (len > tiny_gap && (a.tangent.dot(g) < kGapAlignment * len || -b.tangent.dot(g) < kGapAlignment * len)) continue;
+      if (-a.tangent.dot(b.tangent) < kGapAlignment) continue;
+      gaps.push_back({len, a.id, b.id});
+    }
+  if (gaps.empty()) return lines;
+  std::sort(gaps.begin(), gaps.end(), [](const Gap& x, const Gap& y) { return x.length < y.length; });
+  std::vector<uint32_t> link(2 * lines.size(), kNone);
+  for (const Gap& g : gaps)
+    if (link[g.a] == kNone && link[g.b] == kNone) link[g.a] = g.b, link[g.b] = g.a;
+
+  std::vector<uint8_t> done(lines.size(), 0);
+  std::vector<Polyline> out;
+  // Follows the chain from the line's `entry` end; returns the joined line.
+  auto follow = [&](uint32_t line, uint32_t entry_side) {
+    Polyline joined;
+    joined.type = lines[line].type;
+    uint32_t l = line, side = entry_side;
+    while (true) {
+      done[l] = 1;
+      Polyline& piece = lines[l];
+      if (side == 1) {  // entered at the back: walk it backwards
+        std::reverse(piece.points.begin(), piece.points.end());
+        std::reverse(piece.curvature.begin(), piece.curvature.end());
+      }
+      joined.points.insert(joined.points.end(), piece.points.begin(), piece.points.end());
+      joined.curvature.insert(joined.curvature.end(), piece.curvature.begin(), piece.curvature.end());
+      const uint32_t exit = 2 * l + (1 - side), to = link[exit];
+      if (to == kNone) break;
+      if (done[to / 2]) {  // the chain came back to its first line
+        joined.closed = true;
+        break;
+      }
+      l = to / 2, side = to % 2;
+    }
+    measure_polyline(joined);
+    return joined;
+  };
+  for (uint32_t l = 0; l < lines.size(); ++l) {
+    if (done[l]) continue;
+    if (link[2 * l] == kNone && link[2 * l + 1] == kNone) {
+      done[l] = 1;
+      out.push_back(std::move(lines[l]));
+    } else if (link[2 * l] == kNone || link[2 * l + 1] == kNone) {
+      out.push_back(follow(l, link[2 * l] == kNone ? 0 : 1));
+    }
+  }
+  // Whatever is left is linked at both ends all round: closed chains.
+  for (uint32_t l = 0; l < lines.size(); ++l)
+    if (!done[l]) out.push_back(follow(l, 0));
+  return out;
+}
+
+}  // namespace
 
 void measure_polyline(Polyline& line) {
   line.length = line.strength = 0;
@@ -15,51 +247,15 @@ void measure_polyline(Polyline& line) {
 }
 
 std::vector<Polyline> join_polylines(const FeatureGraph& graph) {
-  const size_t nn = graph.points.size(), ns = graph.segments.size();
-  // Node → incident segments, CSR.
-  std::vector<uint32_t> offsets(nn + 1, 0), incident(2 * ns);
-  for (const auto& s : graph.segments) ++offsets[s[0] + 1], ++offsets[s[1] + 1];
-  for (size_t i = 0; i < nn; ++i) offsets[i + 1] += offsets[i];
-  std::vector<uint32_t> fill(offsets.begin(), offsets.end() - 1);
-  for (uint32_t s = 0; s < ns; ++s) incident[fill[graph.segments[s][0]]++] = s, incident[fill[graph.segments[s][1]]++] = s;
-  auto degree = [&](uint32_t node) { return offsets[node + 1] - offsets[node]; };
-
-  std::vector<uint8_t> used(ns, 0);
-  std::vector<Polyline> lines;
-  auto walk = [&](uint32_t start, uint32_t first_segment) {
-    Polyline line;
-    line.type = graph.type;
-    uint32_t node = start, segment = first_segment;
-    auto add = [&](uint32_t n) {
-      line.points.push_back(graph.points[n]);
-      line.curvature.push_back(graph.curvature[n]);
-    };
-    add(node);
-    while (true) {
-      used[segment] = 1;
-      const auto& s = graph.segments[segment];
-      node = s[0] == node ? s[1] : s[0];
-      if (node == start) {  // back where we began: a loop
-        line.closed = true;
-        break;
-      }
-      add(node);
-      if (degree(node) != 2) break;
-      const uint32_t a = incident[offsets[node]], b = incident[offsets[node] + 1];
-      segment = used[a] ? b : a;
-      if (used[segment]) break;
-    }
-    measure_polyline(line);
-    lines.push_back(std::move(line));
-  };
-  // Open chains start at ends and junctions; whatever remains are loops.
-  for (uint32_t node = 0; node < nn; ++node)
-    if (degree(node) != 2)
-      for (uint32_t i = offsets[node]; i < offsets[node + 1]; ++i)
-        if (!used[incident[i]]) walk(node, incident[i]);
-  for (uint32_t node = 0; node < nn; ++node)
-    if (degree(node) == 2 && !used[incident[offsets[node]]]) walk(node, incident[offsets[node]]);
-  return lines;
+  const NodeIncidence inc = incidence(graph);
+  const std::vector<uint32_t> partner = pair_junction_arms(graph, inc);
+  std::vector<uint8_t> open_end;
+  std::vector<Polyline> lines = walk_chains(graph, inc, partner, open_end);
+  if (graph.segments.empty()) return lines;
+  // The graph's own scale: a segment crosses one triangle.
+  double total = 0;
+  for (const auto& s : graph.segments) total += (graph.points[s[1]] - graph.points[s[0]]).norm();
+  return bridge_gaps(std::move(lines), open_end, total / graph.segments.size());
 }
 
 }  // namespace crestline

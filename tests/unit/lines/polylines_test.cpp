@@ -1,4 +1,5 @@
 #include <catch2/catch.hpp>
+#include <cmath>
 
 #include "crestline/lines/filter.h"
 #include "crestline/lines/polylines.h"
@@ -66,4 +67,50 @@ TEST_CASE("filter keeps lines at or above the threshold, automatic one drops the
   CHECK(automatic.kept == std::vector<uint32_t>{0, 1, 2});
   CHECK(automatic.threshold > 0.5);
   CHECK(automatic.threshold < 30);
+}
+
+TEST_CASE("a line runs straight through a junction; its side branch ends there", "[polylines]") {
+  // A straight line along x through node 0 and a branch going up from it.
+  FeatureGraph g = graph_with_points(7, 1.0);
+  g.points = {Vec3(0, 0, 0), Vec3(-1, 0, 0), Vec3(-2, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0), Vec3(0.1, 1, 0), Vec3(0.2, 2, 0)};
+  g.trisector[0] = 1;
+  g.segments = {{0, 1}, {1, 2}, {0, 3}, {3, 4}, {0, 5}, {5, 6}};
+  const auto lines = join_polylines(g);
+  REQUIRE(lines.size() == 2);
+  const Polyline& through = lines[0].points.size() == 5 ? lines[0] : lines[1];
+  CHECK(through.points.size() == 5);
+  CHECK(through.length == Approx(4.0));
+}
+
+TEST_CASE("small aligned gaps are bridged, loops with a gap close, misaligned ends stay apart", "[polylines]") {
+  // Two collinear chains with a gap of one segment between nodes 2 and 3.
+  FeatureGraph g = graph_with_points(6, 1.0);
+  g.segments = {{0, 1}, {1, 2}, {3, 4}, {4, 5}};
+  auto lines = join_polylines(g);
+  REQUIRE(lines.size() == 1);
+  CHECK(lines[0].points.size() == 6);
+  CHECK(lines[0].length == Approx(5.0));
+  CHECK_FALSE(lines[0].closed);
+
+  // A circle traced with one segment missing comes back closed.
+  FeatureGraph c;
+  const int n = 24;
+  for (int i = 0; i < n; ++i) {
+    const double a = 2 * 3.14159265358979 * i / n;
+    c.points.push_back(Vec3(std::cos(a), std::sin(a), 0));
+    c.curvature.push_back(1.0);
+    c.source.push_back(i);
+    c.trisector.push_back(0);
+  }
+  for (int i = 0; i + 1 < n; ++i) c.segments.push_back({uint32_t(i), uint32_t(i + 1)});
+  lines = join_polylines(c);
+  REQUIRE(lines.size() == 1);
+  CHECK(lines[0].closed);
+  CHECK(lines[0].points.size() == size_t(n));
+
+  // Ends side by side but pointing the same way (parallel lines) stay apart.
+  FeatureGraph p = graph_with_points(6, 1.0);
+  p.points = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0), Vec3(0, 0.5, 0), Vec3(1, 0.5, 0), Vec3(2, 0.5, 0)};
+  p.segments = {{0, 1}, {1, 2}, {3, 4}, {4, 5}};
+  CHECK(join_polylines(p).size() == 2);
 }
