@@ -63,7 +63,6 @@ export class WeightBrush {
     pointer.set(((event.clientX - rect.left) / rect.width) * 2 - 1, -((event.clientY - rect.top) / rect.height) * 2 + 1);
     raycaster.setFromCamera(pointer, viewer.camera);
     const [first] = raycaster.intersectObject(viewer.surface.mesh, false);
-    this.lastHit = first?.point.toArray() ?? null;
     if (!first) return;
     hit.copy(first.point);
     const geometry = viewer.surface.mesh.geometry;
