@@ -1,22 +1,23 @@
 // <crestline-viewer>: a mesh and its ridges and valleys, computed client-side
 // by the shared worker pool and drawn by the page's one WebGL context.
-import { DRACOLoader } from 'three/examples/jsm/loaders/DRACOLoader.js';
-import { loadMeshFiles } from '../io/load-files.js';
 import { STAGES } from '../worker/protocol.js';
 import { ATTRIBUTES, parseOrbit, reflectAttributes, upgradeProperties } from './attributes.js';
 import { exportGlb, linesSummary, renderPng } from './exports.js';
-import { fetchMesh } from './fetch-mesh.js';
 import { PipelineSession } from './pool.js';
 import { viewToSvg } from './svg.js';
 import { DISPLAY_DEFAULTS, TEMPLATE } from './template.js';
 import { WidgetView } from './view.js';
 
-// Its decoder files are located relative to this module (DRACOLoader's defaults).
-let dracoLoader = null;
-const sharedDraco = () => (dracoLoader ??= new DRACOLoader());
 const reducedMotion = globalThis.matchMedia?.('(prefers-reduced-motion: reduce)');
-// Fetching and decoding take the first part of the progress bar, the pipeline the rest.
+// Fetching and decoding (in the worker) take the first part of the progress bar, the pipeline the rest.
 const READ_SHARE = 0.2;
+
+/** A worker progress message → the fraction of the whole load. */
+function overallFraction({ stage, fraction }) {
+  if (stage === 'fetch') return (fraction * READ_SHARE) / 2;
+  if (stage === 'decode') return READ_SHARE / 2;
+  return READ_SHARE + ((1 - READ_SHARE) * (Math.max(0, STAGES.indexOf(stage)) + fraction)) / STAGES.length;
+}
 
 export class CrestlineViewer extends HTMLElement {
   static get observedAttributes() {
@@ -141,28 +142,26 @@ export class CrestlineViewer extends HTMLElement {
     this.load(this.src);
   }
 
-  async load(src) {
+  /** Sends the mesh's URL to the worker, which fetches, decodes and runs the pipeline. */
+  load(src) {
     this.loadedSrc = src;
     this.lines = null;
     this.shownLoad = false;
     this.showError('');
     this.parts.poster.hidden = false;
-    this.session ??= new PipelineSession((message) => this.receive(message));
-    this.progress('fetch', 0);
+    this.meshName = fileName(src);
+    let url;
     try {
-      const files = await fetchMesh(src, (fraction) => this.progress('fetch', (fraction * READ_SHARE) / 2));
-      if (this.loadedSrc !== src) return;
-      this.progress('decode', READ_SHARE / 2);
-      const soup = await loadMeshFiles(files, { dracoLoader: sharedDraco() });
-      if (this.loadedSrc !== src || !this.session) return;
-      this.meshName = soup.name;
-      this.busy = true;
-      this.pendingOptions = false;
-      this.session.send({ type: 'load', name: soup.name, positions: soup.positions, indices: soup.indices, options: this.pipelineOptions() });
-    } catch (error) {
-      if (this.loadedSrc !== src) return;
-      this.fail(error.kind ? error.message : `${fileName(src)}: could not be read (${error.message}).`);
+      url = new URL(src, document.baseURI).href;
+    } catch {
+      this.fail(`${src}: is not a valid URL.`);
+      return;
     }
+    this.session ??= new PipelineSession((message) => this.receive(message));
+    this.busy = true;
+    this.pendingOptions = false;
+    this.progress('fetch', 0);
+    this.session.send({ type: 'open', url, options: this.pipelineOptions() });
   }
 
   /** A parameter changed: one re-run at a time, the latest parameters win. */
@@ -181,11 +180,9 @@ export class CrestlineViewer extends HTMLElement {
 
   receive(message) {
     switch (message.type) {
-      case 'progress': {
-        const overall = (STAGES.indexOf(message.stage) + message.fraction) / STAGES.length;
-        this.progress(message.stage, READ_SHARE + (1 - READ_SHARE) * overall);
+      case 'progress':
+        this.progress(message.stage, overallFraction(message));
         break;
-      }
       case 'result':
         this.busy = false;
         this.showResult(message);
@@ -197,7 +194,8 @@ export class CrestlineViewer extends HTMLElement {
       case 'error':
         this.busy = false;
         this.pendingOptions = false;
-        this.fail(this.meshName && message.kind !== 'internal' ? `${this.meshName}: ${message.message}` : message.message);
+        // Reading errors name the file already; core errors do not.
+        this.fail(message.named || message.kind === 'internal' ? message.message : `${this.meshName}: ${message.message}`);
         break;
     }
   }

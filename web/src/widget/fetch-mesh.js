@@ -1,5 +1,6 @@
-// src URL → the files loadMeshFiles (../io) reads: the mesh itself and, for
-// a .gltf, the buffers it names, fetched relative to it.
+// A mesh URL → the files loadMeshFiles (../io) reads: the mesh itself and,
+// for a .gltf, the buffers it names, fetched relative to it. Runs in the
+// worker (whose origin is the page's: the same CORS rules apply).
 import { MeshError } from '../io/mesh-error.js';
 
 function nameOf(url) {
@@ -40,9 +41,9 @@ async function fetchBytes(url, name, onProgress) {
   return readBody(response, onProgress);
 }
 
-/** @returns {Promise<{name, bytes}[]>}; onProgress(fraction) while the main file arrives. */
-export async function fetchMesh(src, onProgress, base = document.baseURI) {
-  const url = new URL(src, base);
+/** `href` absolute; returns [{name, bytes}]; onProgress(fraction) while the main file arrives. */
+export async function fetchMesh(href, onProgress) {
+  const url = new URL(href);
   const name = nameOf(url);
   const bytes = await fetchBytes(url, name, onProgress);
   const files = [{ name, bytes }];
