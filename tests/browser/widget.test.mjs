@@ -140,6 +140,16 @@ test('a viewer from another origin loads a GLB, re-thresholds and exports', asyn
     writeFileSync(join(ROOT, 'test-results/widget.svg'), exported.svg);
     await page.screenshot({ path: join(ROOT, 'test-results/widget-one.png') });
   }
+  // Display attributes change the drawing without a re-run.
+  const hidden = await page.evaluate(async () => {
+    const v = document.getElementById('v');
+    v.ridges = false;
+    await new Promise(requestAnimationFrame);
+    return { attribute: v.getAttribute('ridges'), svg: await v.toSVG() };
+  });
+  assert.equal(hidden.attribute, 'false');
+  assert.doesNotMatch(hidden.svg, /id="ridges"/);
+  assert.equal((await eventsOf(page, 'v', 'lines')).length, 2);
   assert.deepEqual(problems, []);
   await page.close();
 });
