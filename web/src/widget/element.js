@@ -3,6 +3,7 @@
 import { STAGES } from '../worker/protocol.js';
 import { ATTRIBUTES, parseOrbit, reflectAttributes, upgradeProperties } from './attributes.js';
 import { exportGlb, linesSummary, renderPng } from './exports.js';
+import { nameOf } from './fetch-mesh.js';
 import { PipelineSession } from './pool.js';
 import { viewToSvg } from './svg.js';
 import { DISPLAY_DEFAULTS, TEMPLATE } from './template.js';
@@ -290,7 +291,7 @@ export class CrestlineViewer extends HTMLElement {
 
 function fileName(src) {
   try {
-    return decodeURIComponent(new URL(src, document.baseURI).pathname.split('/').pop()) || src;
+    return nameOf(new URL(src, document.baseURI));
   } catch {
     return src;
   }

@@ -3,7 +3,8 @@
 // worker (whose origin is the page's: the same CORS rules apply).
 import { MeshError } from '../io/mesh-error.js';
 
-function nameOf(url) {
+/** The file name messages use: the URL's last path segment ("model" for data: and blob:). */
+export function nameOf(url) {
   if (url.protocol === 'data:' || url.protocol === 'blob:') return 'model';
   return decodeURIComponent(url.pathname.split('/').pop() || url.hostname);
 }
