@@ -72,6 +72,8 @@ async function openPage(name, body, viewport = { width: 1000, height: 700 }) {
 </script></head><body style="margin:0">${body}</body></html>`);
   const page = await browser.newPage({ viewport });
   const problems = [];
+  page.requested = [];
+  page.on('request', (request) => page.requested.push(request.url()));
   page.on('pageerror', (error) => problems.push(`page error: ${error.message}`));
   page.on('console', (message) => {
     if (/context (was )?lost|too many active webgl contexts|CONTEXT_LOST/i.test(message.text())) problems.push(`console: ${message.text()}`);
@@ -101,8 +103,15 @@ const total = (counts) => counts.ridges + counts.valleys;
 test('a viewer from another origin loads a GLB, re-thresholds and exports', async () => {
   const { page, problems } = await openPage('one.html', '<crestline-viewer id="v" alt="A fan disk" interaction="orbit" style="width:480px;height:320px"></crestline-viewer>');
   assert.notEqual(new URL(siteUrl).origin, new URL(cdnUrl).origin);
+  // The worker and the .wasm are separate files, found beside the module on its own origin.
+  for (const file of ['crestline-viewer.js', 'crestline-viewer-worker.js']) {
+    const text = await (await fetch(`${cdnUrl}/${file}`)).text();
+    assert.doesNotMatch(text, /AGFzbQ/, `${file} inlines a WebAssembly module`);
+  }
   await page.evaluate((src) => (document.getElementById('v').src = src), MAIN_MESH);
   await waitForEvents(page, 'v', 'lines', 1);
+  for (const file of ['crestline-viewer-worker.js', 'crestline.wasm'])
+    assert.ok(page.requested.includes(`${cdnUrl}/${file}`), `${file} was not fetched from the module's origin: ${page.requested}`);
   const order = await page.evaluate(() => window.events.map((e) => e.type));
   assert.deepEqual(order, ['load', 'lines'], `events: ${order}`);
   const [first] = await eventsOf(page, 'v', 'lines');
