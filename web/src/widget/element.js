@@ -219,6 +219,7 @@ export class CrestlineViewer extends HTMLElement {
   progress(stage, fraction) {
     const bar = this.parts.progress;
     bar.hidden = stage === null;
+    this.parts.canvas.setAttribute('aria-busy', String(stage !== null));
     if (stage === null) return;
     bar.style.transform = `scaleX(${fraction})`;
     bar.setAttribute('aria-valuenow', fraction.toFixed(2));
