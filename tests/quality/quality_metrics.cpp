@@ -175,10 +175,16 @@ Score score_lines(const Surface& surface, const std::vector<Polyline>& lines, do
   return s;
 }
 
-Score run_case(const Surface& surface, double noise, unsigned noise_seed, const PipelineOptions& options) {
+Mesh noisy_mesh(const Surface& surface, double noise, unsigned noise_seed, double& h) {
   Mesh mesh = repair_mesh(surface.soup).mesh;
-  const double h = mean_edge_length(mesh);
+  h = mean_edge_length(mesh);
   if (noise > 0) testing::add_normal_noise(mesh, noise * h, noise_seed);
+  return mesh;
+}
+
+Score run_case(const Surface& surface, double noise, unsigned noise_seed, const PipelineOptions& options) {
+  double h = 0;
+  Mesh mesh = noisy_mesh(surface, noise, noise_seed, h);
   const size_t vertices = mesh.positions.size();
   const auto start = std::chrono::steady_clock::now();
   Pipeline pipeline(std::move(mesh));

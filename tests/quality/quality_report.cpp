@@ -22,6 +22,7 @@ namespace {
 struct Config {
   std::string name;
   PipelineOptions options;
+  int average_rings = 0;  // > 0: run_case_averaged
 };
 
 struct Summary {
@@ -85,7 +86,10 @@ int main(int argc, char** argv) {
   PipelineOptions unsmoothed = tuned;
   unsmoothed.smoothing.steps = 0;
   std::vector<Config> configs = {{"defaults", tuned}, {"no smoothing", unsmoothed}};
-  if (tuned.presmooth.steps == 0) configs.insert(configs.begin() + 1, {"defaults + presmooth 2", with_presmoothing(tuned)});
+  if (tuned.presmooth.steps == 0) {
+    configs.insert(configs.begin() + 1, {"defaults + presmooth 2", with_presmoothing(tuned)});
+    configs.insert(configs.begin() + 2, {"defaults + presmooth 2 + S averaged over 1 ring", with_presmoothing(tuned), 1});
+  }
   const double noises[] = {0.0, 0.1, 0.25};
   const Triangulation triangulations[] = {Triangulation::Uniform, Triangulation::Alternating, Triangulation::Irregular};
 
@@ -110,7 +114,11 @@ int main(int argc, char** argv) {
         const Surface surface = make_surface(name, params);
         for (int n = 0; n < 3; ++n)
           for (size_t c = 0; c < configs.size(); ++c) {
-            const Score s = run_case(surface, noises[n], 100u + static_cast<unsigned>(seed), configs[c].options);
+            const unsigned noise_seed = 100u + static_cast<unsigned>(seed);
+            const Config& config = configs[c];
+            const Score s = config.average_rings > 0
+                                ? run_case_averaged(surface, noises[n], noise_seed, config.options, config.average_rings)
+                                : run_case(surface, noises[n], noise_seed, config.options);
             summary[c][n].add(s);
             if (summary_only) continue;
             std::printf("| %s | %s | %d | %.2f | %s | %s | %s | %s | %s | %s | %s | %d | %.2f |\n", name.c_str(),
