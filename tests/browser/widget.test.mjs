@@ -266,6 +266,8 @@ test('lazy loading waits for the viewport; keyboard orbit; reduced motion stops 
   assert.deepEqual(state, { size: [300, 150], tabIndex: 0, label: 'A 3D model with its ridge and valley lines', posterHidden: true });
   // Reduced motion: auto-rotate is off, so the camera stands still.
   const before = await camera('near');
+  // Coming near the viewport again (scrolling) does not re-run anything.
+  assert.equal((await eventsOf(page, 'near', 'lines')).length, 1);
   await page.waitForTimeout(300);
   assert.deepEqual(await camera('near'), before);
   // Arrow keys orbit an interactive viewer, and nothing else.
@@ -285,6 +287,16 @@ test('lazy loading waits for the viewport; keyboard orbit; reduced motion stops 
     document.body.prepend(still);
   });
   await waitForEvents(page, 'still', 'lines', 2);
+  assert.equal((await eventsOf(page, 'still', 'load')).length, 2, JSON.stringify(await page.evaluate(() => window.events.filter((e) => e.id === 'still').map((e) => e.type + ' ' + (e.detail.threshold ?? '')))));
+  // A worker that lost the mesh (as after a WebAssembly abort) gets it sent again on the next change.
+  await page.evaluate(() => {
+    const still = document.getElementById('still');
+    still.session.host.worker.postMessage({ type: 'dispose', id: still.session.id });
+    still.threshold = 0.5;
+  });
+  await waitForEvents(page, 'still', 'lines', 3);
+  assert.equal((await eventsOf(page, 'still', 'load')).length, 3, JSON.stringify(await page.evaluate(() => window.events.filter((e) => e.id === 'still').map((e) => e.type + ' ' + (e.detail.threshold ?? '')))));
+  assert.deepEqual(await eventsOf(page, 'still', 'error'), []);
   // Without reduced motion, auto-rotate turns the model.
   await page.emulateMedia({ reducedMotion: 'no-preference' });
   const turned = await camera('near');

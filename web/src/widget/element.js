@@ -106,8 +106,9 @@ export class CrestlineViewer extends HTMLElement {
       if (this.poster) this.parts.poster.src = new URL(this.poster, document.baseURI).href;
       else this.parts.poster.removeAttribute('src');
     }
-    if (changes.has('source') || changes.has('loading')) this.maybeLoad();
-    else if (changes.has('pipeline')) this.compute();
+    // A load sends the current parameters along; otherwise a change re-runs.
+    const started = (changes.has('source') || changes.has('loading')) && this.maybeLoad();
+    if (changes.has('pipeline') && !started) this.compute();
   }
 
   /** Colours and widths: attribute, else CSS custom property, else default. */
@@ -136,11 +137,12 @@ export class CrestlineViewer extends HTMLElement {
     return { smoothingSteps: this.smoothing, hausdorffBound: this.fairing, threshold: this.threshold === 'auto' ? -1 : this.threshold };
   }
 
+  /** Starts loading `src` unless it is loaded or lazy and far away; true when it started. */
   maybeLoad() {
-    if (!this.src) return;
-    if (this.src === this.loadedSrc) return this.compute();
-    if (this.loading === 'lazy' && !this.near) return;
+    if (!this.src || this.src === this.loadedSrc) return false;
+    if (this.loading === 'lazy' && !this.near) return false;
     this.load(this.src);
+    return true;
   }
 
   /** Sends the mesh's URL to the worker, which fetches, decodes and runs the pipeline. */
@@ -191,6 +193,10 @@ export class CrestlineViewer extends HTMLElement {
           this.pendingOptions = false;
           this.compute();
         }
+        break;
+      case 'reload':
+        this.busy = false;
+        this.load(this.loadedSrc);
         break;
       case 'error':
         this.busy = false;

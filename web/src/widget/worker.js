@@ -12,6 +12,7 @@
 //   {type: 'progress', id, job, stage, fraction}   stage 'fetch', 'decode', then the pipeline's
 //   {type: 'loaded', id, job, vertices, triangles, notes}
 //   {type: 'result', id, job, ran, stats, lines, surface?}
+//   {type: 'reload', id, job}   this worker lost the viewer's mesh (after an abort): open it again
 //   {type: 'export', id, request, text}
 //   {type: 'error', id, job | request, message, kind, named}   named: the message names the file
 import createCrestline from '../../../wasm/dist/crestline.js';
@@ -89,7 +90,9 @@ async function handle(message) {
       load(engine, message, message);
       break;
     case 'options':
-      run(engine, message, false);
+      // After a WebAssembly abort reset this worker, the viewer must send its mesh again.
+      if (!engine.session) post({ type: 'reload', id, job });
+      else run(engine, message, false);
       break;
     case 'export': {
       if (!engine.session) throw new Error('no mesh is loaded');
