@@ -103,14 +103,6 @@ function readWeights(path, vertices) {
   return weights;
 }
 
-// three's FileLoader (companion .bin files) reports progress with a DOM event node lacks.
-globalThis.ProgressEvent ??= class ProgressEvent extends Event {
-  constructor(type, init = {}) {
-    super(type);
-    Object.assign(this, init);
-  }
-};
-
 async function main(argv) {
   const args = parseArgs(argv);
   if (args.help) return void console.log(usage());

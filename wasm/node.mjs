@@ -8,6 +8,15 @@ import { fileURLToPath } from 'node:url';
 
 const dist = new URL('./dist/', import.meta.url);
 
+// Node runs web/src/io too (wasm/cli.mjs, tests): three's FileLoader, which
+// reads a .gltf's companion files, reports progress with a DOM event node lacks.
+globalThis.ProgressEvent ??= class ProgressEvent extends Event {
+  constructor(type, init = {}) {
+    super(type);
+    Object.assign(this, init);
+  }
+};
+
 export async function loadCrestline() {
   globalThis.__dirname ??= fileURLToPath(dist);
   globalThis.require ??= createRequire(import.meta.url);
