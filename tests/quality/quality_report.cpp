@@ -4,7 +4,8 @@
 //
 //   crestline_quality_report [--summary] [--steps N] [--time-step T]
 //                            [--threshold S] [--presmooth N] [--cells N] [--seeds N] [--surface NAME]...
-// --steps/--time-step/--threshold replace the defaults' values (for tuning).
+//                            [--presmooth-time-step T]
+// --steps/--time-step/--threshold/--presmooth… replace the defaults' values (for tuning).
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -55,7 +56,7 @@ struct Summary {
 void usage() {
   std::fprintf(stderr,
                "usage: crestline_quality_report [--summary] [--steps N] [--time-step T] [--threshold S]\n"
-               "                                [--presmooth N]\n"
+               "                                [--presmooth N] [--presmooth-time-step T]\n"
                "                                [--cells N] [--seeds N] [--surface NAME]...\n");
   std::exit(2);
 }
@@ -76,6 +77,7 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--steps")) tuned.smoothing.steps = std::atoi(value());
     else if (!std::strcmp(argv[i], "--time-step")) tuned.smoothing.time_step = std::atof(value());
     else if (!std::strcmp(argv[i], "--presmooth")) tuned.presmooth.steps = std::atoi(value());
+    else if (!std::strcmp(argv[i], "--presmooth-time-step")) tuned.presmooth.time_step = std::atof(value());
     else if (!std::strcmp(argv[i], "--threshold")) tuned.filter.threshold = std::atof(value());
     else if (!std::strcmp(argv[i], "--cells")) cells = std::atoi(value());
     else if (!std::strcmp(argv[i], "--seeds")) seeds = std::atoi(value());
