@@ -76,6 +76,11 @@ int parse_options(int argc, char** argv, CliOptions& o) {
   app.add_option("--stroke-width", o.svg.stroke_width, "SVG line width in pixels")
       ->check(CLI::PositiveNumber)->group("SVG");
   app.add_flag("--silhouette", o.svg.silhouette, "Also draw the surface's outline in the SVG")->group("SVG");
+  app.add_option("--svg-surface-tolerance", o.svg.surface_tolerance,
+                 "How far lines may lie off the surface and still show, in mean edge lengths "
+                 "(faired lines move off it)")
+      ->check(CLI::NonNegativeNumber)
+      ->group("SVG");
 
   app.add_flag("--stats", o.stats, "Print one JSON object of statistics and per-stage seconds on stdout");
   app.add_flag("--repair-report", o.repair_report,

@@ -70,7 +70,7 @@ fi
 awk -v n="$vertices" 'BEGIN { for (i = 0; i < n; i++) print (i % 2 ? 0.5 : 1) }' > "$work/weights.txt"
 expect 0 "all options" -- "$work/wave.obj" -o "$work/all.svg" --presmooth-steps 1 --presmooth-time-step 0.5 \
   --smoothing-steps 2 --smoothing-time-step 0.5 --boundary-rings 1 --fairing-bound 0.2 \
-  --fairing-iterations 10 --threshold 0.1 --view top --svg-width 400 --stroke-width 2 --silhouette \
+  --fairing-iterations 10 --threshold 0.1 --view top --svg-width 400 --stroke-width 2 --silhouette --svg-surface-tolerance 0.3 \
   --weights "$work/weights.txt" --repair-report
 grep -q 'welded_vertices: 0' "$work/stderr" || fail "--repair-report: no counts: $(cat "$work/stderr")"
 grep -q '<g id="silhouette"' "$work/all.svg" || fail "--silhouette: no silhouette group"
@@ -127,7 +127,8 @@ expect 2 "negative steps" -- "$work/wave.obj" -o "$work/out.obj" --smoothing-ste
 # --help documents every option with its default.
 expect 0 "--help" -- --help
 for option in presmooth-steps presmooth-time-step smoothing-steps smoothing-time-step boundary-rings \
-  fairing-bound fairing-iterations threshold view weights stats quiet repair-report silhouette; do
+  fairing-bound fairing-iterations threshold view svg-width stroke-width silhouette svg-surface-tolerance \
+  weights stats quiet repair-report; do
   grep -q -- "--$option" "$work/stdout" || fail "--help does not document --$option"
 done
 grep -- '--smoothing-steps' "$work/stdout" | grep -q '=3' || fail "--help: no default for --smoothing-steps"

@@ -85,7 +85,7 @@ Projection make_projection(const std::vector<Polyline>& lines, const Mesh& surfa
 /// Largest depth (nearest surface) per depth pixel; -inf where empty.
 class DepthBuffer {
  public:
-  DepthBuffer(const Mesh& surface, const Projection& proj) {
+  DepthBuffer(const Mesh& surface, const Projection& proj, double surface_tolerance) {
     factor_ = std::min(kSupersample, kMaxRaster / std::max({proj.width, proj.height, 1.0}));
     width_ = static_cast<int>(std::ceil(proj.width * factor_));
     height_ = static_cast<int>(std::ceil(proj.height * factor_));
@@ -100,10 +100,12 @@ class DepthBuffer {
       d_max = std::max(d_max, raster[v].z());
     }
     for (const Triangle& t : surface.triangles) fill(raster[t[0]], raster[t[1]], raster[t[2]]);
-    // The lines lie ON the surface: accept samples up to ~2 depth pixels (in
-    // world units) plus a small fraction of the depth range behind it.
+    // The lines lie ON the surface: accept samples behind it by ~2 depth
+    // pixels or the lines' own distance from the surface, whichever is
+    // larger, plus a small fraction of the depth range (float depth).
     const double range = d_max > d_min ? d_max - d_min : 0.0;
-    tolerance_ = 2.0 / (proj.scale * factor_) + 1e-3 * range;
+    const double off_surface = surface_tolerance * mean_edge_length(surface);
+    tolerance_ = std::max(2.0 / (proj.scale * factor_), off_surface) + 1e-3 * range;
   }
 
   /// `q` in drawing coordinates with depth. Compared with the farthest of the
@@ -336,7 +338,7 @@ std::string write_lines_svg(const std::vector<Polyline>& lines, const Mesh& surf
 std::string write_lines_svg(const std::vector<Polyline>& lines, const Mesh& surface,
                             const Topology& topology, const SvgOptions& options) {
   const Projection proj = make_projection(lines, surface, options);
-  const DepthBuffer depth(surface, proj);
+  const DepthBuffer depth(surface, proj, options.surface_tolerance);
 
   std::string out = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\"";
   std::string width, height;

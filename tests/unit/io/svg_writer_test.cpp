@@ -19,13 +19,23 @@ namespace {
 
 const double kPi = std::acos(-1.0);
 
-/// The square [-1,1]² in the plane z = 0, facing +z.
-Mesh plane() {
+/// The rectangle [x0,x1]×[y0,y1] in the plane z = 0, facing +z, as an n×n grid.
+Mesh grid(double x0, double x1, double y0, double y1, int n) {
   Mesh mesh;
-  mesh.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
-  mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) mesh.positions.push_back({x0 + (x1 - x0) * i / n, y0 + (y1 - y0) * j / n, 0});
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const uint32_t a = static_cast<uint32_t>(j * (n + 1) + i), b = a + 1, c = a + n + 2, d = a + n + 1;
+      mesh.triangles.push_back({a, b, c});
+      mesh.triangles.push_back({a, c, d});
+    }
   return mesh;
 }
+
+/// The square [-1,1]² with edges of 0.1: lines 0.1 off it are well beyond
+/// the default surface tolerance (half a mean edge length).
+Mesh plane() { return grid(-1, 1, -1, 1, 20); }
 
 /// Unit UV sphere; `rings` even, so the equator y = 0 is a ring of vertices.
 Mesh uv_sphere(int rings, int sectors) {
@@ -136,6 +146,15 @@ TEST_CASE("SVG: a line lying on the surface is visible", "[io][svg]") {
   CHECK(drawn[0].points.size() == 3);
 }
 
+TEST_CASE("SVG: lines slightly off the surface (fairing, chords) still count as on it", "[io][svg]") {
+  // Mean edge length of plane() is about 0.12; 0.02 below is within half of it.
+  const auto below = line(LineType::Ridge, {{-0.5, 0.3, -0.02}, {0.5, 0.3, -0.02}});
+  CHECK(paths_in(svg_of({below}, plane()), "ridges").size() == 1);
+  SvgOptions strict;
+  strict.surface_tolerance = 0;
+  CHECK(paths_in(crestline::io::write_lines_svg({below}, plane(), strict), "ridges").empty());
+}
+
 TEST_CASE("SVG: a line passing behind a plane is split into its visible runs", "[io][svg]") {
   const auto across = line(LineType::Ridge, {{-2, 0, -0.1}, {2, 0, -0.1}});
   const auto drawn = paths_in(svg_of({across}, plane()), "ridges");
@@ -166,9 +185,7 @@ TEST_CASE("SVG: the equator of a sphere shows only its front half", "[io][svg]")
 TEST_CASE("SVG: a closed line hidden in the middle stays one run across its start", "[io][svg]") {
   // Square loop starting at its left edge; its right half is behind the plane
   // x ∈ [0.5, 1.5] of a narrower occluder.
-  Mesh occluder;
-  occluder.positions = {{0.25, -2, 0}, {2, -2, 0}, {2, 2, 0}, {0.25, 2, 0}};
-  occluder.triangles = {{0, 1, 2}, {0, 2, 3}};
+  const Mesh occluder = grid(0.25, 2, -2, 2, 20);
   const auto loop =
       line(LineType::Ridge, {{-1, 0, -0.5}, {-1, -1, -0.5}, {1, -1, -0.5}, {1, 1, -0.5}, {-1, 1, -0.5}}, true);
   const auto drawn = paths_in(svg_of({loop}, occluder), "ridges");
@@ -193,7 +210,7 @@ TEST_CASE("SVG: document structure, groups and views", "[io][svg]") {
   const auto outline = paths_in(svg, "silhouette");
   REQUIRE(outline.size() == 1);
   CHECK(outline[0].closed);
-  CHECK(outline[0].points.size() == 4);
+  CHECK(outline[0].points.size() == 80);  // 20 grid edges per side
   CHECK(outline[0].length() == Approx(4 * 960).margin(4.0));
 
   // The caller's adjacency gives the same drawing as the one built inside.

@@ -30,6 +30,11 @@ struct SvgOptions {
   std::string ridge_color = "#c0392b";
   std::string valley_color = "#2471a3";
   bool silhouette = false;  // also draw the surface's outline (group "silhouette")
+  /// How far (in mean edge lengths of `surface`) a line may lie off the
+  /// surface and still count as on it: faired lines move up to
+  /// FairingOptions::hausdorff_bound, and chords between crossings on curved
+  /// triangles sag. Larger values let lines show through thin parts.
+  double surface_tolerance = 0.5;
 };
 
 /// Orthographic drawing of the lines with the parts hidden by `surface` removed.
