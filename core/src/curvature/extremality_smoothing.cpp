@@ -5,6 +5,7 @@
 
 #include "crestline/error.h"
 #include "crestline/mesh/cotan.h"
+#include "crestline/numerics/parallel.h"
 #include "crestline/numerics/sparse_solver.h"
 
 namespace crestline {
@@ -32,6 +33,12 @@ Eigen::VectorXd smooth_field(const Topology& topology, const CotanWeights& cotan
   SparseMatrix system(nv, nv);
   system.setFromTriplets(triplets.begin(), triplets.end());
   SpdSolver solver;
+  // A relative residual of 1e-6 instead of the solver's 1e-10: on the bunny
+  // and the feline it flips the sign of no extremality value and moves line
+  // crossings by at most 0.0025 edge lengths (mean 1e-5), a hundredth of the
+  // fairing bound, with identical lines after filtering; it saves a third of
+  // the iterations.
+  solver.tolerance = 1e-6;
   solver.compute(std::move(system));
 
   const Eigen::Map<const Eigen::VectorXd> mass(cotan.vertex_mass.data(), nv);
@@ -65,13 +72,20 @@ Extremality smooth_extremality(const Mesh& mesh, const Topology& topology, const
     edge_strength[e] = t * s * cotan.edge_weight[e];
   }
 
+  // The two fields are independent systems: one thread each where there are two.
+  const std::vector<Vec3>* directions[2] = {&curvature.dir_max, &curvature.dir_min};
+  const std::vector<double>* values[2] = {&extremality.e_max, &extremality.e_min};
+  Eigen::VectorXd smoothed[2];
+  parallel_for(
+      2,
+      [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i)
+          smoothed[i] = smooth_field(topology, cotan, edge_strength, *directions[i], *values[i], options.steps);
+      },
+      1);
   Extremality out;
-  const Eigen::VectorXd e_max =
-      smooth_field(topology, cotan, edge_strength, curvature.dir_max, extremality.e_max, options.steps);
-  const Eigen::VectorXd e_min =
-      smooth_field(topology, cotan, edge_strength, curvature.dir_min, extremality.e_min, options.steps);
-  out.e_max.assign(e_max.data(), e_max.data() + nv);
-  out.e_min.assign(e_min.data(), e_min.data() + nv);
+  out.e_max.assign(smoothed[0].data(), smoothed[0].data() + nv);
+  out.e_min.assign(smoothed[1].data(), smoothed[1].data() + nv);
   return out;
 }
 

@@ -3,9 +3,13 @@
 // M + t·L with a lumped mass matrix M and a (sign-corrected) cotan
 // Laplacian with non-negative weights, hence symmetric positive definite and
 // well conditioned for time steps of a few squared edge lengths: conjugate
-// gradients beat a factorization there, in time and memory.
+// gradients beat a factorization there, in time and memory. Sliver triangles
+// (marching-cubes scans) break that: a vertex whose cotan weights dwarf its
+// mass makes the condition number huge, and CG needs thousands of
+// iterations. The solver then factorizes once (sparse LDLᵀ) and reuses it.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <memory>
 #include <vector>
 
 namespace crestline {
@@ -19,14 +23,19 @@ class SpdSolver {
   /// positive and finite.
   void compute(SparseMatrix matrix);
   /// Solves matrix · x = b starting from `guess`; throws Error(Numerical)
-  /// when the iteration does not converge.
+  /// when neither the iteration nor the factorization converges. The first
+  /// solve gives CG a budget of about what a factorization costs; beyond it,
+  /// this and every later solve use the factorization.
   Eigen::VectorXd solve(const Eigen::VectorXd& b, const Eigen::VectorXd& guess) const;
 
   double tolerance = 1e-10;  // relative residual
   int max_iterations = 2000;
 
  private:
+  struct Factorization;
   SparseMatrix matrix_;
+  mutable std::shared_ptr<Factorization> factorization_;
+  mutable bool iterative_ok_ = false;  // CG has converged here before
 };
 
 }  // namespace crestline
