@@ -199,6 +199,16 @@ test('smoothing brush: painting frozen weights re-runs from the smoothing stage'
   await page.evaluate(() => window.crestline.brush.setEnabled(false));
 });
 
+test('the file picker opens an OFF file (an octahedron)', async () => {
+  mkdirSync(SHOTS, { recursive: true });
+  const path = join(SHOTS, 'octahedron.off');
+  writeFileSync(path, 'OFF\n6 8 0\n1 0 0\n-1 0 0\n0 1 0\n0 -1 0\n0 0 1\n0 0 -1\n' +
+    '3 0 2 4\n3 2 1 4\n3 1 3 4\n3 3 0 4\n3 2 0 5\n3 1 2 5\n3 3 1 5\n3 0 3 5\n');
+  const result = await nextResult(() => page.setInputFiles('#picker', path));
+  assert.equal(result.name, 'octahedron.off');
+  assert.equal(result.stats.triangles, 8);
+});
+
 test('cancel stops a long computation and the page stays usable', { skip: noMeshes }, async () => {
   await drop(['large/dragon-draco.glb']);
   await page.waitForFunction(() => document.getElementById('progress-text').textContent === 'smoothing', null, { timeout: 60000 });

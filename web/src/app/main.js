@@ -210,6 +210,7 @@ picker.addEventListener('change', () => {
   openFiles([...picker.files]);
   picker.value = ''; // the same file can be picked again
 });
+document.getElementById('open').addEventListener('click', () => picker.click());
 document.getElementById('cancel').addEventListener('click', () => client.cancel());
 applyDisplay();
 loadSoup(sampleMesh());
