@@ -46,11 +46,12 @@ constexpr double kMarginFraction = 0.02;
 struct Projection {
   Camera camera;
   double u_min = 0, v_max = 0, scale = 1, margin = 0;
+  double depth_origin = 0;  // depth is stored as float: measure it from the model
   double width = 0, height = 0;  // of the drawing, in drawing pixels
 
   Vec3 operator()(const Vec3& p) const {
     return {(p.dot(camera.right) - u_min) * scale + margin,
-            (v_max - p.dot(camera.up)) * scale + margin, p.dot(camera.toward)};
+            (v_max - p.dot(camera.up)) * scale + margin, p.dot(camera.toward) - depth_origin};
   }
 };
 
@@ -59,17 +60,19 @@ Projection make_projection(const std::vector<Polyline>& lines, const Mesh& surfa
   Projection proj;
   proj.camera = camera_for(options.view);
   constexpr double inf = std::numeric_limits<double>::infinity();
-  double u_min = inf, u_max = -inf, v_min = inf, v_max = -inf;
+  double u_min = inf, u_max = -inf, v_min = inf, v_max = -inf, w_min = inf;
   auto extend = [&](const Vec3& p) {
-    const double u = p.dot(proj.camera.right), v = p.dot(proj.camera.up);
-    if (!std::isfinite(u) || !std::isfinite(v)) return;
+    const double u = p.dot(proj.camera.right), v = p.dot(proj.camera.up), w = p.dot(proj.camera.toward);
+    if (!std::isfinite(u) || !std::isfinite(v) || !std::isfinite(w)) return;
     u_min = std::min(u_min, u), u_max = std::max(u_max, u);
     v_min = std::min(v_min, v), v_max = std::max(v_max, v);
+    w_min = std::min(w_min, w);
   };
   for (const Vec3& p : surface.positions) extend(p);
   for (const Polyline& line : lines)
     for (const Vec3& p : line.points) extend(p);
-  if (u_min > u_max) u_min = u_max = v_min = v_max = 0;  // nothing to draw
+  if (u_min > u_max) u_min = u_max = v_min = v_max = w_min = 0;  // nothing to draw
+  proj.depth_origin = w_min;
 
   const double longer = std::max(1, options.width);
   proj.margin = kMarginFraction * longer;

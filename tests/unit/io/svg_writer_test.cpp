@@ -243,7 +243,8 @@ TEST_CASE("SVG: the drawing does not depend on the model's scale or position", "
   CHECK(paths_in(reference, "ridges").size() == 1);
   for (const double scale : {1e-6, 1e6}) {
     INFO("scale " << scale);
-    const Vec3 offset(3 * scale, -7 * scale, 11 * scale);
+    // Far from the origin compared with its size: depth must not lose precision.
+    const Vec3 offset(3e4 * scale, -7e4 * scale, 11e4 * scale);
     Mesh moved = sphere;
     for (Vec3& p : moved.positions) p = p * scale + offset;
     Polyline moved_ridge = ridge;
