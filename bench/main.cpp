@@ -2,6 +2,7 @@
 // pipeline, one child process per mesh so that each peak is its own.
 //   crestline_bench [--runs N] [--smoke] [--only a,b] [--json FILE] [--export DIR]
 //                   [--meshes DIR] [--smoothing-steps N] [--threads N]
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -48,6 +49,13 @@ struct Args {
 
 double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
+double cpu_seconds() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  auto seconds = [](const timeval& t) { return double(t.tv_sec) + 1e-6 * double(t.tv_usec); };
+  return seconds(usage.ru_utime) + seconds(usage.ru_stime);
+}
+
 double median(std::vector<double> v) {
   if (v.empty()) return NAN;
   std::sort(v.begin(), v.end());
@@ -91,7 +99,7 @@ MeshResult measure(const MeshSpec& spec, const Args& args) {
   TriangleSoup soup;
   if (generated) soup = generate(spec, path);
 
-  std::vector<double> load, repair, topology, total, rethreshold, resmooth, stages[kStages];
+  std::vector<double> load, repair, topology, total, cpu, rethreshold, resmooth, stages[kStages];
   for (int run = 0; run < settings.runs; ++run) {
     if (!generated) {
       const double t = now();
@@ -107,6 +115,7 @@ MeshResult measure(const MeshSpec& spec, const Args& args) {
       }
     }
     reset_peak_rss();
+    const double cpu_start = cpu_seconds();
     double t = now();
     RepairResult repaired = repair_mesh(soup);
     repair.push_back(now() - t);
@@ -120,6 +129,7 @@ MeshResult measure(const MeshSpec& spec, const Args& args) {
     double sum = repair.back() + topology.back();
     for (int s = 0; s < kStages; ++s) stages[s].push_back(stats.seconds[s]), sum += stats.seconds[s];
     total.push_back(sum);
+    cpu.push_back(cpu_seconds() - cpu_start);
 
     // Interactive re-runs: a new threshold re-runs only the filter; new
     // smoothing re-runs from stage 6 (smoothing) on.
@@ -142,7 +152,7 @@ MeshResult measure(const MeshSpec& spec, const Args& args) {
   }
   r.runs = settings.runs;
   r.load = generated ? NAN : median(load);
-  r.repair = median(repair), r.topology = median(topology), r.total = median(total);
+  r.repair = median(repair), r.topology = median(topology), r.total = median(total), r.cpu = median(cpu);
   for (int s = 0; s < kStages; ++s) r.stages[s] = median(stages[s]);
   r.rethreshold = median(rethreshold), r.resmooth = median(resmooth);
   return r;
