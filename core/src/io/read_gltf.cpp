@@ -78,7 +78,8 @@ std::string split_glb(const Input& in, Files& files) {
   }
   const size_t total = std::min<size_t>(read_u32(in.data + 8), in.size);
   const size_t json_length = read_u32(in.data + 12);
-  if (read_u32(in.data + 16) != 0x4E4F534A || json_length > total - 20) {
+  // The header's total length may be below the 20 bytes already read.
+  if (read_u32(in.data + 16) != 0x4E4F534A || total < 20 || json_length > total - 20) {
     fail(ErrorKind::InvalidInput, in, "the GLB JSON chunk is missing or longer than the file.");
   }
   size_t bin = 20 + ((json_length + 3) & ~size_t(3));

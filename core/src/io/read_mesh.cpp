@@ -126,8 +126,8 @@ void add_polygon(TriangleSoup& soup, const uint32_t* poly, size_t n) {
     xy[2 * i + 1] = d.dot(v);
   }
   // Ear clipping on a circular doubly linked list. When no ear exists (a
-  // self-intersecting or degenerate outline) the current corner is clipped
-  // anyway, so the result always has n - 2 triangles.
+  // self-intersecting or degenerate outline) the rest is fanned, so the
+  // result always has n - 2 triangles.
   std::vector<size_t> prev(n), next(n);
   for (size_t i = 0; i < n; ++i) {
     prev[i] = (i + n - 1) % n;
@@ -149,7 +149,17 @@ void add_polygon(TriangleSoup& soup, const uint32_t* poly, size_t n) {
   size_t i = 0;
   size_t misses = 0;
   while (remaining > 3) {
-    if (is_ear(i) || misses > remaining) {
+    if (misses > remaining) {
+      // A whole turn without an ear: the rest is self-intersecting or
+      // degenerate (repeated corners). Fan it, in linear time; clipping one
+      // forced corner per turn would cost a turn of O(n) ear tests each,
+      // O(n³) in all (a 300-corner face took seconds).
+      for (size_t j = next[i]; next[j] != i; j = next[j]) {
+        soup.indices.insert(soup.indices.end(), {poly[i], poly[j], poly[next[j]]});
+      }
+      return;
+    }
+    if (is_ear(i)) {
       soup.indices.insert(soup.indices.end(), {poly[prev[i]], poly[i], poly[next[i]]});
       next[prev[i]] = next[i];
       prev[next[i]] = prev[i];
