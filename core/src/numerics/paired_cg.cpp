@@ -16,8 +16,8 @@ inline double flip_sign(double w, uint32_t flip) {
   return w;
 }
 
-// y = A_k p for both k, interleaved.
-void multiply(const SignedPairMatrix& a, const double* p, double* y) {
+// y = A_k p for both k, interleaved; adds ⟨p_k, y_k⟩ to py[k] in the same pass.
+void multiply(const SignedPairMatrix& a, const double* p, double* y, double py[2]) {
   const size_t n = a.rows();
   for (size_t i = 0; i < n; ++i) {
     double y0 = a.diagonal[i] * p[2 * i], y1 = a.diagonal[i] * p[2 * i + 1];
@@ -29,6 +29,7 @@ void multiply(const SignedPairMatrix& a, const double* p, double* y) {
       y1 += flip_sign(w, c >> 31) * p[2 * j + 1];
     }
     y[2 * i] = y0, y[2 * i + 1] = y1;
+    py[0] += p[2 * i] * y0, py[1] += p[2 * i + 1] * y1;
   }
 }
 
@@ -39,7 +40,8 @@ bool solve_signed_pair(const SignedPairMatrix& a, const std::vector<double>& b, 
   const size_t n = a.rows();
   std::vector<double> inverse_diagonal(n), r(2 * n), z(2 * n), p(2 * n), q(2 * n);
   for (size_t i = 0; i < n; ++i) inverse_diagonal[i] = 1.0 / a.diagonal[i];
-  multiply(a, x.data(), q.data());
+  double unused[2] = {0, 0};
+  multiply(a, x.data(), q.data(), unused);
   double b2[2] = {0, 0}, rr[2] = {0, 0}, rz[2] = {0, 0};
   for (size_t i = 0; i < n; ++i)
     for (int k = 0; k < 2; ++k) {
@@ -60,9 +62,8 @@ bool solve_signed_pair(const SignedPairMatrix& a, const std::vector<double>& b, 
     }
   }
   for (int it = 0; it < max_iterations && (active[0] || active[1]); ++it) {
-    multiply(a, p.data(), q.data());
     double pq[2] = {0, 0};
-    for (size_t i = 0; i < n; ++i) pq[0] += p[2 * i] * q[2 * i], pq[1] += p[2 * i + 1] * q[2 * i + 1];
+    multiply(a, p.data(), q.data(), pq);
     double alpha[2];
     for (int k = 0; k < 2; ++k) alpha[k] = active[k] ? rz[k] / pq[k] : 0.0;
     double rz_new[2] = {0, 0};
