@@ -58,7 +58,7 @@ std::string render(const CliOptions& options, const Pipeline& pipeline) {
   switch (options.format) {
     case OutputFormat::Json: return io::write_lines_json(pipeline.lines(), pipeline.stats());
     case OutputFormat::Svg:
-      return io::write_lines_svg(pipeline.lines(), pipeline.surface(), pipeline.topology(), options.svg);
+      return io::write_lines_svg(pipeline.lines(), pipeline.input_mesh(), pipeline.topology(), options.svg);
     case OutputFormat::Obj:
     default: return io::write_lines_obj(pipeline.lines());
   }

@@ -2,6 +2,7 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cstdio>
 #include <cctype>
 #include <iostream>
 #include <map>
@@ -37,12 +38,18 @@ int parse_options(int argc, char** argv, CliOptions& o) {
       ->required();
 
   PipelineOptions& p = o.pipeline;
-  // Every pipeline parameter but the threshold is a non-negative number.
+  // Every pipeline parameter but the threshold and the pre-smoothing steps
+  // (negative: automatic) is a non-negative number.
   auto parameter = [&app](const char* name, auto& value, const char* help) {
     return app.add_option(name, value, help)->check(CLI::NonNegativeNumber)->group("Pipeline");
   };
-  parameter("--presmooth-steps", p.presmooth.steps,
-            "Implicit mean-curvature-flow steps on the surface before curvature (0: off)");
+  char noisy[32];
+  std::snprintf(noisy, sizeof noisy, "%g", kNoisySurface);
+  app.add_option("--presmooth-steps", p.presmooth.steps,
+                 "Implicit mean-curvature-flow steps on the surface before curvature (0: off); negative: automatic, " +
+                     std::to_string(kNoisySurfaceSteps) + " steps when the measured noise exceeds " + noisy +
+                     " mean edge lengths, else none")
+      ->group("Pipeline");
   parameter("--presmooth-time-step", p.presmooth.time_step,
             "Time step of each presmoothing step, in mean edge lengths squared");
   parameter("--smoothing-steps", p.smoothing.steps, "Implicit extremality smoothing steps (paper 5.1; 0: off)");

@@ -13,7 +13,7 @@ import { loadCrestline } from './node.mjs';
 const OPTIONS = {
   '--smoothing-steps': ['smoothingSteps', 3, 'extremality smoothing steps (paper §5.1)'],
   '--smoothing-time-step': ['smoothingTimeStep', 1, 'time step per smoothing step, in mean edge lengths squared'],
-  '--presmooth-steps': ['presmoothSteps', 0, 'surface pre-smoothing steps (mean-curvature flow)'],
+  '--presmooth-steps': ['presmoothSteps', -1, 'surface pre-smoothing steps (mean-curvature flow); negative: automatic from the noise level'],
   '--presmooth-time-step': ['presmoothTimeStep', 1, 'time step per pre-smoothing step, in mean edge lengths squared'],
   '--threshold': ['threshold', -1, 'drop lines with strength ∫|κ|ds below this; negative: automatic'],
   '--fairing-bound': ['hausdorffBound', 0.25, 'line fairing Hausdorff bound, in mean edge lengths; 0 disables'],

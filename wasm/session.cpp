@@ -185,7 +185,9 @@ val Session::run(val progress) {
 val Session::surface() const {
   val out = val::object();
   if (!pipeline_) return out;
-  const Mesh& mesh = pipeline_->surface();
+  // Lines are placed on the input surface even when they were traced on the
+  // pre-smoothed one, so that is the surface to draw.
+  const Mesh& mesh = pipeline_->input_mesh();
   out.set("positions", positions_out(mesh.positions));
   out.set("indices",
           copy_out(mesh.triangles.empty() ? nullptr : mesh.triangles.front().data(), mesh.triangles.size() * 3));
@@ -247,6 +249,8 @@ val Session::stats() const {
   out.set("valleyLength", s.valley_length);
   out.set("threshold", s.threshold);
   out.set("meanEdgeLength", s.mean_edge_length);
+  out.set("noiseLevel", s.noise_level);
+  out.set("presmoothStepsUsed", s.presmooth_steps);
   val seconds = val::object();
   for (int i = 0; i < kStages; ++i) seconds.set(stage_name(static_cast<Stage>(i)), s.seconds[i]);
   out.set("seconds", seconds);
@@ -279,7 +283,7 @@ val Session::linesSvg(val o) const {
   }
   if (!known) return error_value(error_kind_name(ErrorKind::InvalidInput), "unknown view \"" + view + "\"");
   return guarded(triangles_,
-                 [&] { return val(io::write_lines_svg(pipeline_->lines(), pipeline_->surface(), options)); });
+                 [&] { return val(io::write_lines_svg(pipeline_->lines(), pipeline_->input_mesh(), options)); });
 }
 
 }  // namespace crestline::wasm

@@ -31,6 +31,7 @@ const char* stage_name(Stage stage) {
 Pipeline::Pipeline(Mesh mesh) : input_(std::move(mesh)) {
   topology_ = build_topology(input_);
   mean_edge_ = mean_edge_length(input_);
+  noise_level_ = surface_noise_level(input_, topology_);
 }
 
 void Pipeline::mark_dirty(Stage from) {
@@ -62,8 +63,11 @@ void Pipeline::run(const ProgressCallback& progress) {
   };
 
   step(Stage::Presmooth, [&] {
+    PresmoothOptions presmooth = options_.presmooth;
+    if (presmooth.steps < 0) presmooth.steps = automatic_presmooth_steps(noise_level_);
+    presmooth_steps_ = presmooth.time_step > 0 ? presmooth.steps : 0;
     surface_.triangles = input_.triangles;
-    surface_.positions = presmooth_surface(input_, topology_, options_.presmooth);
+    surface_.positions = presmooth_surface(input_, topology_, presmooth);
   });
   step(Stage::Curvature, [&] { curvature_ = compute_curvature(surface_, topology_); });
   step(Stage::Extremality, [&] { raw_extremality_ = compute_extremality(surface_, topology_, curvature_); });
@@ -87,8 +91,21 @@ void Pipeline::run(const ProgressCallback& progress) {
   });
   step(Stage::Singular, [&] { singular_ = connect_singular_triangles(surface_, topology_, regularity_, traced_); });
   step(Stage::Polylines, [&] {
-    joined_ = join_polylines(singular_.lines.ridges);
-    std::vector<Polyline> valleys = join_polylines(singular_.lines.valleys);
+    // Lines traced on the pre-smoothed surface are drawn on the input one:
+    // same edges, same edge parameters, so they lie on what the user gave us.
+    const FeatureGraph* ridges = &singular_.lines.ridges;
+    const FeatureGraph* valleys_graph = &singular_.lines.valleys;
+    FeatureGraph placed_ridges, placed_valleys;
+    if (surface_.positions != input_.positions) {
+      placed_ridges = *ridges;
+      placed_valleys = *valleys_graph;
+      place_nodes_on(placed_ridges, input_, topology_.edges);
+      place_nodes_on(placed_valleys, input_, topology_.edges);
+      ridges = &placed_ridges;
+      valleys_graph = &placed_valleys;
+    }
+    joined_ = join_polylines(*ridges);
+    std::vector<Polyline> valleys = join_polylines(*valleys_graph);
     joined_.insert(joined_.end(), std::make_move_iterator(valleys.begin()), std::make_move_iterator(valleys.end()));
   });
   step(Stage::Fairing, [&] { faired_ = fair_polylines(joined_, mean_edge_, options_.fairing); });
@@ -115,6 +132,8 @@ PipelineStats Pipeline::stats() const {
   }
   s.threshold = filtered_.threshold;
   s.mean_edge_length = mean_edge_;
+  s.noise_level = noise_level_;
+  s.presmooth_steps = presmooth_steps_;
   for (int i = 0; i < static_cast<int>(Stage::Count); ++i) s.seconds[i] = seconds_[i];
   return s;
 }

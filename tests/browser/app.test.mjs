@@ -125,10 +125,10 @@ test('threshold change re-filters only, and changes the count', { skip: noMeshes
   assert.ok(!smoothed.ran.includes('curvature'));
   const camera = () => page.evaluate(() => window.crestline.viewer.camera.position.toArray());
   const view = await camera();
-  const presmoothed = await nextResult(() => page.evaluate(() => window.crestline.update({ smoothingSteps: 3, presmoothSteps: 1 })));
+  const presmoothed = await nextResult(() => page.evaluate(() => window.crestline.update({ smoothingSteps: 3, autoPresmooth: false, presmoothSteps: 1 })));
   assert.equal(presmoothed.ran[0], 'presmooth');
   assert.deepEqual(await camera(), view, 'a new surface of the same mesh keeps the view');
-  await nextResult(() => page.evaluate(() => window.crestline.update({ presmoothSteps: 0 })));
+  await nextResult(() => page.evaluate(() => window.crestline.update({ autoPresmooth: true })));
 });
 
 test('a broken file and an unsupported one: one sentence each, and the page recovers', async () => {

@@ -55,6 +55,8 @@ struct PipelineStats {
   size_t ridges = 0, valleys = 0;  // kept lines
   double ridge_length = 0, valley_length = 0;
   double threshold = 0;            // used by the filter
+  double noise_level = 0;          // surface_noise_level of the input
+  int presmooth_steps = 0;         // used (the automatic choice resolved)
   double mean_edge_length = 0;
   double seconds[static_cast<int>(Stage::Count)] = {};  // last run time per stage
 };
@@ -97,6 +99,8 @@ class Pipeline {
   Mesh surface_;
   Topology topology_;
   double mean_edge_ = 0;
+  double noise_level_ = 0;
+  int presmooth_steps_ = 0;
   Curvature curvature_;
   Extremality raw_extremality_;
   Extremality extremality_;

@@ -85,11 +85,13 @@ std::string stats_json(const PipelineStats& stats) {
   const std::pair<const char*, size_t> counts[] = {
       {"vertices", stats.vertices},         {"triangles", stats.triangles},
       {"singular_max", stats.singular_max}, {"singular_min", stats.singular_min},
-      {"ridges", stats.ridges},             {"valleys", stats.valleys}};
+      {"ridges", stats.ridges},             {"valleys", stats.valleys},
+      {"presmooth_steps", static_cast<size_t>(stats.presmooth_steps)}};
   const std::pair<const char*, double> measures[] = {{"ridge_length", stats.ridge_length},
                                                      {"valley_length", stats.valley_length},
                                                      {"threshold", stats.threshold},
-                                                     {"mean_edge_length", stats.mean_edge_length}};
+                                                     {"mean_edge_length", stats.mean_edge_length},
+                                                     {"noise_level", stats.noise_level}};
   std::string out = "{";
   auto key = [&out](const char* name) {
     if (out.size() > 1 && out.back() != '{') out += ',';

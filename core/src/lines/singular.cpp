@@ -22,6 +22,7 @@ SingularTriangleCounts connect_field(const Mesh& mesh, const Topology& topology,
       graph.points.push_back((mesh.positions[f[0]] + mesh.positions[f[1]] + mesh.positions[f[2]]) / 3.0);
       graph.curvature.push_back((graph.curvature[marked[0]] + graph.curvature[marked[1]] + graph.curvature[marked[2]]) / 3.0);
       graph.source.push_back(t);
+      graph.edge_parameter.push_back(0);
       graph.trisector.push_back(1);
       for (uint32_t m : marked) graph.segments.push_back({m, centre});
       ++counts.trisectors;

@@ -40,6 +40,7 @@ uint32_t crossing_node(FeatureGraph& graph, const Mesh& mesh, const Topology& to
   graph.points.push_back((1 - t) * mesh.positions[u] + t * mesh.positions[v]);
   graph.curvature.push_back(std::abs((1 - t) * field.kappa_own[u] + t * field.kappa_own[v]));
   graph.source.push_back(edge);
+  graph.edge_parameter.push_back(t);
   graph.trisector.push_back(0);
   return node;
 }
@@ -87,6 +88,20 @@ void trace_field(const Mesh& mesh, const Topology& topology, const Field& field,
 }  // namespace
 
 const char* line_type_name(LineType type) { return type == LineType::Ridge ? "ridge" : "valley"; }
+
+void place_nodes_on(FeatureGraph& graph, const Mesh& mesh, const std::vector<std::array<uint32_t, 2>>& edges) {
+  const std::vector<Vec3>& x = mesh.positions;
+  for (size_t i = 0; i < graph.points.size(); ++i) {
+    if (graph.trisector[i]) {
+      const Triangle& f = mesh.triangles[graph.source[i]];
+      graph.points[i] = (x[f[0]] + x[f[1]] + x[f[2]]) / 3.0;
+    } else {
+      const auto& e = edges[graph.source[i]];
+      const double t = graph.edge_parameter[i];
+      graph.points[i] = (1 - t) * x[e[0]] + t * x[e[1]];
+    }
+  }
+}
 
 TraceResult trace_regular_triangles(const Mesh& mesh, const Topology& topology, const Curvature& curvature,
                                     const Extremality& extremality, const Regularity& regularity,

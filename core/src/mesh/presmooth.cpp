@@ -1,19 +1,68 @@
 #include "crestline/mesh/presmooth.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "crestline/mesh/cotan.h"
 #include "crestline/numerics/sparse_solver.h"
 
 namespace crestline {
 
+double surface_noise_level(const Mesh& mesh, const Topology& topology) {
+  // Signed offset of each vertex from its neighbours' centroid along its
+  // normal: curvature makes it vary smoothly, noise makes it jump. The jump,
+  // offset minus its neighbours' mean offset, measures the noise alone.
+  const size_t nv = mesh.positions.size();
+  const std::vector<uint8_t>& boundary = topology.boundary_vertex;
+  std::vector<Vec3> neighbour_sum(nv, Vec3::Zero()), normal(nv, Vec3::Zero());
+  std::vector<uint32_t> count(nv, 0);
+  for (const auto& e : topology.edges) {
+    neighbour_sum[e[0]] += mesh.positions[e[1]];
+    neighbour_sum[e[1]] += mesh.positions[e[0]];
+    ++count[e[0]], ++count[e[1]];
+  }
+  for (const Triangle& t : mesh.triangles) {
+    const Vec3 n = (mesh.positions[t[1]] - mesh.positions[t[0]]).cross(mesh.positions[t[2]] - mesh.positions[t[0]]);
+    for (uint32_t v : t) normal[v] += n;
+  }
+  std::vector<double> offset(nv, 0.0);
+  std::vector<uint8_t> valid(nv, 0);
+  for (size_t v = 0; v < nv; ++v) {
+    if (boundary[v] || count[v] == 0 || !(normal[v].norm() > 0)) continue;
+    offset[v] = normal[v].normalized().dot(mesh.positions[v] - neighbour_sum[v] / count[v]);
+    valid[v] = 1;
+  }
+  std::vector<double> offset_sum(nv, 0.0);
+  std::vector<uint32_t> valid_count(nv, 0);
+  for (const auto& e : topology.edges)
+    if (valid[e[0]] && valid[e[1]]) {
+      offset_sum[e[0]] += offset[e[1]], ++valid_count[e[0]];
+      offset_sum[e[1]] += offset[e[0]], ++valid_count[e[1]];
+    }
+  std::vector<double> jumps;
+  jumps.reserve(nv);
+  for (size_t v = 0; v < nv; ++v)
+    if (valid[v] && valid_count[v] > 0) jumps.push_back(std::abs(offset[v] - offset_sum[v] / valid_count[v]));
+  const double h = mean_edge_length(mesh);
+  if (jumps.empty() || !(h > 0)) return 0;
+  auto middle = jumps.begin() + jumps.size() / 2;
+  std::nth_element(jumps.begin(), middle, jumps.end());
+  return *middle / h;
+}
+
+int automatic_presmooth_steps(double noise_level) { return noise_level > kNoisySurface ? kNoisySurfaceSteps : 0; }
+
 std::vector<Vec3> presmooth_surface(const Mesh& mesh, const Topology& topology, const PresmoothOptions& options) {
   std::vector<Vec3> x = mesh.positions;
-  if (options.steps <= 0 || options.time_step <= 0) return x;
+  const int steps =
+      options.steps < 0 ? automatic_presmooth_steps(surface_noise_level(mesh, topology)) : options.steps;
+  if (steps <= 0 || options.time_step <= 0) return x;
   const size_t nv = x.size();
   const double h = mean_edge_length(mesh);
   const double t = options.time_step * h * h;
   const std::vector<uint8_t>& fixed = topology.boundary_vertex;
 
-  for (int step = 0; step < options.steps; ++step) {
+  for (int step = 0; step < steps; ++step) {
     // Weights from the current surface: mean-curvature flow, linearised per step.
     const CotanWeights cotan = cotan_weights(x, mesh, topology);
     // (M + tL) x' = M x on free vertices; fixed (boundary) ones move to the right side.

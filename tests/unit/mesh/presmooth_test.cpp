@@ -28,3 +28,21 @@ TEST_CASE("pre-smoothing removes normal noise and keeps boundaries fixed", "[pre
   options.steps = 0;
   CHECK(presmooth_surface(noisy, topo, options) == noisy.positions);
 }
+
+TEST_CASE("noise level measures normal noise in edge lengths, not curvature", "[presmooth]") {
+  for (int level : {3, 4}) {
+    Mesh sphere = repair_mesh(testing::icosphere(level)).mesh;
+    const double h = mean_edge_length(sphere);
+    CHECK(surface_noise_level(sphere, build_topology(sphere)) < 0.01);
+    for (double sigma : {0.1, 0.25}) {
+      Mesh noisy = sphere;
+      testing::add_normal_noise(noisy, sigma * h, 5);
+      const double level_measured = surface_noise_level(noisy, build_topology(noisy));
+      INFO("level " << level << " sigma " << sigma << " measured " << level_measured);
+      CHECK(level_measured > 0.7 * sigma);
+      CHECK(level_measured < 1.1 * sigma);
+      CHECK(automatic_presmooth_steps(level_measured) == kNoisySurfaceSteps);
+    }
+  }
+  CHECK(automatic_presmooth_steps(0.01) == 0);
+}

@@ -19,7 +19,8 @@ export function defaultParams() {
     autoThreshold: true,
     threshold: 1,
     hausdorffBound: 0.25,
-    presmoothSteps: 0,
+    autoPresmooth: true,
+    presmoothSteps: 2,
     showRidges: true,
     showValleys: true,
     lineWidth: 2.5,
@@ -37,7 +38,7 @@ export function defaultParams() {
 export function pipelineOptions(params) {
   return {
     smoothingSteps: params.smoothingSteps,
-    presmoothSteps: params.presmoothSteps,
+    presmoothSteps: params.autoPresmooth ? -1 : params.presmoothSteps,
     hausdorffBound: params.hausdorffBound,
     threshold: params.autoThreshold ? -1 : params.threshold,
   };
@@ -54,7 +55,12 @@ export function createGui(params, { onCompute, onDisplay, onFit, onOpen, onBrush
     onCompute();
   });
   lines.add(params, 'hausdorffBound', 0, 1, 0.01).name('fairing bound (edges)').onFinishChange(onCompute);
-  lines.add(params, 'presmoothSteps', 0, 10, 1).name('pre-smoothing steps').onFinishChange(onCompute);
+  lines.add(params, 'autoPresmooth').name('automatic pre-smoothing').onChange(onCompute);
+  lines.add(params, 'presmoothSteps', 0, 10, 1).name('pre-smoothing steps').onFinishChange(() => {
+    params.autoPresmooth = false;
+    gui.controllersRecursive().forEach((c) => c.updateDisplay());
+    onCompute();
+  });
   const display = gui.addFolder('Display');
   display.add(params, 'showRidges').name('ridges').onChange(onDisplay);
   display.add(params, 'showValleys').name('valleys').onChange(onDisplay);
