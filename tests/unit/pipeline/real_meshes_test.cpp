@@ -128,3 +128,10 @@ TEST_CASE("singular triangle frequency matches the paper's Table 2", "[real][tab
   CHECK(feline > 4.3);
   CHECK(feline < 5.3);
 }
+
+TEST_CASE("featureless real meshes draw no lines", "[real]") {
+  SKIP_WITHOUT_MESHES();
+  // An icosphere stored with float coordinates: umbilic everywhere.
+  const Pipeline p = testing::run_pipeline(io::read_mesh(testing::mesh_path("smooth/sphere.obj")));
+  CHECK(p.lines().empty());
+}
