@@ -8,6 +8,7 @@ EMSCRIPTEN_BINDINGS(crestline) {
   emscripten::class_<Session>("Session")
       .constructor<>()
       .function("load", &Session::load)
+      .function("loadFile", &Session::loadFile)
       .function("setOptions", &Session::setOptions)
       .function("options", &Session::options)
       .function("run", &Session::run)

@@ -6,7 +6,6 @@ cd "$(dirname "$0")/.."
 # Debian's emcc finds its node modules (acorn, …) only here.
 export NODE_PATH=${NODE_PATH:-/usr/share/nodejs}
 emcmake cmake -S . -B build-wasm -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
-# Only the module: the file readers need native libraries (tinyobjloader, …).
 cmake --build build-wasm -j "$(nproc)" --target crestline_wasm
 mkdir -p wasm/dist
 cp build-wasm/wasm/crestline.js build-wasm/wasm/crestline.wasm wasm/dist/

@@ -1,12 +1,13 @@
 #!/usr/bin/env node
 // The crestline command on the WASM build:
 //   node wasm/cli.mjs INPUT -o OUT.{obj,json,svg} [options]
-// Same options and output (the core's writers) as the native build/cli/crestline;
-// the input is decoded by web/src/io (what the browser app uses; no Draco in node).
+// Same readers (io::read_mesh_bytes through Session.loadFile), options, messages
+// and writers as the native build/cli/crestline. Only Draco/meshopt glTF, which
+// the C++ readers leave to the browser under Emscripten, is decoded by web/src/io
+// (three.js: meshopt works in node, Draco does not).
 import { readFileSync, renameSync, writeFileSync } from 'node:fs';
 import { basename, dirname, extname, join } from 'node:path';
 import { loadMeshFiles } from '../web/src/io/load-files.js';
-import { Engine } from '../web/src/worker/engine.js';
 import { loadCrestline } from './node.mjs';
 
 // flag → [Session option key, default shown in --help, description]
@@ -69,7 +70,7 @@ function parseArgs(argv) {
   return args;
 }
 
-/** A .gltf's external buffers, read from beside it (the browser gets them dropped together). */
+/** A .gltf's external files (buffers, images), read from beside it; the browser gets them dropped together. */
 function gltfCompanions(path, bytes) {
   if (extname(path).toLowerCase() !== '.gltf') return [];
   let json;
@@ -78,16 +79,54 @@ function gltfCompanions(path, bytes) {
   } catch {
     return []; // the reader reports the broken JSON
   }
-  return (json.buffers ?? [])
-    .filter((b) => b.uri && !b.uri.startsWith('data:'))
-    .flatMap((b) => {
-      try {
-        const data = readFileSync(join(dirname(path), decodeURIComponent(b.uri)));
-        return [{ name: basename(b.uri), bytes: data.buffer.slice(data.byteOffset, data.byteOffset + data.byteLength) }];
-      } catch {
-        return []; // named as missing by the reader
-      }
-    });
+  const uris = [...(json.buffers ?? []), ...(json.images ?? [])]
+    .map((entry) => entry?.uri)
+    .filter((uri) => typeof uri === 'string' && uri && !uri.startsWith('data:'));
+  return [...new Set(uris)].flatMap((uri) => {
+    try {
+      return [{ name: basename(uri), bytes: readFileSync(join(dirname(path), decodeURIComponent(uri))) }];
+    } catch {
+      return []; // named as missing by the reader
+    }
+  });
+}
+
+/** "FILE: problem", like the native CLI: a message that already names the file is not prefixed twice. */
+function named(file, message) {
+  for (const name of [file, basename(file)]) {
+    if (message.startsWith(`${name}: `)) return `${file}: ${message.slice(name.length + 2)}`;
+  }
+  return `${file}: ${message}`;
+}
+
+/** Throws a Session's {error} as one sentence naming `file`. */
+function check(file, result) {
+  if (result.error) throw new Error(named(file, result.error));
+  return result;
+}
+
+// The C++ readers refuse compressed glTF under Emscripten (core/src/io/read_gltf.cpp).
+const isCompressedGltf = (result) => result.kind === 'unsupported' && /is compressed with/.test(result.error);
+
+/** Reads the input with the C++ readers; compressed glTF through web/src/io. */
+async function loadInput(session, path, bytes) {
+  const companions = gltfCompanions(path, bytes);
+  const loaded = session.loadFile(basename(path), bytes, companions, {});
+  if (!isCompressedGltf(loaded)) return check(path, loaded);
+  const toBuffer = (data) => data.buffer.slice(data.byteOffset, data.byteOffset + data.byteLength);
+  let soup;
+  try {
+    soup = await loadMeshFiles([{ name: basename(path), bytes: toBuffer(bytes) }, ...companions]);
+  } catch (error) {
+    throw new Error(named(path, error.message));
+  }
+  return check(path, session.load(soup.positions, soup.indices, {}));
+}
+
+/** The native CLI's --repair-report: its header line, then "  snake_case: count". */
+function printRepairReport(input, report) {
+  console.error(`crestline: ${input}: repair report`);
+  for (const [key, count] of Object.entries(report)) console.error(`  ${key.replace(/[A-Z]/g, (c) => `_${c.toLowerCase()}`)}: ${count}`);
 }
 
 function readWeights(path, vertices) {
@@ -111,23 +150,31 @@ async function main(argv) {
   if (!['obj', 'json', 'svg'].includes(format)) throw new Error(`${args.output}: unknown output format (use .obj, .json or .svg).`);
   let bytes;
   try {
-    const data = readFileSync(args.input);
-    bytes = data.buffer.slice(data.byteOffset, data.byteOffset + data.byteLength);
+    bytes = readFileSync(args.input);
   } catch (error) {
     throw new Error(`${args.input}: cannot be read (${error.code ?? error.message}).`);
   }
-  const soup = await loadMeshFiles([{ name: basename(args.input), bytes }, ...gltfCompanions(args.input, bytes)]);
-  const engine = new Engine(await loadCrestline());
-  const loaded = engine.load(soup);
-  if (args.repairReport) for (const [key, count] of Object.entries(loaded.report)) console.error(`${key}: ${count}`);
-  else if (!args.quiet) for (const note of loaded.notes) console.error(`${args.input}: ${note}`);
-  if (args.weights) args.options.vertexWeights = readWeights(args.weights, loaded.vertices);
-  const progress = args.quiet || !process.stderr.isTTY
-    ? undefined
-    : (stage, fraction) => (process.stderr.write(`\r${stage} ${Math.round(100 * fraction)}%   `), true);
-  engine.run(args.options, progress);
-  if (progress) process.stderr.write('\r'.padEnd(30) + '\r');
-  const session = engine.session;
+  const module = await loadCrestline();
+  const session = new module.Session();
+  try {
+    const loaded = await loadInput(session, args.input, bytes);
+    if (!args.quiet) for (const note of loaded.notes) console.error(`crestline: ${named(args.input, note)}`);
+    if (args.repairReport) printRepairReport(args.input, loaded.report);
+    if (args.weights) args.options.vertexWeights = readWeights(args.weights, loaded.vertices);
+    const progress = args.quiet || !process.stderr.isTTY
+      ? undefined
+      : (stage, fraction) => (process.stderr.write(`\r${stage} ${Math.round(100 * fraction)}%   `), true);
+    check(args.input, session.setOptions(args.options));
+    check(args.input, session.run(progress));
+    if (progress) process.stderr.write('\r'.padEnd(30) + '\r');
+    write(args, session);
+  } finally {
+    session.delete();
+  }
+}
+
+function write(args, session) {
+  const format = extname(args.output).slice(1).toLowerCase();
   let text;
   if (format === 'obj') text = session.linesObj();
   else if (format === 'json') text = session.linesJson();
@@ -141,7 +188,6 @@ async function main(argv) {
   writeFileSync(temporary, text);
   renameSync(temporary, args.output);
   if (args.stats) console.log(session.statsJson());
-  engine.dispose();
 }
 
 main(process.argv.slice(2)).catch((error) => {

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "crestline/error.h"
+#include "crestline/io/read_mesh.h"
 #include "crestline/io/write_lines.h"
 #include "crestline/mesh/repair.h"
 
@@ -46,9 +47,10 @@ std::string too_large(size_t triangles) {
   return "mesh too large for the browser (" + std::to_string(triangles) + " triangles)";
 }
 
-/// Runs `body`, mapping every exception to {error, kind}.
+/// Runs `body`, mapping every exception to {error, kind}. `triangles` is read
+/// only when memory runs out, so a body may still set it.
 template <class F>
-val guarded(size_t triangles, F&& body) {
+val guarded(const size_t& triangles, F&& body) {
   try {
     return body();
   } catch (const Cancelled&) {
@@ -87,34 +89,65 @@ val report_value(const RepairReport& r) {
   return out;
 }
 
+RepairOptions repair_options(const val& options) {
+  RepairOptions repair;
+  if (!options.isUndefined() && !options.isNull()) {
+    read(options, "weldTolerance", repair.weld_tolerance);
+    read(options, "maxTriangles", repair.max_triangles);
+  }
+  return repair;
+}
+
 }  // namespace
 
 val Session::load(val positions, val indices, val options) {
   pipeline_.reset();
   triangles_ = indices["length"].as<size_t>() / 3;
   return guarded(triangles_, [&] {
-    RepairOptions repair;
-    if (!options.isUndefined()) {
-      read(options, "weldTolerance", repair.weld_tolerance);
-      read(options, "maxTriangles", repair.max_triangles);
-    }
+    const RepairOptions repair = repair_options(options);
     if (triangles_ > repair.max_triangles) throw Error(ErrorKind::TooLarge, too_large(triangles_));
     TriangleSoup soup;
     soup.positions = copy_in<double>(positions);
     soup.indices = copy_in<uint32_t>(indices);
-    RepairResult repaired = repair_mesh(soup, repair);
-    soup = {};
-    val out = val::object();
-    out.set("ok", true);
-    out.set("vertices", repaired.mesh.vertex_count());
-    out.set("triangles", repaired.mesh.triangle_count());
-    out.set("report", report_value(repaired.report));
-    val notes = val::array();
-    for (const std::string& note : repaired.report.notes()) notes.call<void>("push", note);
-    out.set("notes", notes);
-    pipeline_ = std::make_unique<Pipeline>(std::move(repaired.mesh));
-    return out;
+    return adopt(std::move(soup), repair);
   });
+}
+
+val Session::loadFile(std::string name, val bytes, val companions, val options) {
+  pipeline_.reset();
+  triangles_ = 0;
+  return guarded(triangles_, [&] {
+    const RepairOptions repair = repair_options(options);
+    io::ReadOptions read_options;
+    read_options.max_triangles = repair.max_triangles;
+    std::vector<io::NamedBuffer> files;
+    if (!companions.isUndefined() && !companions.isNull()) {
+      const size_t count = companions["length"].as<size_t>();
+      for (size_t i = 0; i < count; ++i) {
+        const val file = companions[i];
+        files.push_back({file["name"].as<std::string>(), copy_in<uint8_t>(file["bytes"])});
+      }
+    }
+    TriangleSoup soup = io::read_mesh_bytes(name, copy_in<uint8_t>(bytes), files, read_options);
+    triangles_ = soup.indices.size() / 3;
+    return adopt(std::move(soup), repair);
+  });
+}
+
+val Session::adopt(TriangleSoup soup, const RepairOptions& repair) {
+  RepairResult repaired = repair_mesh(soup, repair);
+  val notes = val::array();
+  for (const std::string& note : soup.notes) notes.call<void>("push", note);
+  for (const std::string& note : repaired.report.notes()) notes.call<void>("push", note);
+  soup = {};
+  val out = val::object();
+  out.set("ok", true);
+  out.set("vertices", repaired.mesh.vertex_count());
+  out.set("triangles", repaired.mesh.triangle_count());
+  out.set("report", report_value(repaired.report));
+  out.set("notes", notes);
+  pipeline_ = std::make_unique<Pipeline>(std::move(repaired.mesh));
+  return out;
 }
 
 val Session::setOptions(val o) {

@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 
+#include "crestline/mesh/repair.h"
 #include "crestline/pipeline.h"
 
 namespace crestline::wasm {
@@ -21,6 +22,13 @@ class Session {
   /// Repairs the soup (repair_mesh) and builds a Pipeline on it.
   /// Returns {ok, vertices, triangles, report:{…}, notes:[…]} or {error, kind}.
   val load(val positions, val indices, val options);
+  /// Reads a file with the native CLI's readers (io::read_mesh_bytes), then
+  /// as load(). name: the file's name, for messages and the format hint;
+  /// bytes: Uint8Array; companions: [{name, bytes}], a .gltf's external
+  /// files (may be empty or undefined); options: as load(). Notes include
+  /// the reader's. Draco/meshopt glTF returns {error, kind: "unsupported"}:
+  /// the browser decodes those.
+  val loadFile(std::string name, val bytes, val companions, val options);
 
   /// Partial PipelineOptions in camelCase (see options()); unknown keys are
   /// ignored, missing ones keep their value. Cheap: only marks stages dirty.
@@ -55,6 +63,10 @@ class Session {
   val linesSvg(val options) const;
 
  private:
+  /// Repairs `soup` and builds the Pipeline on it: the shared end of load()
+  /// and loadFile().
+  val adopt(TriangleSoup soup, const RepairOptions& repair);
+
   std::unique_ptr<Pipeline> pipeline_;
   size_t triangles_ = 0;
 };

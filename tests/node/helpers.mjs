@@ -5,7 +5,8 @@ import { fileURLToPath } from 'node:url';
 
 export const ROOT = fileURLToPath(new URL('../../', import.meta.url));
 export const MESHES = fileURLToPath(new URL('../../../shared/meshes/', import.meta.url));
-export const NATIVE_CLI = `${ROOT}build/cli/crestline`;
+// CRESTLINE_NATIVE_CLI points the tests at another native build (e.g. build-w2/cli/crestline).
+export const NATIVE_CLI = process.env.CRESTLINE_NATIVE_CLI ?? `${ROOT}build/cli/crestline`;
 export const haveMeshes = existsSync(MESHES);
 export const haveNativeCli = existsSync(NATIVE_CLI);
 

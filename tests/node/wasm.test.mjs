@@ -1,4 +1,5 @@
-// The WASM module through the worker's Engine, on analytic meshes.
+// The WASM module through the worker's Engine, on analytic meshes, and its
+// Session.loadFile on small in-memory files.
 import assert from 'node:assert/strict';
 import { test } from 'node:test';
 import { loadCrestline } from '../../wasm/node.mjs';
@@ -137,5 +138,41 @@ test('out of memory (60M triangles past the 2 GB heap) is a sentence, and the mo
   const mesh = sineHeightField({ n: 10 });
   assert.ok(session.load(mesh.positions, mesh.indices, {}).ok);
   assert.ok(session.run(() => true).ok);
+  session.delete();
+});
+
+test('loadFile reads bytes with the C++ readers: OBJ polygons, .gltf companions, errors naming the file', () => {
+  const session = new module.Session();
+  const text = (s) => new TextEncoder().encode(s);
+  // One quad, ear-clipped into two triangles.
+  const quad = session.loadFile('quad.obj', text('v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n'), [], {});
+  assert.equal(quad.ok, true);
+  assert.deepEqual([quad.vertices, quad.triangles], [4, 2]);
+  // A .gltf whose buffer lives in a companion file, found by its URI.
+  const buffer = new Uint8Array(new Float32Array([0, 0, 0, 1, 0, 0, 0, 1, 0]).buffer);
+  const gltf = JSON.stringify({
+    asset: { version: '2.0' },
+    buffers: [{ uri: 'tri.bin', byteLength: 36 }],
+    bufferViews: [{ buffer: 0, byteLength: 36 }],
+    accessors: [{ bufferView: 0, componentType: 5126, count: 3, type: 'VEC3', min: [0, 0, 0], max: [1, 1, 0] }],
+    meshes: [{ primitives: [{ attributes: { POSITION: 0 } }] }],
+    nodes: [{ mesh: 0 }],
+    scenes: [{ nodes: [0] }],
+  });
+  const triangle = session.loadFile('tri.gltf', text(gltf), [{ name: 'tri.bin', bytes: buffer }], undefined);
+  assert.equal(triangle.ok, true, triangle.error);
+  assert.equal(triangle.triangles, 1);
+  // Broken files: one sentence naming the file, never an abort.
+  const cases = [
+    ['empty.obj', text(''), [], /^empty\.obj: /],
+    ['tri.gltf', text(gltf), [], /^tri\.gltf: .*tri\.bin/],
+    ['noise.stl', text('\u0001\u0002\u0003'), [], /^noise\.stl: /],
+  ];
+  for (const [name, bytes, companions, message] of cases) {
+    const result = session.loadFile(name, bytes, companions, {});
+    assert.match(result.error, message);
+    assert.ok(result.kind, `${name}: an error kind`);
+  }
+  assert.ok(session.loadFile('quad.obj', text('v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n'), [], {}).ok);
   session.delete();
 });
