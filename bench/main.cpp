@@ -28,7 +28,7 @@ namespace {
 
 struct MeshSpec {
   std::string name;
-  std::string file;     // under the meshes folder
+  std::string file;      // under the meshes folder
   int subdivisions = 0;  // > 0: generated from `file` by this many 1-to-4 subdivisions
 };
 
@@ -63,9 +63,7 @@ double median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-void copy_text(char* dest, size_t size, const std::string& text) {
-  std::snprintf(dest, size, "%s", text.c_str());
-}
+void copy_text(char* dest, size_t size, const std::string& text) { std::snprintf(dest, size, "%s", text.c_str()); }
 
 // The soup as the WASM runner reads it: "CRSOUP1\0", uint64 vertex and
 // triangle counts, float64 xyz, uint32 indices (little-endian).
@@ -91,8 +89,9 @@ TriangleSoup generate(const MeshSpec& spec, const std::string& path) {
 MeshResult measure(const MeshSpec& spec, const Args& args) {
   MeshResult r;
   copy_text(r.name, sizeof r.name, spec.name);
-  copy_text(r.source, sizeof r.source,
-            spec.subdivisions ? spec.file + " subdivided 1-to-4 " + std::to_string(spec.subdivisions) + "×" : spec.file);
+  copy_text(
+      r.source, sizeof r.source,
+      spec.subdivisions ? spec.file + " subdivided 1-to-4 " + std::to_string(spec.subdivisions) + "×" : spec.file);
   const BenchSettings& settings = args.settings;
   const std::string path = args.meshes + "/" + spec.file;
   const bool generated = spec.subdivisions > 0;
@@ -219,7 +218,7 @@ int main(int argc, char** argv) {
   using namespace crestline::bench;
   Args args;
   args.settings.pipeline.smoothing.steps = 5;  // the paper's most, the benchmark setting
-  args.settings.threads = 1;  // the targets are single-threaded unless stated
+  args.settings.threads = 1;                   // the targets are single-threaded unless stated
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto value = [&]() -> std::string {
@@ -227,14 +226,22 @@ int main(int argc, char** argv) {
       return argv[++i];
     };
     try {
-      if (a == "-h" || a == "--help") return usage(nullptr);
-      else if (a == "--runs") args.settings.runs = std::max(1, std::stoi(value()));
-      else if (a == "--smoke") args.settings.runs = 1, args.only = {"bunny"};
-      else if (a == "--json") args.json = value();
-      else if (a == "--export") args.export_dir = value();
-      else if (a == "--meshes") args.meshes = value();
-      else if (a == "--smoothing-steps") args.settings.pipeline.smoothing.steps = std::stoi(value());
-      else if (a == "--threads") args.settings.threads = std::max(1, std::stoi(value()));
+      if (a == "-h" || a == "--help")
+        return usage(nullptr);
+      else if (a == "--runs")
+        args.settings.runs = std::max(1, std::stoi(value()));
+      else if (a == "--smoke")
+        args.settings.runs = 1, args.only = {"bunny"};
+      else if (a == "--json")
+        args.json = value();
+      else if (a == "--export")
+        args.export_dir = value();
+      else if (a == "--meshes")
+        args.meshes = value();
+      else if (a == "--smoothing-steps")
+        args.settings.pipeline.smoothing.steps = std::stoi(value());
+      else if (a == "--threads")
+        args.settings.threads = std::max(1, std::stoi(value()));
       else if (a == "--only") {
         const std::string list = value();
         args.only.clear();
@@ -243,7 +250,8 @@ int main(int argc, char** argv) {
           args.only.push_back(list.substr(start, comma - start));
           start = comma + 1;
         }
-      } else return usage(("unknown argument " + a).c_str());
+      } else
+        return usage(("unknown argument " + a).c_str());
     } catch (const std::exception& e) {
       return usage(e.what());
     }

@@ -77,7 +77,8 @@ void print_table(const std::vector<MeshResult>& results) {
   };
   print_row(header);
   std::string rule = "|";
-  for (size_t c = 0; c < header.size(); ++c) rule += (c == 0 ? ":" : "") + std::string(width[c] + 1, '-') + (c == 0 ? "|" : ":|");
+  for (size_t c = 0; c < header.size(); ++c)
+    rule += (c == 0 ? ":" : "") + std::string(width[c] + 1, '-') + (c == 0 ? "|" : ":|");
   std::printf("%s\n", rule.c_str());
   for (const auto& row : rows) print_row(row);
 }
@@ -103,9 +104,9 @@ std::string to_json(const std::vector<MeshResult>& results, const BenchSettings&
         << ", \"topology\": " << json_number(r.topology);
     for (int s = 0; s < kStages; ++s)
       out << ", \"" << stage_name(static_cast<Stage>(s)) << "\": " << json_number(r.stages[s]);
-    out << ", \"total\": " << json_number(r.total) << ", \"total_cpu\": " << json_number(r.cpu) << ", \"rethreshold\": " << json_number(r.rethreshold)
-        << ", \"resmooth\": " << json_number(r.resmooth) << "},\n     \"input_rss_bytes\": " << r.input_rss
-        << ", \"peak_rss_bytes\": " << r.peak_rss
+    out << ", \"total\": " << json_number(r.total) << ", \"total_cpu\": " << json_number(r.cpu)
+        << ", \"rethreshold\": " << json_number(r.rethreshold) << ", \"resmooth\": " << json_number(r.resmooth)
+        << "},\n     \"input_rss_bytes\": " << r.input_rss << ", \"peak_rss_bytes\": " << r.peak_rss
         << ", \"peak_bytes_per_triangle_above_input\": " << json_number(bytes_per_triangle(r))
         << ",\n     \"lines\": {\"ridges\": " << r.ridges << ", \"valleys\": " << r.valleys
         << ", \"ridge_length\": " << json_number(r.ridge_length)

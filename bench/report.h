@@ -21,7 +21,7 @@ struct MeshResult {
   // Medians over the runs, in seconds. load is NaN for generated meshes.
   double load = 0, repair = 0, topology = 0, stages[kStages] = {}, total = 0;
   double rethreshold = 0, resmooth = 0;  // re-runs after changing only the threshold / the smoothing
-  double cpu = 0;  // CPU seconds (user + system, all threads) of `total`: less sensitive to a busy machine
+  double cpu = 0;        // CPU seconds (user + system, all threads) of `total`: less sensitive to a busy machine
   size_t input_rss = 0;  // bytes resident with the reader's soup in memory
   size_t peak_rss = 0;   // highest resident bytes from repair to the last re-run
   size_t ridges = 0, valleys = 0;

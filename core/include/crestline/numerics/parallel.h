@@ -20,7 +20,6 @@ void set_max_threads(int threads);
 /// Calls body(begin, end) on consecutive chunks covering [0, count), on up to
 /// max_threads() threads; loops shorter than 2·min_chunk stay on the caller.
 /// The first exception thrown by a chunk is rethrown here.
-void parallel_for(size_t count, const std::function<void(size_t begin, size_t end)>& body,
-                  size_t min_chunk = 2048);
+void parallel_for(size_t count, const std::function<void(size_t begin, size_t end)>& body, size_t min_chunk = 2048);
 
 }  // namespace crestline
