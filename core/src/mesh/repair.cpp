@@ -4,7 +4,6 @@
 #include <cmath>
 #include <numeric>
 #include <string>
-#include <unordered_map>
 
 #include "crestline/error.h"
 #include "crestline/mesh/topology.h"
@@ -48,47 +47,50 @@ struct Union {
 };
 
 // Merges vertices closer than `tolerance` with a hash grid of that cell size;
-// the first vertex of a cluster (in input order) represents it. Only
-// `weldable` vertices (finite and used by a triangle, so inside the bounding
-// box) take part: unreferenced ones far away would share clamped cells.
-std::vector<uint32_t> weld(const std::vector<Vec3>& points, const std::vector<uint8_t>& weldable, const Vec3& lo,
+// the first vertex of a cluster (in input order) represents it. The grid is a
+// flat open-addressing table from cell to a list (through `next`) of the
+// representatives in it: one probe per cell instead of a node chase.
+std::vector<uint32_t> weld(const std::vector<Vec3>& points, const std::vector<uint8_t>& finite, const Vec3& lo,
                            double tolerance, size_t& welded) {
   std::vector<uint32_t> representative(points.size());
   std::iota(representative.begin(), representative.end(), 0u);
   if (!(tolerance > 0)) return representative;
   const double inv = 1.0 / tolerance;
-  if (!std::isfinite(inv)) return representative;  // a subnormal tolerance: nothing to weld
-  // Grid cell of a scaled coordinate, clamped so the conversion is defined.
-  auto cell = [](double q) {
-    constexpr double limit = 4e18;
-    const double c = std::floor(q);
-    return c >= limit ? int64_t(limit) : c <= -limit ? -int64_t(limit) : int64_t(c);
-  };
   auto cell_key = [](int64_t x, int64_t y, int64_t z) {
     return static_cast<uint64_t>(x) * 73856093u ^ static_cast<uint64_t>(y) * 19349663u ^
            static_cast<uint64_t>(z) * 83492791u;
   };
-  std::unordered_multimap<uint64_t, uint32_t> grid;
-  grid.reserve(points.size());
+  int bits = 1;
+  while ((size_t{1} << bits) < 2 * points.size()) ++bits;
+  const size_t mask = (size_t{1} << bits) - 1;
+  std::vector<uint64_t> keys(mask + 1);
+  std::vector<uint32_t> head(mask + 1, kNone), next(points.size(), kNone);
+  // The slot of a cell (empty if head == kNone); cells whose keys collide
+  // share a list, which only costs distance tests.
+  auto slot = [&](uint64_t key) {
+    size_t s = static_cast<size_t>((key * 0x9E3779B97F4A7C15ull) >> (64 - bits));
+    while (head[s] != kNone && keys[s] != key) s = (s + 1) & mask;
+    return s;
+  };
   const double tol2 = tolerance * tolerance;
   for (uint32_t i = 0; i < points.size(); ++i) {
-    if (!weldable[i]) continue;
+    if (!finite[i]) continue;
     const Vec3 q = (points[i] - lo) * inv;
-    const int64_t cx = cell(q.x()), cy = cell(q.y()), cz = cell(q.z());
-    uint32_t found = i;
-    for (int64_t dx = -1; dx <= 1 && found == i; ++dx)
-      for (int64_t dy = -1; dy <= 1 && found == i; ++dy)
-        for (int64_t dz = -1; dz <= 1 && found == i; ++dz) {
-          auto range = grid.equal_range(cell_key(cx + dx, cy + dy, cz + dz));
-          for (auto it = range.first; it != range.second; ++it)
-            if ((points[it->second] - points[i]).squaredNorm() <= tol2) {
-              found = it->second;
-              break;
-            }
-        }
-    if (found == i)
-      grid.emplace(cell_key(cx, cy, cz), i);
-    else {
+    const int64_t cx = static_cast<int64_t>(std::floor(q.x())), cy = static_cast<int64_t>(std::floor(q.y())),
+                  cz = static_cast<int64_t>(std::floor(q.z()));
+    uint32_t found = kNone;  // the earliest representative within tolerance
+    for (int64_t dx = -1; dx <= 1; ++dx)
+      for (int64_t dy = -1; dy <= 1; ++dy)
+        for (int64_t dz = -1; dz <= 1; ++dz)
+          for (uint32_t j = head[slot(cell_key(cx + dx, cy + dy, cz + dz))]; j != kNone; j = next[j])
+            if (j < found && (points[j] - points[i]).squaredNorm() <= tol2) found = j;
+    if (found == kNone) {
+      const uint64_t key = cell_key(cx, cy, cz);
+      const size_t s = slot(key);
+      keys[s] = key;
+      next[i] = head[s];
+      head[s] = i;
+    } else {
       representative[i] = found;
       ++welded;
     }

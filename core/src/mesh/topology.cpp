@@ -11,20 +11,34 @@ Topology build_topology(const Mesh& mesh) {
   const size_t nt = mesh.triangles.size(), nv = mesh.positions.size();
 
   // Half-edges keyed by their undirected edge; sorting groups the two sides.
+  // A counting sort by the smaller vertex (corners stay in increasing order)
+  // and a sort of each vertex's few half-edges give the order of one global
+  // sort by (key, corner) in linear time.
   struct HalfEdge {
     uint64_t key;
     uint32_t corner;  // 3 * triangle + k
   };
-  std::vector<HalfEdge> half(3 * nt);
+  auto smaller_end = [&](uint32_t t, uint32_t k) {
+    return std::min(mesh.triangles[t][k], mesh.triangles[t][(k + 1) % 3]);
+  };
+  std::vector<uint32_t> bucket(nv + 1, 0);
   for (uint32_t t = 0; t < nt; ++t)
-    for (uint32_t k = 0; k < 3; ++k) {
-      uint64_t a = mesh.triangles[t][k], b = mesh.triangles[t][(k + 1) % 3];
-      if (a > b) std::swap(a, b);
-      half[3 * t + k] = {(a << 32) | b, 3 * t + k};
-    }
-  std::sort(half.begin(), half.end(), [](const HalfEdge& x, const HalfEdge& y) {
-    return x.key < y.key || (x.key == y.key && x.corner < y.corner);
-  });
+    for (uint32_t k = 0; k < 3; ++k) ++bucket[smaller_end(t, k) + 1];
+  for (size_t v = 0; v < nv; ++v) bucket[v + 1] += bucket[v];
+  std::vector<HalfEdge> half(3 * nt);
+  {
+    std::vector<uint32_t> fill(bucket.begin(), bucket.end() - 1);
+    for (uint32_t t = 0; t < nt; ++t)
+      for (uint32_t k = 0; k < 3; ++k) {
+        uint64_t a = mesh.triangles[t][k], b = mesh.triangles[t][(k + 1) % 3];
+        if (a > b) std::swap(a, b);
+        half[fill[a]++] = {(a << 32) | b, 3 * t + k};
+      }
+  }
+  for (size_t v = 0; v < nv; ++v)
+    std::sort(half.begin() + bucket[v], half.begin() + bucket[v + 1], [](const HalfEdge& x, const HalfEdge& y) {
+      return x.key < y.key || (x.key == y.key && x.corner < y.corner);
+    });
 
   topo.triangle_edges.assign(nt, {kNone, kNone, kNone});
   for (size_t i = 0; i < half.size();) {
