@@ -17,10 +17,12 @@ const GOOD = ['glb/feline.glb', 'classic/mannequin.obj'];
 const MESH_EXTENSIONS = new Set(['.obj', '.gltf', '.glb']);
 // Same reader output and repair report, different lines: on the 8-vertex
 // cube every extremality is zero up to round-off, and last-bit differences
-// between native (vectorized) and WASM (scalar) arithmetic decide whether a
-// noise line appears (native 0 ridges, WASM 1); the tardis has flat CAD
-// patches, like cad/fandisk.obj in cli.test.mjs (34 vs 33 ridges). A core
-// issue, not a reader one: run and reported as TODO until the core is robust there.
+// between native (Eigen vectorized with SSE2) and WASM (scalar) arithmetic
+// decide whether a noise line appears (native 0 ridges, WASM 1); the tardis
+// has flat CAD patches, like cad/fandisk.obj in cli.test.mjs (34 vs 33
+// ridges). Measured: a native build with -DEIGEN_DONT_VECTORIZE gives WASM's
+// lines on all nine (threads do not matter). A core issue, not a reader one:
+// run and reported as TODO until the core is robust there.
 const CUBE = 'the cube: round-off decides a noise line (native 0 ridges, WASM 1)';
 const NUMERICAL = {
   'robust/obj/attrs-incomplete-normals.obj': CUBE,
