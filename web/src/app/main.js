@@ -201,7 +201,7 @@ app.brush = brush;
 app.update = (partial) => {
   Object.assign(params, partial);
   gui.gui.controllersRecursive().forEach((c) => c.updateDisplay());
-  if (Object.keys(partial).some((k) => k in pipelineOptions(partial) || k === 'autoThreshold')) compute();
+  if (Object.keys(partial).some((k) => k in pipelineOptions(partial) || k === 'autoThreshold' || k === 'autoPresmooth')) compute();
   else applyDisplay();
 };
 
