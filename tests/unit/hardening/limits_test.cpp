@@ -1,0 +1,234 @@
+// Limits (issue 8): lying headers are refused before anything is allocated
+// for them, configured size limits refuse with one clear sentence, and
+// pathological meshes (thousands of components, one vertex of degree
+// 10,000) cost time in proportion to their size.
+#include <catch2/catch.hpp>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <new>
+#include <string>
+
+#include "analytic_meshes.h"
+#include "crestline/error.h"
+#include "crestline/io/read_mesh.h"
+#include "run_pipeline.h"
+
+using namespace crestline;
+using crestline::testing::add_triangle;
+using crestline::testing::add_vertex;
+
+// --- the largest single allocation ------------------------------------------
+// Replacing the global operator new is the only portable way to see what a
+// reader allocates before it refuses. It forwards to malloc (which ASan
+// still checks) and records sizes only inside an AllocationWatch.
+namespace {
+thread_local bool watching = false;
+thread_local size_t largest_allocation = 0;
+}  // namespace
+
+// Every unaligned form is replaced, so each delete meets the new it belongs
+// to (the aligned forms stay the library's, in pairs of their own).
+namespace {
+void* watched_malloc(size_t size) noexcept {
+  if (watching && size > largest_allocation) largest_allocation = size;
+  return std::malloc(size ? size : 1);
+}
+void* watched_new(size_t size) {
+  if (void* p = watched_malloc(size)) return p;
+  throw std::bad_alloc();
+}
+}  // namespace
+
+void* operator new(size_t size) { return watched_new(size); }
+void* operator new[](size_t size) { return watched_new(size); }
+void* operator new(size_t size, const std::nothrow_t&) noexcept { return watched_malloc(size); }
+void* operator new[](size_t size, const std::nothrow_t&) noexcept { return watched_malloc(size); }
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, size_t) noexcept { std::free(p); }
+void operator delete[](void* p, size_t) noexcept { std::free(p); }
+void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
+
+namespace {
+
+struct AllocationWatch {
+  AllocationWatch() { watching = true, largest_allocation = 0; }
+  ~AllocationWatch() { watching = false; }
+  size_t largest() const { return largest_allocation; }
+};
+
+constexpr size_t kSmallAllocation = size_t(16) << 20;  // far below any claim here
+
+std::vector<uint8_t> bytes_of(const std::string& text) { return {text.begin(), text.end()}; }
+
+// Reads `bytes` as `name`; returns the error kind (fails when there is none)
+// and checks that no single allocation came near the claimed size.
+ErrorKind refusal(const std::string& name, const std::vector<uint8_t>& bytes, const io::ReadOptions& options = {}) {
+  INFO(name);
+  AllocationWatch watch;
+  try {
+    io::read_mesh_bytes(name, bytes, {}, options);
+  } catch (const Error& e) {
+    const size_t largest = watch.largest();
+    INFO(e.what());
+    CHECK(largest < kSmallAllocation);
+    CHECK(std::string(e.what()).rfind(name + ": ", 0) == 0);
+    return e.kind();
+  }
+  FAIL("read without an error");
+  return ErrorKind::Io;
+}
+
+// A glTF whose buffer holds `bytes` zero bytes (a multiple of 3) in a data
+// URI but declares `byte_length`, with a POSITION accessor of `count`.
+std::string gltf_with_accessor(const std::string& count, const std::string& byte_length, size_t bytes = 12) {
+  return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+    "buffers":[{"byteLength":)" + byte_length + R"(,"uri":"data:application/octet-stream;base64,)" +
+         std::string(bytes / 3 * 4, 'A') + R"("}],
+    "bufferViews":[{"buffer":0,"byteLength":)" + std::to_string(bytes) + R"(}],
+    "accessors":[{"bufferView":0,"componentType":5126,"count":)" + count + R"(,"type":"VEC3"}]})";
+}
+
+}  // namespace
+
+TEST_CASE("headers claiming gigabytes are refused before allocating", "[hardening][limits]") {
+  const std::string ply_vertices = "ply\nformat binary_little_endian 1.0\nelement vertex ";
+  const std::string ply_rest = "\nproperty float x\nproperty float y\nproperty float z\nelement face 1\n"
+                               "property list uchar int vertex_indices\nend_header\n";
+  // Beyond the limit of 50M triangles: TooLarge. Below it but more than the
+  // bytes that follow: InvalidInput. Either way nothing is allocated for it.
+  CHECK(refusal("huge.ply", bytes_of(ply_vertices + "4000000000" + ply_rest)) == ErrorKind::TooLarge);
+  CHECK(refusal("lying.ply", bytes_of(ply_vertices + "40000000" + ply_rest + std::string(64, '\0'))) ==
+        ErrorKind::InvalidInput);
+  CHECK(refusal("faces.ply", bytes_of("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                                      "property float z\nelement face 45000000\nproperty list uint int vertex_indices\n"
+                                      "end_header\n0 0 0\n1 0 0\n0 1 0\n4000000000 0 1 2\n")) == ErrorKind::InvalidInput);
+
+  std::vector<uint8_t> stl(84 + 50, 0);
+  const uint32_t claimed = 0xFFFFFFFFu;  // 214 GB of facets
+  std::memcpy(&stl[80], &claimed, 4);
+  CHECK(refusal("huge.stl", stl) == ErrorKind::InvalidInput);
+
+  CHECK(refusal("huge.off", bytes_of("OFF\n2000000000 1 0\n0 0 0\n")) == ErrorKind::TooLarge);
+  CHECK(refusal("lying.off", bytes_of("OFF\n40000000 40000000 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n")) ==
+        ErrorKind::InvalidInput);
+  CHECK(refusal("polygon.off", bytes_of("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n4000000000 0 1 2\n")) ==
+        ErrorKind::InvalidInput);
+
+  // OBJ has no header: its claims are indices far beyond the vertices read.
+  CHECK(refusal("index.obj", bytes_of("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4000000000\n")) == ErrorKind::InvalidInput);
+  CHECK(refusal("negative.obj", bytes_of("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -4000000000\n")) ==
+        ErrorKind::InvalidInput);
+
+  CHECK(refusal("count.gltf", bytes_of(gltf_with_accessor("1000000000", "12"))) == ErrorKind::TooLarge);
+  CHECK(refusal("lying.gltf", bytes_of(gltf_with_accessor("40000000", "12"))) == ErrorKind::InvalidInput);
+  CHECK(refusal("buffer.gltf", bytes_of(gltf_with_accessor("1", "4000000000"))) == ErrorKind::InvalidInput);
+  std::vector<uint8_t> glb = bytes_of(std::string("glTF") + std::string(16, '\0'));
+  const uint32_t header[4] = {2, 0xFFFFFFF0u, 0xFFFFFF00u, 0x4E4F534Au};  // version, length, JSON length, "JSON"
+  std::memcpy(&glb[4], header, sizeof header);
+  CHECK(refusal("huge.glb", glb) == ErrorKind::InvalidInput);
+}
+
+TEST_CASE("configured size limits refuse with one sentence", "[hardening][limits]") {
+  testing::GridOptions grid;
+  grid.nu = grid.nv = 10;  // 200 triangles
+  const TriangleSoup soup = testing::height_field([](double x, double y) { return x * y; }, 1, 1, grid);
+  RepairOptions repair;
+  repair.max_triangles = 199;
+  try {
+    repair_mesh(soup, repair);
+    FAIL("no error");
+  } catch (const Error& e) {
+    CHECK(e.kind() == ErrorKind::TooLarge);
+    CHECK(std::string(e.what()) == "the mesh has 200 triangles, more than the limit of 199.");
+  }
+  io::ReadOptions read;
+  read.max_triangles = 2;
+  CHECK(refusal("many.gltf", bytes_of(gltf_with_accessor("9", "108", 108)), read) == ErrorKind::TooLarge);
+  CHECK(refusal("many.off", bytes_of("OFF\n4 3 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 1 3 2\n3 0 1 3\n"), read) ==
+        ErrorKind::TooLarge);
+}
+
+// --- complexity ---------------------------------------------------------------
+// No stage may be super-linear in a pathological input. The guard compares
+// the pathological mesh with an ordinary grid of the same triangle count run
+// just before it, in the same process and build (so ASan or a loaded CI
+// machine slows both alike), best of three each. A linear algorithm costs
+// about the same per triangle on both; a quadratic one on these sizes costs
+// hundreds of times more (3,000 components × 24,000 triangles, or 10,000²
+// neighbour pairs around the hub). The 10× margin absorbs timing noise and
+// honest constant-factor differences (the hub's long slivers, many tiny
+// solves) while still catching any blow-up. It is not a speed target.
+namespace {
+
+double best_seconds(const TriangleSoup& soup) {
+  double best = INFINITY;
+  for (int run = 0; run < 3; ++run) {
+    const auto start = std::chrono::steady_clock::now();
+    const Pipeline p = testing::run_pipeline(soup);
+    best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+  return best;
+}
+
+// A wavy grid with about `triangles` triangles: the linear baseline.
+TriangleSoup baseline(size_t triangles) {
+  testing::GridOptions grid;
+  grid.nu = grid.nv = int(std::ceil(std::sqrt(double(triangles) / 2)));
+  grid.jitter = 0.2;
+  grid.random_diagonals = true;
+  return testing::height_field([](double x, double y) { return 0.1 * std::sin(9 * x) * std::cos(7 * y); }, 1, 1, grid);
+}
+
+void check_linear(const TriangleSoup& pathological, const char* what) {
+  const double base = best_seconds(baseline(pathological.triangle_count()));
+  const double seconds = best_seconds(pathological);
+  INFO(what << ": " << pathological.triangle_count() << " triangles in " << seconds << " s, grid of the same size "
+            << base << " s");
+  CHECK(seconds < 10 * base + 0.05);
+}
+
+}  // namespace
+
+TEST_CASE("thousands of tiny components cost linear time", "[hardening][limits][complexity]") {
+  // 3,000 slightly bumpy octahedra, each its own component: 24,000 triangles.
+  TriangleSoup s;
+  for (int c = 0; c < 3000; ++c) {
+    const Vec3 centre(3.0 * (c % 70), 3.0 * (c / 70), 0.1 * (c % 7));
+    const uint32_t base = uint32_t(s.vertex_count());
+    const Vec3 corners[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1.0 + 0.01 * (c % 5)}, {0, 0, -1}};
+    for (const Vec3& p : corners) add_vertex(s, centre + p);
+    const uint32_t faces[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+    for (const auto& f : faces) add_triangle(s, base + f[0], base + f[1], base + f[2]);
+  }
+  const RepairResult repaired = repair_mesh(s);
+  CHECK(repaired.report.components == 3000);
+  check_linear(s, "components");
+}
+
+TEST_CASE("a vertex of degree 10,000 costs linear time", "[hardening][limits][complexity]") {
+  // A wavy disc: the centre joined to 10,000 spokes, two rings around it
+  // (30,000 triangles).
+  TriangleSoup s;
+  const uint32_t spokes = 10000, rings = 2;
+  add_vertex(s, Vec3(0, 0, 0.2));
+  for (uint32_t r = 1; r <= rings; ++r)
+    for (uint32_t i = 0; i < spokes; ++i) {
+      const double a = 2 * testing::kPi * i / spokes;
+      add_vertex(s, Vec3(r * std::cos(a), r * std::sin(a), 0.05 * r * std::sin(6 * a)));
+    }
+  auto ring = [&](uint32_t r, uint32_t i) { return 1 + (r - 1) * spokes + i % spokes; };
+  for (uint32_t i = 0; i < spokes; ++i) add_triangle(s, 0, ring(1, i), ring(1, i + 1));
+  for (uint32_t r = 1; r < rings; ++r)
+    for (uint32_t i = 0; i < spokes; ++i) {
+      add_triangle(s, ring(r, i), ring(r + 1, i), ring(r + 1, i + 1));
+      add_triangle(s, ring(r, i), ring(r + 1, i + 1), ring(r, i + 1));
+    }
+  const Pipeline p = testing::run_pipeline(s);
+  CHECK(p.input_mesh().vertex_count() == 1 + spokes * rings);
+  check_linear(s, "hub");
+}
