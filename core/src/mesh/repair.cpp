@@ -50,12 +50,21 @@ struct Union {
 // the first vertex of a cluster (in input order) represents it. The grid is a
 // flat open-addressing table from cell to a list (through `next`) of the
 // representatives in it: one probe per cell instead of a node chase.
-std::vector<uint32_t> weld(const std::vector<Vec3>& points, const std::vector<uint8_t>& finite, const Vec3& lo,
+// Only `weldable` vertices (finite and used by a triangle, so inside the
+// bounding box) take part: unreferenced ones far away would share clamped cells.
+std::vector<uint32_t> weld(const std::vector<Vec3>& points, const std::vector<uint8_t>& weldable, const Vec3& lo,
                            double tolerance, size_t& welded) {
   std::vector<uint32_t> representative(points.size());
   std::iota(representative.begin(), representative.end(), 0u);
   if (!(tolerance > 0)) return representative;
   const double inv = 1.0 / tolerance;
+  if (!std::isfinite(inv)) return representative;  // a subnormal tolerance: nothing to weld
+  // Grid cell of a scaled coordinate, clamped so the conversion is defined.
+  auto cell = [](double q) {
+    constexpr double limit = 4e18;
+    const double c = std::floor(q);
+    return c >= limit ? int64_t(limit) : c <= -limit ? -int64_t(limit) : int64_t(c);
+  };
   auto cell_key = [](int64_t x, int64_t y, int64_t z) {
     return static_cast<uint64_t>(x) * 73856093u ^ static_cast<uint64_t>(y) * 19349663u ^
            static_cast<uint64_t>(z) * 83492791u;
@@ -74,10 +83,9 @@ std::vector<uint32_t> weld(const std::vector<Vec3>& points, const std::vector<ui
   };
   const double tol2 = tolerance * tolerance;
   for (uint32_t i = 0; i < points.size(); ++i) {
-    if (!finite[i]) continue;
+    if (!weldable[i]) continue;
     const Vec3 q = (points[i] - lo) * inv;
-    const int64_t cx = static_cast<int64_t>(std::floor(q.x())), cy = static_cast<int64_t>(std::floor(q.y())),
-                  cz = static_cast<int64_t>(std::floor(q.z()));
+    const int64_t cx = cell(q.x()), cy = cell(q.y()), cz = cell(q.z());
     uint32_t found = kNone;  // the earliest representative within tolerance
     for (int64_t dx = -1; dx <= 1; ++dx)
       for (int64_t dy = -1; dy <= 1; ++dy)
