@@ -42,6 +42,19 @@ test('init, load, re-threshold, re-smooth, fields: the stages each reply says ra
   assert.equal(smoothed.ran[0], 'smoothing');
   const [fields] = await send({ type: 'fields', job: 3 });
   assert.equal(fields.fields.kappaMax.length, mesh.positions.length / 3);
+  const [obj] = await send({ type: 'export', job: 3, request: 1, format: 'obj' });
+  assert.deepEqual([obj.type, obj.request, obj.format], ['export', 1, 'obj']);
+  assert.match(obj.text, /^l \d+ \d+/m);
+  const [json] = await send({ type: 'export', job: 3, request: 2, format: 'json' });
+  assert.equal(JSON.parse(json.text).stats.ridges, smoothed.stats.ridges, 'the text of the current lines');
+});
+
+test('an export without a mesh fails as an error that carries its request', async () => {
+  const { send } = session();
+  await send({ type: 'init' });
+  const [error] = await send({ type: 'export', job: 0, request: 7, format: 'obj' });
+  assert.deepEqual([error.type, error.request], ['error', 7]);
+  assert.match(error.message, /no mesh is loaded/);
 });
 
 test('open decodes files in the worker; errors are messages that say whether they name the file', async () => {

@@ -31,6 +31,8 @@ export function defaultParams() {
     brush: false,
     brushRadius: 0.08,
     brushValue: 0,
+    pngScale: 2,
+    exportSilhouette: false,
   };
 }
 
@@ -44,7 +46,13 @@ export function pipelineOptions(params) {
   };
 }
 
-export function createGui(params, { onCompute, onDisplay, onFit, onOpen, onBrush, onClearWeights }) {
+/** PNG resolutions offered: multiples of the canvas's CSS size. */
+export const PNG_SCALES = { '1× canvas': 1, '2× canvas': 2, '4× canvas': 4 };
+
+/** Export buttons: format → label. */
+export const EXPORTS = { svg: 'SVG (visible lines)', png: 'PNG', obj: 'OBJ (polylines)', json: 'JSON (lines + stats)', glb: 'GLB (mesh + lines)' };
+
+export function createGui(params, { onCompute, onDisplay, onFit, onOpen, onBrush, onClearWeights, onExport }) {
   const gui = new GUI({ title: 'Crestline' });
   const lines = gui.addFolder('Feature lines');
   lines.add(params, 'smoothingSteps', 0, 10, 1).name('smoothing steps').onFinishChange(onCompute);
@@ -75,6 +83,10 @@ export function createGui(params, { onCompute, onDisplay, onFit, onOpen, onBrush
   brush.add(params, 'brushValue', 0, 3, 0.05).name('strength painted').onChange(onBrush);
   brush.add({ clear: onClearWeights }, 'clear').name('clear weights');
   brush.close();
+  const exports = gui.addFolder('Export');
+  exports.add(params, 'exportSilhouette').name('SVG: silhouette');
+  exports.add(params, 'pngScale', PNG_SCALES).name('PNG resolution');
+  for (const [format, label] of Object.entries(EXPORTS)) exports.add({ [format]: () => onExport(format) }, format).name(label);
   gui.add({ fit: onFit }, 'fit').name('fit to view');
   gui.add({ open: onOpen }, 'open').name('open mesh…');
 

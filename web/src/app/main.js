@@ -6,6 +6,7 @@ import { WeightBrush } from '../viewer/brush.js';
 import { Viewer } from '../viewer/viewer.js';
 import { setState, showError, showFile, showNotes, showProgress, showStats } from './dom.js';
 import { installDrop } from './drop.js';
+import { createExports } from './exports.js';
 import { createGui, defaultParams, pipelineOptions } from './gui.js';
 import { PipelineClient } from './pipeline-client.js';
 import { STAGES } from '../worker/protocol.js';
@@ -42,6 +43,7 @@ const client = new PipelineClient({
       brush.reset(result.surface.positions.length / 3);
     }
     viewer.setLines(result.lines);
+    app.shown = { name: app.mesh?.name, lines: result.lines }; // what the exports save
     app.lastResult = { name: app.mesh?.name, ran: result.ran, stats: result.stats, lineCount: result.lines.types.length, milliseconds: result.milliseconds };
     app.results.push(app.lastResult);
     gui.showThreshold(result.stats.threshold, rescaleThreshold);
@@ -137,6 +139,8 @@ function applyView() {
   viewer.render();
 }
 
+const exporter = createExports({ viewer, client, params, current: () => app.shown });
+
 const picker = document.getElementById('picker');
 const gui = createGui(params, {
   onCompute: compute,
@@ -154,6 +158,7 @@ const gui = createGui(params, {
     applyView();
     compute();
   },
+  onExport: (format) => app.save(format),
 });
 
 /** A new mesh: state reset, then `send` starts the worker on it. */
@@ -197,6 +202,12 @@ async function openFiles(fileList) {
 
 // Test hooks: change parameters as the panel would.
 app.viewer = viewer;
+/** Makes and downloads an export (the panel's buttons); failures show on the page. */
+app.save = (format) =>
+  exporter.save(format).catch((error) => {
+    showError(`Export ${format.toUpperCase()}: ${error.message}`);
+    return null;
+  });
 app.brush = brush;
 app.update = (partial) => {
   Object.assign(params, partial);

@@ -9,6 +9,8 @@ export class PipelineClient {
     this.job = 0;
     this.busy = false;
     this.hasMesh = false;
+    this.exports = new Map(); // export request → {resolve, reject}
+    this.exportRequest = 0;
     this.start();
   }
 
@@ -27,6 +29,13 @@ export class PipelineClient {
   }
 
   receive(message) {
+    const pending = message.request !== undefined && this.exports.get(message.request);
+    if (pending) {
+      this.exports.delete(message.request);
+      if (message.type === 'export') pending.resolve(message.text);
+      else pending.reject(new Error(message.message));
+      return;
+    }
     if (message.job !== undefined && message.job !== this.job && message.type !== 'ready') return; // stale
     const name = { progress: 'onProgress', loaded: 'onLoaded', result: 'onResult', fields: 'onFields', cancelled: 'onCancelled', error: 'onError' }[message.type];
     if (['result', 'cancelled', 'error'].includes(message.type)) this.busy = false;
@@ -62,10 +71,21 @@ export class PipelineClient {
     this.worker.postMessage({ type: 'fields', job: this.job });
   }
 
+  /** The CLI's text of the current lines: format 'obj' or 'json' (a Promise of the text). */
+  exportText(format) {
+    const request = ++this.exportRequest;
+    return new Promise((resolve, reject) => {
+      this.exports.set(request, { resolve, reject });
+      this.worker.postMessage({ type: 'export', job: this.job, request, format });
+    });
+  }
+
   /** Drops whatever the worker is doing (and its mesh) at once: a fresh worker. */
   restart() {
     clearTimeout(this.cancelTimer);
     this.worker.terminate();
+    for (const { reject } of this.exports.values()) reject(new Error('The pipeline worker was restarted.'));
+    this.exports.clear();
     this.busy = false;
     this.hasMesh = false;
     this.start();

@@ -95,9 +95,7 @@ async function handle(message) {
       else run(engine, message, false);
       break;
     case 'export': {
-      if (!engine.session) throw new Error('no mesh is loaded');
-      const text = message.format === 'json' ? engine.session.linesJson() : engine.linesObj();
-      post({ type: 'export', id, request: message.request, text });
+      post({ type: 'export', id, request: message.request, text: engine.exportText(message.format) });
       break;
     }
   }

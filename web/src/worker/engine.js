@@ -75,6 +75,17 @@ export class Engine {
     return this.session.linesObj();
   }
 
+  /** The lines and stats as the CLI's JSON text. */
+  linesJson() {
+    return this.session.linesJson();
+  }
+
+  /** The CLI's text of the lines: format 'obj' (polylines) or 'json' (lines and stats). */
+  exportText(format) {
+    if (!this.session) throw new Error('no mesh is loaded');
+    return format === 'json' ? this.linesJson() : this.linesObj();
+  }
+
   dispose() {
     this.session?.delete();
     this.session = null;

@@ -74,6 +74,9 @@ export function createHandler({ startEngine, post }) {
       case 'fields':
         post({ type: 'fields', job, fields: engine.fields() });
         break;
+      case 'export':
+        post({ type: 'export', job, request: message.request, format: message.format, text: engine.exportText(message.format) });
+        break;
     }
   }
 
@@ -99,6 +102,7 @@ export function createHandler({ startEngine, post }) {
         post({
           type: 'error',
           job: message.job,
+          request: message.request, // an export's failure settles its request
           message: aborted
             ? `The computation failed inside WebAssembly (${error.message}); the page has reset the engine.`
             : error.message,

@@ -9,6 +9,7 @@
 //       repair (weld) the soup, build a Pipeline, run it with `options`
 //   {type: 'options', job, options}   set_options + run: only dirty stages re-run
 //   {type: 'fields', job}             per-vertex curvature/extremality, per-triangle regularity
+//   {type: 'export', job, request, format: 'obj'|'json'}   the CLI's text of the current lines
 // worker → page
 //   {type: 'ready'}
 //   {type: 'progress', job, stage, fraction}
@@ -16,8 +17,10 @@
 //   {type: 'result', job, ran: [stage], stats, lines, milliseconds, surface?}
 //       surface {positions: Float64Array, indices: Uint32Array} when pre-smoothing ran
 //   {type: 'fields', job, fields}
+//   {type: 'export', job, request, format, text}
 //   {type: 'cancelled', job}
-//   {type: 'error', job, message, kind, named}   named: the message already names the file
+//   {type: 'error', job, request?, message, kind, named}   named: the message already names the file;
+//       request: the failed export's
 //
 // Cancel: the page sets cancelFlag[0] = 1; the worker's progress callback
 // sees it and the pipeline stops (staying valid up to its last finished

@@ -1,0 +1,75 @@
+// The panel's Export folder: files of what the app shows, made by the
+// element's exporters (../widget) from the app's Viewer and by the worker
+// (the core writers' OBJ and JSON text), downloaded as <mesh>-lines.<ext>.
+import { exportGlb, renderPng } from '../widget/exports.js';
+import { viewToSvg } from '../widget/svg.js';
+
+/** "feline.obj" → "feline", "bunny (built-in sample)" → "bunny". */
+export function baseName(name) {
+  const base = String(name ?? '').replace(/\s*\(.*\)\s*$/, '').replace(/\.[a-z0-9]+$/i, '').trim();
+  return base.replace(/[^\w.-]+/g, '_') || 'mesh';
+}
+
+function download(blob, fileName) {
+  const url = URL.createObjectURL(blob);
+  const link = Object.assign(document.createElement('a'), { href: url, download: fileName });
+  document.body.append(link);
+  link.click();
+  link.remove();
+  setTimeout(() => URL.revokeObjectURL(url), 10000);
+}
+
+/**
+ * The exports of the app. `viewer`: the app's Viewer; `current()` returns
+ * {name, lines} of the result shown (or null); `client`: the PipelineClient;
+ * `params`: the panel's values (display style, png scale, svg silhouette).
+ */
+export function createExports({ viewer, current, client, params }) {
+  const style = () => ({
+    ridges: params.showRidges,
+    valleys: params.showValleys,
+    ridgeColor: params.ridgeColor,
+    valleyColor: params.valleyColor,
+    lineWidth: params.lineWidth,
+    background: `#${viewer.scene.background.getHexString()}`,
+  });
+  const cssSize = () => {
+    const { width, height } = viewer.renderer.domElement.getBoundingClientRect();
+    return { width: Math.max(1, Math.round(width)), height: Math.max(1, Math.round(height)) };
+  };
+  const shown = () => {
+    const result = current();
+    if (!result?.lines || client.busy) throw new Error('Nothing to export yet: wait for the lines.');
+    return result;
+  };
+  const makers = {
+    async svg({ lines }) {
+      const { width, height } = cssSize();
+      const svgStyle = { ...style(), silhouette: params.exportSilhouette ? '#3a3a3a' : null };
+      return new Blob([viewToSvg(viewer, lines, svgStyle, width, height, viewer.renderer)], { type: 'image/svg+xml' });
+    },
+    async png() {
+      const { width, height } = cssSize();
+      const scale = Number(params.pngScale) || 1;
+      return renderPng(viewer, { cssWidth: width, cssHeight: height, width: width * scale, height: height * scale });
+    },
+    async obj() {
+      return new Blob([await client.exportText('obj')], { type: 'text/plain' });
+    },
+    async json() {
+      return new Blob([await client.exportText('json')], { type: 'application/json' });
+    },
+    async glb({ lines }) {
+      return new Blob([await exportGlb(viewer, lines, style())], { type: 'model/gltf-binary' });
+    },
+  };
+  return {
+    /** Makes and downloads one export ('svg', 'png', 'obj', 'json', 'glb'). */
+    async save(format) {
+      const result = shown();
+      const blob = await makers[format](result);
+      download(blob, `${baseName(result.name)}-lines.${format}`);
+      return blob;
+    },
+  };
+}
