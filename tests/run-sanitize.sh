@@ -7,7 +7,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${CRESTLINE_ASAN_BUILD:-build-asan}
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCRESTLINE_SANITIZE=ON >/dev/null
-cmake --build "$build" -j "$(nproc)" --target crestline_tests
+# Everything, not just crestline_tests: CTest also runs the CLI and quality tests.
+cmake --build "$build" -j "$(nproc)"
 export ASAN_OPTIONS=halt_on_error=1:abort_on_error=1:detect_leaks=1:detect_stack_use_after_return=1:strict_string_checks=1
 export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
 ctest --test-dir "$build" --output-on-failure -j "$(nproc)" "$@"
