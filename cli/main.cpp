@@ -59,8 +59,15 @@ std::string render(const CliOptions& options, const Pipeline& pipeline) {
     case OutputFormat::Json: return io::write_lines_json(pipeline.lines(), pipeline.stats());
     case OutputFormat::Svg:
       return io::write_lines_svg(pipeline.lines(), pipeline.input_mesh(), pipeline.topology(), options.svg);
+    case OutputFormat::Glb: {
+      const std::vector<uint8_t> bytes =
+          io::write_glb(options.with_mesh ? &pipeline.input_mesh() : nullptr, pipeline.lines());
+      return std::string(bytes.begin(), bytes.end());
+    }
     case OutputFormat::Obj:
-    default: return io::write_lines_obj(pipeline.lines());
+    default:
+      return options.with_mesh ? io::write_mesh_and_lines_obj(pipeline.input_mesh(), pipeline.lines())
+                               : io::write_lines_obj(pipeline.lines());
   }
 }
 

@@ -34,7 +34,7 @@ int parse_options(int argc, char** argv, CliOptions& o) {
   app.get_formatter()->column_width(34);
 
   app.add_option("input", o.input, "Input mesh: .obj, .ply, .stl, .off, .gltf or .glb")->required();
-  app.add_option("-o,--output", o.output, "Output lines; the format follows the extension: .obj, .json or .svg")
+  app.add_option("-o,--output", o.output, "Output lines; the format follows the extension: .obj, .json, .svg or .glb")
       ->required();
 
   PipelineOptions& p = o.pipeline;
@@ -89,6 +89,8 @@ int parse_options(int argc, char** argv, CliOptions& o) {
       ->check(CLI::NonNegativeNumber)
       ->group("SVG");
 
+  app.add_flag("--with-mesh", o.with_mesh,
+               "Also write the welded surface into the output, so it opens in any viewer (.obj and .glb only)");
   app.add_flag("--stats", o.stats, "Print one JSON object of statistics and per-stage seconds on stdout");
   app.add_flag("--repair-report", o.repair_report,
                "Print every count of the mesh repair on stderr, including zeros");
@@ -108,9 +110,14 @@ int parse_options(int argc, char** argv, CliOptions& o) {
   if (ext == ".obj") o.format = OutputFormat::Obj;
   else if (ext == ".json") o.format = OutputFormat::Json;
   else if (ext == ".svg") o.format = OutputFormat::Svg;
+  else if (ext == ".glb") o.format = OutputFormat::Glb;
   else {
     std::cerr << "crestline: " << o.output
-              << ": unsupported output format; use an output name ending in .obj, .json or .svg.\n";
+              << ": unsupported output format; use an output name ending in .obj, .json, .svg or .glb.\n";
+    return 2;
+  }
+  if (o.with_mesh && o.format != OutputFormat::Obj && o.format != OutputFormat::Glb) {
+    std::cerr << "crestline: " << o.output << ": --with-mesh needs an .obj or .glb output.\n";
     return 2;
   }
   return -1;

@@ -8,7 +8,7 @@
 
 namespace crestline::cli {
 
-enum class OutputFormat { Obj, Json, Svg };
+enum class OutputFormat { Obj, Json, Svg, Glb };
 
 struct CliOptions {
   std::string input;
@@ -17,6 +17,7 @@ struct CliOptions {
   PipelineOptions pipeline;
   io::SvgOptions svg;
   std::string weights;  // per-vertex smoothing strength file, empty: none
+  bool with_mesh = false;  // also write the welded surface (OBJ and GLB only)
   bool stats = false;
   bool quiet = false;
   bool repair_report = false;

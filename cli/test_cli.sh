@@ -34,7 +34,7 @@ one_line_naming() {
 absent() { [ ! -e "$2" ] && [ ! -e "$2.tmp" ] || fail "$1: $2 was left behind"; }
 
 # Success in each format.
-for ext in obj json svg; do
+for ext in obj json svg glb; do
   expect 0 "write .$ext" -- "$work/wave.obj" -o "$work/lines.$ext" --quiet
   [ -s "$work/lines.$ext" ] || fail "write .$ext: no output"
   [ ! -e "$work/lines.$ext.tmp" ] || fail "write .$ext: temporary file left"
@@ -52,6 +52,29 @@ if command -v node > /dev/null; then
     if (!Array.isArray(j.ridges) || !Array.isArray(j.valleys) || typeof j.stats !== "object") process.exit(1);' \
     "$work/lines.json" || fail "lines.json does not parse as the documented JSON"
 fi
+
+# --with-mesh: the welded surface first, then the lines numbered after it.
+expect 0 "--with-mesh .obj" -- "$work/wave.obj" -o "$work/mesh.obj" --with-mesh --quiet
+grep -q '^o surface$' "$work/mesh.obj" || fail "--with-mesh: no 'o surface'"
+[ "$(grep -c '^f ' "$work/mesh.obj")" -eq "$(grep -c '^f ' "$work/wave.obj")" ] || fail "--with-mesh: wrong face count"
+[ "$(grep -c '^v ' "$work/mesh.obj")" -eq $((vertices + $(grep -c '^v ' "$work/lines.obj"))) ] ||
+  fail "--with-mesh: vertices are not the surface's plus the lines'"
+awk -v n="$vertices" '/^l / { for (i = 2; i <= NF; i++) if ($i <= n) bad = 1 } END { exit bad }' "$work/mesh.obj" ||
+  fail "--with-mesh: a polyline index points into the surface"
+[ "$(head -c 4 "$work/lines.glb")" = glTF ] || fail ".glb: no glTF header"
+expect 0 "--with-mesh .glb" -- "$work/wave.obj" -o "$work/mesh.glb" --with-mesh --quiet
+[ "$(head -c 4 "$work/mesh.glb")" = glTF ] || fail "--with-mesh .glb: no glTF header"
+[ ! -e "$work/mesh.glb.tmp" ] || fail "--with-mesh .glb: temporary file left"
+# The surface in the GLB reads back (its lines are skipped with a note) and gives lines again.
+expect 0 "--with-mesh .glb reads back" -- "$work/mesh.glb" -o "$work/again.obj" --stats
+grep -q "\"triangles\":$(grep -c '^f ' "$work/wave.obj")," "$work/stdout" ||
+  fail "--with-mesh .glb: read back with another triangle count: $(cat "$work/stdout")"
+grep -qi 'line' "$work/stderr" || fail "--with-mesh .glb: reading back did not note the skipped lines"
+expect 1 "lines-only .glb has no surface" -- "$work/lines.glb" -o "$work/none.obj" --quiet
+absent "lines-only .glb has no surface" "$work/none.obj"
+expect 2 "--with-mesh with .svg" -- "$work/wave.obj" -o "$work/mesh.svg" --with-mesh
+one_line_naming "--with-mesh with .svg" "--with-mesh"
+absent "--with-mesh with .svg" "$work/mesh.svg"
 
 # --stats: one JSON object on stdout.
 expect 0 "--stats" -- "$work/wave.obj" -o "$work/stats.obj" --stats --quiet
@@ -117,7 +140,7 @@ cp "$work/wave.obj" "$work/same.obj"
 expect 2 "output is the input" -- "$work/same.obj" -o "$work/same.obj"
 cmp -s "$work/wave.obj" "$work/same.obj" || fail "the input mesh was overwritten"
 expect 2 "unsupported extension" -- "$work/wave.obj" -o "$work/out.png"
-one_line_naming "unsupported extension" ".obj, .json or .svg"
+one_line_naming "unsupported extension" ".obj, .json, .svg or .glb"
 absent "unsupported extension" "$work/out.png"
 expect 2 "unknown option" -- "$work/wave.obj" -o "$work/out.obj" --no-such-option
 expect 2 "missing -o" -- "$work/wave.obj"
@@ -128,7 +151,7 @@ expect 2 "negative steps" -- "$work/wave.obj" -o "$work/out.obj" --smoothing-ste
 expect 0 "--help" -- --help
 for option in presmooth-steps presmooth-time-step smoothing-steps smoothing-time-step boundary-rings \
   fairing-bound fairing-iterations threshold view svg-width stroke-width silhouette svg-surface-tolerance \
-  weights stats quiet repair-report; do
+  weights with-mesh stats quiet repair-report; do
   grep -q -- "--$option" "$work/stdout" || fail "--help does not document --$option"
 done
 grep -- '--smoothing-steps' "$work/stdout" | grep -q '=3' || fail "--help: no default for --smoothing-steps"

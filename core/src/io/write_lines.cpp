@@ -36,26 +36,28 @@ void append_count(std::string& out, size_t value) { out += std::to_string(value)
 constexpr LineType kTypes[] = {LineType::Ridge, LineType::Valley};
 const char* group_name(LineType type) { return type == LineType::Ridge ? "ridges" : "valleys"; }
 
-}  // namespace
+void append_vertex(std::string& out, const Vec3& p) {
+  out += "v ";
+  append_number(out, p.x());
+  out += ' ';
+  append_number(out, p.y());
+  out += ' ';
+  append_number(out, p.z());
+  out += '\n';
+}
 
-std::string write_lines_obj(const std::vector<Polyline>& lines) {
-  std::string out = "# crestline feature lines: o ridges, o valleys; one l per polyline\n";
+// The line part of the OBJ contract: `v` lines, then `o ridges` and
+// `o valleys` with one `l` per polyline. `vertices_before` is how many `v`
+// lines the file already holds (the line vertices are numbered after them).
+void append_lines_obj(std::string& out, const std::vector<Polyline>& lines, size_t vertices_before) {
   // Vertices in the order ridges-then-valleys so that indices grow along the file.
   std::vector<size_t> first_index(lines.size(), 0);
-  size_t next = 1;  // OBJ indices are 1-based
+  size_t next = vertices_before + 1;  // OBJ indices are 1-based
   for (LineType type : kTypes) {
     for (size_t i = 0; i < lines.size(); ++i) {
       if (lines[i].type != type || lines[i].points.size() < 2) continue;
       first_index[i] = next;
-      for (const Vec3& p : lines[i].points) {
-        out += "v ";
-        append_number(out, p.x());
-        out += ' ';
-        append_number(out, p.y());
-        out += ' ';
-        append_number(out, p.z());
-        out += '\n';
-      }
+      for (const Vec3& p : lines[i].points) append_vertex(out, p);
       next += lines[i].points.size();
     }
   }
@@ -78,6 +80,29 @@ std::string write_lines_obj(const std::vector<Polyline>& lines) {
       out += '\n';
     }
   }
+}
+
+}  // namespace
+
+std::string write_lines_obj(const std::vector<Polyline>& lines) {
+  std::string out = "# crestline feature lines: o ridges, o valleys; one l per polyline\n";
+  append_lines_obj(out, lines, 0);
+  return out;
+}
+
+std::string write_mesh_and_lines_obj(const Mesh& mesh, const std::vector<Polyline>& lines) {
+  std::string out = "# crestline surface and feature lines: o surface, o ridges, o valleys\n";
+  out += "o surface\n";
+  for (const Vec3& p : mesh.positions) append_vertex(out, p);
+  for (const Triangle& t : mesh.triangles) {
+    out += 'f';
+    for (uint32_t v : t) {
+      out += ' ';
+      append_count(out, size_t{v} + 1);
+    }
+    out += '\n';
+  }
+  append_lines_obj(out, lines, mesh.positions.size());
   return out;
 }
 

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "crestline/io/write_lines.h"
+#include "test_polylines.h"
 
 using crestline::LineType;
 using crestline::Mesh;
@@ -62,14 +63,7 @@ Mesh uv_sphere(int rings, int sectors) {
   return mesh;
 }
 
-Polyline line(LineType type, std::vector<Vec3> points, bool closed = false) {
-  Polyline out;
-  out.type = type;
-  out.points = std::move(points);
-  out.curvature.assign(out.points.size(), 1.0);
-  out.closed = closed;
-  return out;
-}
+using crestline::testing::test_line;
 
 struct Path {
   std::vector<std::pair<double, double>> points;
@@ -123,8 +117,8 @@ double scale_for(double extent) { return 1000 * (1 - 2 * 0.02) / extent; }
 
 TEST_CASE("SVG: a line in front of a plane is drawn, the same line behind it is not", "[io][svg]") {
   const Mesh surface = plane();
-  const auto front = line(LineType::Ridge, {{-0.5, 0, 0.1}, {0, 0.01, 0.1}, {0.5, 0, 0.1}});
-  const auto behind = line(LineType::Ridge, {{-0.5, 0, -0.1}, {0, 0.01, -0.1}, {0.5, 0, -0.1}});
+  const auto front = test_line(LineType::Ridge, {{-0.5, 0, 0.1}, {0, 0.01, 0.1}, {0.5, 0, 0.1}});
+  const auto behind = test_line(LineType::Ridge, {{-0.5, 0, -0.1}, {0, 0.01, -0.1}, {0.5, 0, -0.1}});
 
   const auto drawn = paths_in(svg_of({front}, surface), "ridges");
   REQUIRE(drawn.size() == 1);
@@ -140,7 +134,7 @@ TEST_CASE("SVG: a line in front of a plane is drawn, the same line behind it is 
 }
 
 TEST_CASE("SVG: a line lying on the surface is visible", "[io][svg]") {
-  const auto on = line(LineType::Valley, {{-0.9, -0.3, 0}, {0.2, 0.7, 0}, {0.9, 0.1, 0}});
+  const auto on = test_line(LineType::Valley, {{-0.9, -0.3, 0}, {0.2, 0.7, 0}, {0.9, 0.1, 0}});
   const auto drawn = paths_in(svg_of({on}, plane()), "valleys");
   REQUIRE(drawn.size() == 1);
   CHECK(drawn[0].points.size() == 3);
@@ -148,7 +142,7 @@ TEST_CASE("SVG: a line lying on the surface is visible", "[io][svg]") {
 
 TEST_CASE("SVG: lines slightly off the surface (fairing, chords) still count as on it", "[io][svg]") {
   // Mean edge length of plane() is about 0.12; 0.02 below is within half of it.
-  const auto below = line(LineType::Ridge, {{-0.5, 0.3, -0.02}, {0.5, 0.3, -0.02}});
+  const auto below = test_line(LineType::Ridge, {{-0.5, 0.3, -0.02}, {0.5, 0.3, -0.02}});
   CHECK(paths_in(svg_of({below}, plane()), "ridges").size() == 1);
   SvgOptions strict;
   strict.surface_tolerance = 0;
@@ -156,7 +150,7 @@ TEST_CASE("SVG: lines slightly off the surface (fairing, chords) still count as 
 }
 
 TEST_CASE("SVG: a line passing behind a plane is split into its visible runs", "[io][svg]") {
-  const auto across = line(LineType::Ridge, {{-2, 0, -0.1}, {2, 0, -0.1}});
+  const auto across = test_line(LineType::Ridge, {{-2, 0, -0.1}, {2, 0, -0.1}});
   const auto drawn = paths_in(svg_of({across}, plane()), "ridges");
   REQUIRE(drawn.size() == 2);
   const double unit = scale_for(4);  // the line widens the bounding box to 4
@@ -168,7 +162,7 @@ TEST_CASE("SVG: the equator of a sphere shows only its front half", "[io][svg]")
   std::vector<Vec3> equator;
   for (int s = 0; s < 48; ++s) equator.push_back(sphere.positions[1 + 7 * 48 + s]);
   REQUIRE(equator[0].y() == Approx(0).margin(1e-12));
-  const auto ring = line(LineType::Ridge, equator, true);
+  const auto ring = test_line(LineType::Ridge, equator, true);
 
   // Front: a horizontal stroke across the disc, drawn once (the back half is hidden).
   const auto front = paths_in(svg_of({ring}, sphere), "ridges");
@@ -187,7 +181,7 @@ TEST_CASE("SVG: a closed line hidden in the middle stays one run across its star
   // x ∈ [0.5, 1.5] of a narrower occluder.
   const Mesh occluder = grid(0.25, 2, -2, 2, 20);
   const auto loop =
-      line(LineType::Ridge, {{-1, 0, -0.5}, {-1, -1, -0.5}, {1, -1, -0.5}, {1, 1, -0.5}, {-1, 1, -0.5}}, true);
+      test_line(LineType::Ridge, {{-1, 0, -0.5}, {-1, -1, -0.5}, {1, -1, -0.5}, {1, 1, -0.5}, {-1, 1, -0.5}}, true);
   const auto drawn = paths_in(svg_of({loop}, occluder), "ridges");
   REQUIRE(drawn.size() == 1);
   CHECK_FALSE(drawn[0].closed);
@@ -196,8 +190,8 @@ TEST_CASE("SVG: a closed line hidden in the middle stays one run across its star
 }
 
 TEST_CASE("SVG: document structure, groups and views", "[io][svg]") {
-  const auto ridge = line(LineType::Ridge, {{-0.5, 0.5, 0.1}, {0.5, 0.5, 0.1}});
-  const auto valley = line(LineType::Valley, {{-0.5, -0.5, 0.1}, {0.5, -0.5, 0.1}});
+  const auto ridge = test_line(LineType::Ridge, {{-0.5, 0.5, 0.1}, {0.5, 0.5, 0.1}});
+  const auto valley = test_line(LineType::Valley, {{-0.5, -0.5, 0.1}, {0.5, -0.5, 0.1}});
   SvgOptions options;
   options.silhouette = true;
   const std::string svg = crestline::io::write_lines_svg({ridge, valley}, plane(), options);
@@ -221,7 +215,7 @@ TEST_CASE("SVG: document structure, groups and views", "[io][svg]") {
   CHECK(paths_in(svg, "ridges")[0].points[0].second < paths_in(svg, "valleys")[0].points[0].second);
 
   SECTION("a left view of a wide box keeps the longer side at the requested width") {
-    const auto wide = line(LineType::Ridge, {{0, 0, -3}, {0, 1, 3}});
+    const auto wide = test_line(LineType::Ridge, {{0, 0, -3}, {0, 1, 3}});
     const std::string left = crestline::io::write_lines_svg({wide}, Mesh{}, SvgOptions{View::Left});
     CHECK(left.find("width=\"1000.00\"") != std::string::npos);
     const auto drawn = paths_in(left, "ridges");
@@ -235,7 +229,7 @@ TEST_CASE("SVG: the drawing does not depend on the model's scale or position", "
   const Mesh sphere = uv_sphere(12, 24);
   std::vector<Vec3> meridian;
   for (int r = 1; r < 12; ++r) meridian.push_back(sphere.positions[1 + (r - 1) * 24 + 3]);
-  const auto ridge = line(LineType::Ridge, meridian);
+  const auto ridge = test_line(LineType::Ridge, meridian);
   SvgOptions options;
   options.silhouette = true;
   options.view = View::Right;
@@ -255,7 +249,7 @@ TEST_CASE("SVG: the drawing does not depend on the model's scale or position", "
 
 TEST_CASE("SVG: non-finite points are skipped, not drawn", "[io][svg]") {
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  const auto broken = line(LineType::Ridge, {{-0.5, 0, 0.1}, {0, 0, 0.1}, {nan, 0, 0.1}, {0.5, 0.5, 0.1}});
+  const auto broken = test_line(LineType::Ridge, {{-0.5, 0, 0.1}, {0, 0, 0.1}, {nan, 0, 0.1}, {0.5, 0.5, 0.1}});
   const std::string svg = svg_of({broken}, plane());
   CHECK(svg.find("nan") == std::string::npos);
   const auto drawn = paths_in(svg, "ridges");
@@ -282,8 +276,8 @@ TEST_CASE("SVG: the silhouette of a sphere is one closed outline, from every sid
 TEST_CASE("SVG: a huge drawing caps its depth buffer and still hides lines", "[io][svg]") {
   SvgOptions options;
   options.width = 100000;  // 2x supersampling would need 40 G depth pixels
-  const auto front = line(LineType::Ridge, {{-0.5, 0, 0.1}, {0.5, 0, 0.1}});
-  const auto behind = line(LineType::Valley, {{-0.5, 0, -0.1}, {0.5, 0, -0.1}});
+  const auto front = test_line(LineType::Ridge, {{-0.5, 0, 0.1}, {0.5, 0, 0.1}});
+  const auto behind = test_line(LineType::Valley, {{-0.5, 0, -0.1}, {0.5, 0, -0.1}});
   const std::string svg = crestline::io::write_lines_svg({front, behind}, plane(), options);
   REQUIRE(paths_in(svg, "ridges").size() == 1);
   CHECK(paths_in(svg, "ridges")[0].length() == Approx(100000 * 0.96 / 2).epsilon(0.001));

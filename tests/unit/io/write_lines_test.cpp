@@ -170,3 +170,51 @@ TEST_CASE("JSON output writes non-finite numbers as null, never NaN", "[io][writ
   const auto json = nlohmann::json::parse(crestline::io::write_lines_json(lines, {}));
   CHECK(json["ridges"][0]["strength"].is_null());
 }
+
+namespace {
+
+// Two triangles sharing an edge: a unit square in z = 0.
+crestline::Mesh square_mesh() {
+  crestline::Mesh mesh;
+  mesh.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+  return mesh;
+}
+
+}  // namespace
+
+TEST_CASE("OBJ with the mesh: o surface with v/f first, line indices numbered after it",
+          "[io][writers]") {
+  const crestline::Mesh mesh = square_mesh();
+  const std::vector<Polyline> lines = sample_lines();
+  const std::string obj = crestline::io::write_mesh_and_lines_obj(mesh, lines);
+
+  std::vector<std::string> objects;
+  size_t vertices = 0;
+  std::vector<std::vector<size_t>> faces;
+  std::vector<std::vector<size_t>> polylines;
+  for (const std::string& row : lines_of(obj)) {
+    std::istringstream in(row);
+    std::string tag;
+    in >> tag;
+    std::vector<size_t> indices;
+    if (tag == "v") ++vertices;
+    if (tag == "o") objects.emplace_back(), in >> objects.back();
+    if (tag != "f" && tag != "l") continue;
+    for (size_t i; in >> i;) indices.push_back(i);
+    (tag == "f" ? faces : polylines).push_back(indices);
+  }
+  REQUIRE(objects == std::vector<std::string>{"surface", "ridges", "valleys"});
+  REQUIRE(vertices == 4 + 9);
+  REQUIRE(faces == std::vector<std::vector<size_t>>{{1, 2, 3}, {1, 3, 4}});
+  // The same polylines as write_lines_obj, shifted past the 4 surface vertices.
+  REQUIRE(polylines == std::vector<std::vector<size_t>>{{5, 6, 7}, {8, 9, 10, 11, 8}, {12, 13}});
+  // Everything after the surface's faces is write_lines_obj's output verbatim
+  // but for the numbering: the line vertices are the same text.
+  const std::string plain = crestline::io::write_lines_obj(lines);
+  const size_t first_line_vertex = obj.find("v 0.1 ");
+  REQUIRE(first_line_vertex != std::string::npos);
+  const size_t plain_first = plain.find("v 0.1 ");
+  CHECK(obj.substr(first_line_vertex, obj.find("\no ridges\n") - first_line_vertex) ==
+        plain.substr(plain_first, plain.find("\no ridges\n") - plain_first));
+}

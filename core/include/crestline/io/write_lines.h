@@ -1,6 +1,7 @@
 #pragma once
 // Output formats for feature lines. Each returns the file's text; the
 // caller writes it (the core never touches the filesystem in a stage).
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,19 @@ namespace crestline::io {
 /// polyline (closed ones repeat their first index at the end), then
 /// `o valleys` likewise.
 std::string write_lines_obj(const std::vector<Polyline>& lines);
+
+/// The welded surface and the lines in one OBJ: `o surface` with its `v` and
+/// `f` lines (1-based, in mesh order), then the lines exactly as in
+/// write_lines_obj with their indices numbered after the surface's vertices.
+std::string write_mesh_and_lines_obj(const Mesh& mesh, const std::vector<Polyline>& lines);
+
+/// A glTF 2.0 binary (GLB): one buffer; float32 POSITION accessors with
+/// min/max and uint32 indices. With a mesh, node "surface" holds it as one
+/// TRIANGLES primitive (grey material). Nodes "ridges" and "valleys" hold one
+/// LINE_STRIP primitive (mode 3) per polyline (red and blue materials);
+/// closed lines repeat their first point at the end. Lines with fewer than
+/// two points are left out; an empty group is still a node without a mesh.
+std::vector<uint8_t> write_glb(const Mesh* mesh, const std::vector<Polyline>& lines);
 
 /// {"ridges":[{"points":[[x,y,z],…],"strength":s,"closed":b}…],"valleys":[…],"stats":{…}}
 std::string write_lines_json(const std::vector<Polyline>& lines, const PipelineStats& stats);
