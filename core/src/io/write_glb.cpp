@@ -73,13 +73,12 @@ class Builder {
     bin.resize(offset + bytes);
     if (bytes) std::memcpy(bin.data() + offset, data, bytes);
     if (view_count) views += ',';
-    views += "{\"buffer\":0,\"byteOffset\":" + std::to_string(offset) +
-             ",\"byteLength\":" + std::to_string(bytes) + ",\"target\":" + std::to_string(target) + '}';
+    views += "{\"buffer\":0,\"byteOffset\":" + std::to_string(offset) + ",\"byteLength\":" + std::to_string(bytes) +
+             ",\"target\":" + std::to_string(target) + '}';
     return view_count++;
   }
 
-  size_t add_accessor(size_t view, uint32_t component, size_t count, const char* type,
-                      const std::string& extra) {
+  size_t add_accessor(size_t view, uint32_t component, size_t count, const char* type, const std::string& extra) {
     if (accessor_count) accessors += ',';
     accessors += "{\"bufferView\":" + std::to_string(view) + ",\"componentType\":" + std::to_string(component) +
                  ",\"count\":" + std::to_string(count) + ",\"type\":\"" + type + '"' + extra + '}';
@@ -88,9 +87,8 @@ class Builder {
 };
 
 std::string primitive(size_t positions, size_t indices, int mode, int material) {
-  return "{\"attributes\":{\"POSITION\":" + std::to_string(positions) + "},\"indices\":" +
-         std::to_string(indices) + ",\"mode\":" + std::to_string(mode) +
-         ",\"material\":" + std::to_string(material) + '}';
+  return "{\"attributes\":{\"POSITION\":" + std::to_string(positions) + "},\"indices\":" + std::to_string(indices) +
+         ",\"mode\":" + std::to_string(mode) + ",\"material\":" + std::to_string(material) + '}';
 }
 
 void append_u32(std::vector<uint8_t>& out, uint32_t value) {
@@ -134,8 +132,8 @@ std::vector<uint8_t> write_glb(const Mesh* mesh, const std::vector<Polyline>& li
       if (line.closed) indices.push_back(0);  // LINE_STRIP back to the start
       const size_t positions = builder.add_positions(line.points);
       if (!primitives.empty()) primitives += ',';
-      primitives += primitive(positions, builder.add_indices(indices), kLineStrip,
-                              ridge ? kRidgeMaterial : kValleyMaterial);
+      primitives +=
+          primitive(positions, builder.add_indices(indices), kLineStrip, ridge ? kRidgeMaterial : kValleyMaterial);
     }
     add_node(ridge ? "ridges" : "valleys", primitives);
   }
@@ -146,11 +144,12 @@ std::vector<uint8_t> write_glb(const Mesh* mesh, const std::vector<Polyline>& li
     return std::string("{\"name\":\"") + name + "\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[" + color +
            "],\"metallicFactor\":0,\"roughnessFactor\":1}}";
   };
-  std::string json = "{\"asset\":{\"version\":\"2.0\",\"generator\":\"crestline\"},\"scene\":0,\"scenes\":[{\"nodes\":[" +
-                     scene_nodes + "]}],\"nodes\":[" + nodes + "]";
+  std::string json =
+      "{\"asset\":{\"version\":\"2.0\",\"generator\":\"crestline\"},\"scene\":0,\"scenes\":[{\"nodes\":[" +
+      scene_nodes + "]}],\"nodes\":[" + nodes + "]";
   if (mesh_count) json += ",\"meshes\":[" + meshes + "]";
-  json += ",\"materials\":[" + material("ridge", "0.75,0.22,0.17,1") + ',' +
-          material("valley", "0.14,0.45,0.64,1") + ',' + material("surface", "0.8,0.8,0.8,1") + ']';
+  json += ",\"materials\":[" + material("ridge", "0.75,0.22,0.17,1") + ',' + material("valley", "0.14,0.45,0.64,1") +
+          ',' + material("surface", "0.8,0.8,0.8,1") + ']';
   if (!builder.bin.empty()) {
     json += ",\"buffers\":[{\"byteLength\":" + std::to_string(builder.bin.size()) + "}],\"bufferViews\":[" +
             builder.views + "],\"accessors\":[" + builder.accessors + ']';

@@ -1,9 +1,9 @@
 // GLB output: a valid glTF 2.0 binary that the project's own reader opens,
 // with the lines as LINE_STRIP primitives in nodes "ridges" and "valleys".
 #include <catch2/catch.hpp>
-#include <nlohmann/json.hpp>
 #include <cstdint>
 #include <cstring>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -24,7 +24,6 @@ uint32_t u32(const std::vector<uint8_t>& bytes, size_t offset) {
   for (int i = 3; i >= 0; --i) value = value << 8 | bytes.at(offset + i);
   return value;
 }
-
 
 // A unit cube's 8 corners and 12 triangles.
 crestline::Mesh cube() {
