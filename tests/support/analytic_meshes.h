@@ -14,8 +14,13 @@ namespace crestline::testing {
 
 inline constexpr double kPi = 3.14159265358979323846;
 
-inline void add_vertex(TriangleSoup& s, const Vec3& p) { s.positions.insert(s.positions.end(), {p.x(), p.y(), p.z()}); }
-inline void add_triangle(TriangleSoup& s, uint32_t a, uint32_t b, uint32_t c) { s.indices.insert(s.indices.end(), {a, b, c}); }
+// push_back rather than insert({…}): GCC 12 warns falsely (stringop-overflow) on the latter.
+inline void add_vertex(TriangleSoup& s, const Vec3& p) {
+  for (int k = 0; k < 3; ++k) s.positions.push_back(p[k]);
+}
+inline void add_triangle(TriangleSoup& s, uint32_t a, uint32_t b, uint32_t c) {
+  for (uint32_t v : {a, b, c}) s.indices.push_back(v);
+}
 
 /// Geodesic sphere: an icosahedron subdivided `levels` times, projected.
 inline TriangleSoup icosphere(int levels, double radius = 1.0) {
