@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "crestline/io/read_mesh.h"
+#include "run_pipeline.h"
 #include "read_test_bytes.h"
 #include "test_meshes.h"
 
@@ -118,5 +119,43 @@ TEST_CASE("the same mesh gives the same triangles in every format", "[io][meshes
     INFO("format: " << v.name);
     const TriangleSoup soup = read_mesh_bytes(v.name, v.bytes);
     CHECK(corner_distance(obj, soup) <= v.tolerance);
+  }
+}
+
+TEST_CASE("the same mesh in every format gives the same welded mesh and the same lines", "[io][meshes][pipeline]") {
+  SKIP_WITHOUT_MESHES();
+  const TriangleSoup obj = crestline::io::read_mesh(crestline::testing::mesh_path("cad/fandisk.obj"));
+  const crestline::Pipeline reference = crestline::testing::run_pipeline(obj);
+  const crestline::PipelineStats ref = reference.stats();
+  REQUIRE(ref.ridges + ref.valleys > 5);
+
+  struct Variant {
+    const char* name;
+    TriangleSoup soup;
+    bool exact;  // stores the OBJ's doubles exactly; otherwise float32
+  };
+  const Variant variants[] = {
+      {"fandisk.glb", crestline::io::read_mesh(crestline::testing::mesh_path("glb/fandisk.glb")), false},
+      {"fandisk-le.ply", read_mesh_bytes("fandisk-le.ply", to_ply(obj, "binary_little_endian")), true},
+      {"fandisk.off", read_mesh_bytes("fandisk.off", to_off(obj)), true},
+      {"fandisk.stl", read_mesh_bytes("fandisk.stl", to_binary_stl(obj)), false},
+  };
+  for (const Variant& v : variants) {
+    INFO("format: " << v.name);
+    const crestline::Pipeline p = crestline::testing::run_pipeline(v.soup);
+    const crestline::PipelineStats s = p.stats();
+    // STL has no shared vertices: welding must rebuild the same mesh.
+    CHECK(s.vertices == ref.vertices);
+    CHECK(s.triangles == ref.triangles);
+    if (v.exact) {
+      CHECK(s.ridges == ref.ridges);
+      CHECK(s.valleys == ref.valleys);
+      CHECK(s.ridge_length == Approx(ref.ridge_length).epsilon(1e-9));
+      CHECK(s.valley_length == Approx(ref.valley_length).epsilon(1e-9));
+    } else {
+      // float32 coordinates move crossings by round-off; the lines stay.
+      CHECK(s.ridge_length == Approx(ref.ridge_length).epsilon(0.02));
+      CHECK(s.valley_length == Approx(ref.valley_length).epsilon(0.02));
+    }
   }
 }
