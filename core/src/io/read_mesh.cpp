@@ -152,8 +152,8 @@ void add_polygon(TriangleSoup& soup, const uint32_t* poly, size_t n) {
     if (misses > remaining) {
       // A whole turn without an ear: the rest is self-intersecting or
       // degenerate (repeated corners). Fan it, in linear time; clipping one
-      // forced corner per turn would cost a turn of O(n) ear tests each,
-      // O(n³) in all (a 300-corner face took seconds).
+      // forced corner per turn costs a whole turn of ear tests per corner
+      // (a 2,000-corner face found by the fuzzer took 1.6 s, not 3 ms).
       for (size_t j = next[i]; next[j] != i; j = next[j]) {
         soup.indices.insert(soup.indices.end(), {poly[i], poly[j], poly[next[j]]});
       }
