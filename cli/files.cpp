@@ -31,8 +31,7 @@ void write_file_atomically(const std::string& path, const std::string& text) {
   if (std::rename(temporary.c_str(), path.c_str()) != 0) fail("the file cannot be replaced");
 }
 
-std::vector<double> read_vertex_weights(const std::string& path, const TriangleSoup& soup,
-                                        const Mesh& mesh) {
+std::vector<double> read_vertex_weights(const std::string& path, const TriangleSoup& soup, const Mesh& mesh) {
   std::ifstream in(path);
   if (!in) throw Error(ErrorKind::Io, "the weights file cannot be opened.");
   std::vector<double> weights;
@@ -44,16 +43,14 @@ std::vector<double> read_vertex_weights(const std::string& path, const TriangleS
     const double value = std::strtod(line.c_str() + start, &end);
     const bool rest_blank = line.find_first_not_of(" \t\r", end - line.c_str()) == std::string::npos;
     if (end == line.c_str() + start || !rest_blank || !std::isfinite(value) || value < 0)
-      throw Error(ErrorKind::InvalidInput,
-                  "line " + std::to_string(number) + " is not a finite non-negative number.");
+      throw Error(ErrorKind::InvalidInput, "line " + std::to_string(number) + " is not a finite non-negative number.");
     weights.push_back(value);
   }
   if (weights.size() == mesh.vertex_count()) return weights;
   if (weights.size() != soup.vertex_count())
-    throw Error(ErrorKind::InvalidInput,
-                "it has " + std::to_string(weights.size()) + " weights but the mesh has " +
-                    std::to_string(soup.vertex_count()) + " vertices (" +
-                    std::to_string(mesh.vertex_count()) + " after repair).");
+    throw Error(ErrorKind::InvalidInput, "it has " + std::to_string(weights.size()) + " weights but the mesh has " +
+                                             std::to_string(soup.vertex_count()) + " vertices (" +
+                                             std::to_string(mesh.vertex_count()) + " after repair).");
   // One weight per input vertex: repair keeps one of each group of welded
   // vertices at its position, so positions identify them.
   using Key = std::tuple<double, double, double>;
@@ -67,9 +64,8 @@ std::vector<double> read_vertex_weights(const std::string& path, const TriangleS
     const Vec3& p = mesh.positions[v];
     const auto it = by_position.find(Key{p.x(), p.y(), p.z()});
     if (it == by_position.end())
-      throw Error(ErrorKind::InvalidInput,
-                  "the mesh repair moved vertices, so give one weight per repaired vertex (" +
-                      std::to_string(mesh.vertex_count()) + ").");
+      throw Error(ErrorKind::InvalidInput, "the mesh repair moved vertices, so give one weight per repaired vertex (" +
+                                               std::to_string(mesh.vertex_count()) + ").");
     mapped[v] = it->second;
   }
   return mapped;

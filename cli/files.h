@@ -16,7 +16,6 @@ void write_file_atomically(const std::string& path, const std::string& text);
 /// skipped) and matches them to the repaired mesh's vertices: either one per
 /// repaired vertex, or one per vertex of the input file, carried over by
 /// position (repair welds and drops vertices). Throws Error(InvalidInput).
-std::vector<double> read_vertex_weights(const std::string& path, const TriangleSoup& soup,
-                                        const Mesh& mesh);
+std::vector<double> read_vertex_weights(const std::string& path, const TriangleSoup& soup, const Mesh& mesh);
 
 }  // namespace crestline::cli

@@ -37,26 +37,26 @@ void report_error(const std::string& file, const std::string& message) {
 }
 
 void print_repair_report(const std::string& input, const RepairReport& r, Progress& out) {
-  const std::pair<const char*, size_t> counts[] = {
-      {"input_vertices", r.input_vertices},
-      {"input_triangles", r.input_triangles},
-      {"welded_vertices", r.welded_vertices},
-      {"nonfinite_triangles", r.nonfinite_triangles},
-      {"degenerate_triangles", r.degenerate_triangles},
-      {"duplicate_triangles", r.duplicate_triangles},
-      {"unreferenced_vertices", r.unreferenced_vertices},
-      {"nonmanifold_edges", r.nonmanifold_edges},
-      {"nonmanifold_vertices", r.nonmanifold_vertices},
-      {"flipped_triangles", r.flipped_triangles},
-      {"components", r.components},
-      {"boundary_edges", r.boundary_edges}};
+  const std::pair<const char*, size_t> counts[] = {{"input_vertices", r.input_vertices},
+                                                   {"input_triangles", r.input_triangles},
+                                                   {"welded_vertices", r.welded_vertices},
+                                                   {"nonfinite_triangles", r.nonfinite_triangles},
+                                                   {"degenerate_triangles", r.degenerate_triangles},
+                                                   {"duplicate_triangles", r.duplicate_triangles},
+                                                   {"unreferenced_vertices", r.unreferenced_vertices},
+                                                   {"nonmanifold_edges", r.nonmanifold_edges},
+                                                   {"nonmanifold_vertices", r.nonmanifold_vertices},
+                                                   {"flipped_triangles", r.flipped_triangles},
+                                                   {"components", r.components},
+                                                   {"boundary_edges", r.boundary_edges}};
   out.print("crestline: " + input + ": repair report");
   for (const auto& [name, value] : counts) out.print("  " + std::string(name) + ": " + std::to_string(value));
 }
 
 std::string render(const CliOptions& options, const Pipeline& pipeline) {
   switch (options.format) {
-    case OutputFormat::Json: return io::write_lines_json(pipeline.lines(), pipeline.stats());
+    case OutputFormat::Json:
+      return io::write_lines_json(pipeline.lines(), pipeline.stats());
     case OutputFormat::Svg:
       return io::write_lines_svg(pipeline.lines(), pipeline.input_mesh(), pipeline.topology(), options.svg);
     case OutputFormat::Glb: {

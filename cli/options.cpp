@@ -2,17 +2,17 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <cstdio>
 #include <cctype>
+#include <cstdio>
 #include <iostream>
 #include <map>
 
 namespace crestline::cli {
 namespace {
 
-const std::map<std::string, io::View> kViews = {
-    {"front", io::View::Front}, {"back", io::View::Back}, {"left", io::View::Left},
-    {"right", io::View::Right}, {"top", io::View::Top},   {"bottom", io::View::Bottom}};
+const std::map<std::string, io::View> kViews = {{"front", io::View::Front}, {"back", io::View::Back},
+                                                {"left", io::View::Left},   {"right", io::View::Right},
+                                                {"top", io::View::Top},     {"bottom", io::View::Bottom}};
 
 std::string lowercase_extension(const std::string& path) {
   const size_t slash = path.find_last_of("/\\");
@@ -79,9 +79,11 @@ int parse_options(int argc, char** argv, CliOptions& o) {
       }()))
       ->group("SVG");
   app.add_option("--svg-width", o.svg.width, "SVG size in pixels of the longer side")
-      ->check(CLI::Range(16, 100000))->group("SVG");
+      ->check(CLI::Range(16, 100000))
+      ->group("SVG");
   app.add_option("--stroke-width", o.svg.stroke_width, "SVG line width in pixels")
-      ->check(CLI::PositiveNumber)->group("SVG");
+      ->check(CLI::PositiveNumber)
+      ->group("SVG");
   app.add_flag("--silhouette", o.svg.silhouette, "Also draw the surface's outline in the SVG")->group("SVG");
   app.add_option("--svg-surface-tolerance", o.svg.surface_tolerance,
                  "How far lines may lie off the surface and still show, in mean edge lengths "
@@ -92,8 +94,7 @@ int parse_options(int argc, char** argv, CliOptions& o) {
   app.add_flag("--with-mesh", o.with_mesh,
                "Also write the welded surface into the output, so it opens in any viewer (.obj and .glb only)");
   app.add_flag("--stats", o.stats, "Print one JSON object of statistics and per-stage seconds on stdout");
-  app.add_flag("--repair-report", o.repair_report,
-               "Print every count of the mesh repair on stderr, including zeros");
+  app.add_flag("--repair-report", o.repair_report, "Print every count of the mesh repair on stderr, including zeros");
   app.add_flag("-q,--quiet", o.quiet, "No notes and no progress on stderr; errors only");
 
   try {
@@ -107,10 +108,14 @@ int parse_options(int argc, char** argv, CliOptions& o) {
   o.svg.view = kViews.at(view);
 
   const std::string ext = lowercase_extension(o.output);
-  if (ext == ".obj") o.format = OutputFormat::Obj;
-  else if (ext == ".json") o.format = OutputFormat::Json;
-  else if (ext == ".svg") o.format = OutputFormat::Svg;
-  else if (ext == ".glb") o.format = OutputFormat::Glb;
+  if (ext == ".obj")
+    o.format = OutputFormat::Obj;
+  else if (ext == ".json")
+    o.format = OutputFormat::Json;
+  else if (ext == ".svg")
+    o.format = OutputFormat::Svg;
+  else if (ext == ".glb")
+    o.format = OutputFormat::Glb;
   else {
     std::cerr << "crestline: " << o.output
               << ": unsupported output format; use an output name ending in .obj, .json, .svg or .glb.\n";

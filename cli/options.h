@@ -16,7 +16,7 @@ struct CliOptions {
   OutputFormat format = OutputFormat::Obj;
   PipelineOptions pipeline;
   io::SvgOptions svg;
-  std::string weights;  // per-vertex smoothing strength file, empty: none
+  std::string weights;     // per-vertex smoothing strength file, empty: none
   bool with_mesh = false;  // also write the welded surface (OBJ and GLB only)
   bool stats = false;
   bool quiet = false;

@@ -22,13 +22,20 @@ namespace crestline::fuzz {
 
 inline const char* file_name_for(io::MeshFormat format) {
   switch (format) {
-    case io::MeshFormat::Obj: return "fuzz.obj";
-    case io::MeshFormat::Gltf: return "fuzz.gltf";  // also serves GLB: the reader checks the magic
-    case io::MeshFormat::Glb: return "fuzz.glb";
-    case io::MeshFormat::Ply: return "fuzz.ply";
-    case io::MeshFormat::Stl: return "fuzz.stl";
-    case io::MeshFormat::Off: return "fuzz.off";
-    case io::MeshFormat::Auto: break;
+    case io::MeshFormat::Obj:
+      return "fuzz.obj";
+    case io::MeshFormat::Gltf:
+      return "fuzz.gltf";  // also serves GLB: the reader checks the magic
+    case io::MeshFormat::Glb:
+      return "fuzz.glb";
+    case io::MeshFormat::Ply:
+      return "fuzz.ply";
+    case io::MeshFormat::Stl:
+      return "fuzz.stl";
+    case io::MeshFormat::Off:
+      return "fuzz.off";
+    case io::MeshFormat::Auto:
+      break;
   }
   return "fuzz";
 }
@@ -89,13 +96,20 @@ class ByteReader {
 // A coordinate: mostly a small lattice value, sometimes a special one.
 inline double lattice_coordinate(uint8_t b) {
   switch (b) {
-    case 250: return std::numeric_limits<double>::quiet_NaN();
-    case 251: return std::numeric_limits<double>::infinity();
-    case 252: return 1e-300;
-    case 253: return 1e300;
-    case 254: return std::numeric_limits<double>::denorm_min();
-    case 255: return -std::numeric_limits<double>::max();
-    default: return (double(b % 25) - 12.0) / 4.0 + double(b / 25) * 1e-9;
+    case 250:
+      return std::numeric_limits<double>::quiet_NaN();
+    case 251:
+      return std::numeric_limits<double>::infinity();
+    case 252:
+      return 1e-300;
+    case 253:
+      return 1e300;
+    case 254:
+      return std::numeric_limits<double>::denorm_min();
+    case 255:
+      return -std::numeric_limits<double>::max();
+    default:
+      return (double(b % 25) - 12.0) / 4.0 + double(b / 25) * 1e-9;
   }
 }
 
@@ -140,8 +154,10 @@ inline PipelineInput decode_pipeline_input(const uint8_t* data, size_t size) {
   ByteReader in(data, size);
   const uint8_t shape = in.next(), transform = in.next(), option_bits = in.next();
   PipelineInput out;
-  if (shape & 1) decode_grid(in, out.soup);
-  else decode_soup(in, out.soup);
+  if (shape & 1)
+    decode_grid(in, out.soup);
+  else
+    decode_soup(in, out.soup);
   const double scale = scales[(transform & 15) % (sizeof scales / sizeof scales[0])];
   const double shift = shifts[(transform >> 4) % (sizeof shifts / sizeof shifts[0])];
   for (double& c : out.soup.positions) c = c * scale + shift;

@@ -78,8 +78,7 @@ void Pipeline::run(const ProgressCallback& progress) {
     ExtremalitySmoothingOptions smoothing = options_.smoothing;
     const int rings = options_.trace.boundary_rings;
     if (rings > 0) {
-      const std::vector<uint32_t> distance =
-          boundary_ring_distance(surface_, topology_, static_cast<uint32_t>(rings));
+      const std::vector<uint32_t> distance = boundary_ring_distance(surface_, topology_, static_cast<uint32_t>(rings));
       if (smoothing.vertex_weights.empty()) smoothing.vertex_weights.assign(surface_.positions.size(), 1.0);
       for (size_t v = 0; v < distance.size(); ++v)
         if (distance[v] < static_cast<uint32_t>(rings)) smoothing.vertex_weights[v] = 0;
@@ -127,8 +126,10 @@ PipelineStats Pipeline::stats() const {
   s.singular_min = regularity_.singular_min;
   for (uint32_t i : filtered_.kept) {
     const Polyline& l = faired_[i];
-    if (l.type == LineType::Ridge) ++s.ridges, s.ridge_length += l.length;
-    else ++s.valleys, s.valley_length += l.length;
+    if (l.type == LineType::Ridge)
+      ++s.ridges, s.ridge_length += l.length;
+    else
+      ++s.valleys, s.valley_length += l.length;
   }
   s.threshold = filtered_.threshold;
   s.mean_edge_length = mean_edge_;

@@ -16,9 +16,7 @@ namespace {
 class PointGrid {
  public:
   explicit PointGrid(double cell) : cell_(cell) {}
-  void add(const Vec3& p, uint32_t id) {
-    cells_[key(coord(p.x()), coord(p.y()), coord(p.z()))].push_back({p, id});
-  }
+  void add(const Vec3& p, uint32_t id) { cells_[key(coord(p.x()), coord(p.y()), coord(p.z()))].push_back({p, id}); }
   /// Calls f(id) for every stored point within r of p (r ≤ cell).
   template <class F>
   void near(const Vec3& p, double r, F&& f) const {

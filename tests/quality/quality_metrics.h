@@ -27,7 +27,7 @@ inline PipelineOptions with_presmoothing(PipelineOptions options = {}) {
 
 /// One line type on one surface. Excluded regions count nowhere.
 struct TypeScore {
-  int true_curves = 0;          // scored pieces of true curves (split at exclusions)
+  int true_curves = 0;  // scored pieces of true curves (split at exclusions)
   double true_length = 0;
   /// Share of the true length within tolerance of an extracted line of this type (1 if no truth).
   double coverage = 1;

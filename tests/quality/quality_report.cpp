@@ -48,7 +48,8 @@ struct Summary {
       ++types;
       coverage_sum += t->coverage, precision_sum += t->precision;
       coverage_min = std::min(coverage_min, t->coverage), precision_min = std::min(precision_min, t->precision);
-      if (t->fragments > 0) ++fragment_types, fragments_sum += t->fragments, fragments_max = std::max(fragments_max, t->fragments);
+      if (t->fragments > 0)
+        ++fragment_types, fragments_sum += t->fragments, fragments_max = std::max(fragments_max, t->fragments);
     }
   }
 };
@@ -73,16 +74,26 @@ int main(int argc, char** argv) {
       if (i + 1 >= argc) usage();
       return argv[++i];
     };
-    if (!std::strcmp(argv[i], "--summary")) summary_only = true;
-    else if (!std::strcmp(argv[i], "--steps")) tuned.smoothing.steps = std::atoi(value());
-    else if (!std::strcmp(argv[i], "--time-step")) tuned.smoothing.time_step = std::atof(value());
-    else if (!std::strcmp(argv[i], "--presmooth")) tuned.presmooth.steps = std::atoi(value());
-    else if (!std::strcmp(argv[i], "--presmooth-time-step")) tuned.presmooth.time_step = std::atof(value());
-    else if (!std::strcmp(argv[i], "--threshold")) tuned.filter.threshold = std::atof(value());
-    else if (!std::strcmp(argv[i], "--cells")) cells = std::atoi(value());
-    else if (!std::strcmp(argv[i], "--seeds")) seeds = std::atoi(value());
-    else if (!std::strcmp(argv[i], "--surface")) surfaces.push_back(value());
-    else usage();
+    if (!std::strcmp(argv[i], "--summary"))
+      summary_only = true;
+    else if (!std::strcmp(argv[i], "--steps"))
+      tuned.smoothing.steps = std::atoi(value());
+    else if (!std::strcmp(argv[i], "--time-step"))
+      tuned.smoothing.time_step = std::atof(value());
+    else if (!std::strcmp(argv[i], "--presmooth"))
+      tuned.presmooth.steps = std::atoi(value());
+    else if (!std::strcmp(argv[i], "--presmooth-time-step"))
+      tuned.presmooth.time_step = std::atof(value());
+    else if (!std::strcmp(argv[i], "--threshold"))
+      tuned.filter.threshold = std::atof(value());
+    else if (!std::strcmp(argv[i], "--cells"))
+      cells = std::atoi(value());
+    else if (!std::strcmp(argv[i], "--seeds"))
+      seeds = std::atoi(value());
+    else if (!std::strcmp(argv[i], "--surface"))
+      surfaces.push_back(value());
+    else
+      usage();
   }
   if (surfaces.empty()) surfaces = surface_names();
   PipelineOptions unsmoothed = tuned;
@@ -90,15 +101,17 @@ int main(int argc, char** argv) {
   std::vector<Config> configs = {{"defaults", tuned}, {"no smoothing", unsmoothed}};
   if (tuned.presmooth.steps == 0) {
     configs.insert(configs.begin() + 1, {"defaults + presmooth 2", with_presmoothing(tuned)});
-    configs.insert(configs.begin() + 2, {"defaults + presmooth 2 + S averaged over 1 ring", with_presmoothing(tuned), 1});
+    configs.insert(configs.begin() + 2,
+                   {"defaults + presmooth 2 + S averaged over 1 ring", with_presmoothing(tuned), 1});
   }
   const double noises[] = {0.0, 0.1, 0.25};
   const Triangulation triangulations[] = {Triangulation::Uniform, Triangulation::Alternating, Triangulation::Irregular};
 
   std::vector<std::vector<Summary>> summary(configs.size(), std::vector<Summary>(3));
   if (!summary_only) {
-    std::printf("| surface | mesh | seed | noise | config | ridge cov | prec | frag | valley cov | prec | frag | "
-                "spurious valleys | s |\n");
+    std::printf(
+        "| surface | mesh | seed | noise | config | ridge cov | prec | frag | valley cov | prec | frag | "
+        "spurious valleys | s |\n");
     std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   }
   auto cell = [](double v, bool vacuous) {
@@ -118,9 +131,9 @@ int main(int argc, char** argv) {
           for (size_t c = 0; c < configs.size(); ++c) {
             const unsigned noise_seed = 100u + static_cast<unsigned>(seed);
             const Config& config = configs[c];
-            const Score s = config.average_rings > 0
-                                ? run_case_averaged(surface, noises[n], noise_seed, config.options, config.average_rings)
-                                : run_case(surface, noises[n], noise_seed, config.options);
+            const Score s = config.average_rings > 0 ? run_case_averaged(surface, noises[n], noise_seed, config.options,
+                                                                         config.average_rings)
+                                                     : run_case(surface, noises[n], noise_seed, config.options);
             summary[c][n].add(s);
             if (summary_only) continue;
             std::printf("| %s | %s | %d | %.2f | %s | %s | %s | %s | %s | %s | %s | %d | %.2f |\n", name.c_str(),
@@ -130,19 +143,19 @@ int main(int argc, char** argv) {
                         cell(s.ridge.fragments, s.ridge.true_curves == 0).c_str(),
                         cell(s.valley.coverage, s.valley.true_curves == 0).c_str(),
                         cell(s.valley.precision, s.valley.lines == 0).c_str(),
-                        cell(s.valley.fragments, s.valley.true_curves == 0).c_str(), s.spurious_valleys(),
-                        s.seconds);
+                        cell(s.valley.fragments, s.valley.true_curves == 0).c_str(), s.spurious_valleys(), s.seconds);
           }
       }
 
-  std::printf("\n| config | noise (mean edges) | coverage mean / min | precision mean / min | fragments mean / max | "
-              "spurious valleys (convex) | cases meeting all targets | lines on the torus (control) |\n");
+  std::printf(
+      "\n| config | noise (mean edges) | coverage mean / min | precision mean / min | fragments mean / max | "
+      "spurious valleys (convex) | cases meeting all targets | lines on the torus (control) |\n");
   std::printf("|---|---|---|---|---|---|---|---|\n");
   for (size_t c = 0; c < configs.size(); ++c)
     for (int n = 0; n < 3; ++n) {
       const Summary& s = summary[c][n];
-      std::printf("| %s | %.2f | %.3f / %.3f | %.3f / %.3f | %.2f / %.2f | %d | %d / %d | %d |\n", configs[c].name.c_str(),
-                  noises[n], s.types ? s.coverage_sum / s.types : 1.0, s.coverage_min,
+      std::printf("| %s | %.2f | %.3f / %.3f | %.3f / %.3f | %.2f / %.2f | %d | %d / %d | %d |\n",
+                  configs[c].name.c_str(), noises[n], s.types ? s.coverage_sum / s.types : 1.0, s.coverage_min,
                   s.types ? s.precision_sum / s.types : 1.0, s.precision_min,
                   s.fragment_types ? s.fragments_sum / s.fragment_types : 0.0, s.fragments_max, s.spurious_valleys,
                   s.met, s.cases, s.control_lines);

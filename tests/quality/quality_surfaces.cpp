@@ -22,8 +22,12 @@ testing::GridOptions grid_options(const SurfaceParams& p, int nu, int nv) {
   g.nv = nv;
   g.seed = p.seed;
   switch (p.triangulation) {
-    case Triangulation::Uniform: g.diagonals = testing::Diagonals::Uniform; break;
-    case Triangulation::Alternating: g.diagonals = testing::Diagonals::Alternating; break;
+    case Triangulation::Uniform:
+      g.diagonals = testing::Diagonals::Uniform;
+      break;
+    case Triangulation::Alternating:
+      g.diagonals = testing::Diagonals::Alternating;
+      break;
     case Triangulation::Irregular:
       g.diagonals = testing::Diagonals::Random;
       g.jitter = 0.3;
@@ -51,8 +55,8 @@ struct HeightField {
   }
   int cells(const SurfaceParams& p) const { return static_cast<int>(std::lround(w * p.cells_per_unit)); }
   TriangleSoup mesh(const SurfaceParams& p) const {
-    TriangleSoup s = testing::height_field(
-        [this](double x, double y) { return f(x + x0, y + y0); }, w, w, grid_options(p, cells(p), cells(p)));
+    TriangleSoup s = testing::height_field([this](double x, double y) { return f(x + x0, y + y0); }, w, w,
+                                           grid_options(p, cells(p), cells(p)));
     for (size_t i = 0; i < s.positions.size(); i += 3) s.positions[i] += x0, s.positions[i + 1] += y0;
     return s;
   }
@@ -98,9 +102,12 @@ Eigen::Matrix3d random_rotation(unsigned seed) {
 
 const char* triangulation_name(Triangulation t) {
   switch (t) {
-    case Triangulation::Uniform: return "uniform";
-    case Triangulation::Alternating: return "checker";
-    case Triangulation::Irregular: return "irregular";
+    case Triangulation::Uniform:
+      return "uniform";
+    case Triangulation::Alternating:
+      return "checker";
+    case Triangulation::Irregular:
+      return "irregular";
   }
   return "?";
 }
@@ -110,8 +117,8 @@ Surface sine_field(const SurfaceParams& p) {
   // has its extrema exactly where f' = 0, so the truth is exact.
   const double L = 1.0, A = 0.5 * L / (2 * kPi), theta = pattern_angle(p.seed);
   const Eigen::Vector2d centre(1, 1), d(std::cos(theta), std::sin(theta)), along(-d.y(), d.x());
-  HeightField hf{[=](double x, double y) { return A * std::cos(2 * kPi * (Eigen::Vector2d(x, y) - centre).dot(d) / L); },
-                 0, 0, 2};
+  HeightField hf{
+      [=](double x, double y) { return A * std::cos(2 * kPi * (Eigen::Vector2d(x, y) - centre).dot(d) / L); }, 0, 0, 2};
   Surface s;
   s.name = "sine";
   s.soup = hf.mesh(p);
@@ -159,8 +166,9 @@ Surface cosine_product(const SurfaceParams& p) {
 Surface ripple(const SurfaceParams& p) {
   const double L = 1.0, A = 0.5 * L / (2 * kPi);
   const Eigen::Vector2d centre(1.6, 1.6);
-  HeightField hf{[=](double x, double y) { return A * std::cos(2 * kPi * std::hypot(x - centre.x(), y - centre.y()) / L); },
-                 0, 0, 3.2};
+  HeightField hf{
+      [=](double x, double y) { return A * std::cos(2 * kPi * std::hypot(x - centre.x(), y - centre.y()) / L); }, 0, 0,
+      3.2};
   Surface s;
   s.name = "ripple";
   s.soup = hf.mesh(p);
@@ -195,8 +203,8 @@ Surface paraboloid_ridge(const SurfaceParams& p) {
 Surface superquadric(const SurfaceParams& p) {
   constexpr double n = 4;
   auto project = [](const Vec3& d) {
-    const double r = std::pow(std::pow(std::abs(d.x()), n) + std::pow(std::abs(d.y()), n) + std::pow(std::abs(d.z()), n),
-                              1 / n);
+    const double r =
+        std::pow(std::pow(std::abs(d.x()), n) + std::pow(std::abs(d.y()), n) + std::pow(std::abs(d.z()), n), 1 / n);
     return Vec3(d / r);
   };
   const int level = p.cells_per_unit <= 20 ? 4 : 5;
@@ -243,8 +251,9 @@ Surface torus(const SurfaceParams& p) {
   Surface s;
   s.name = "torus";
   s.control = true;
-  s.soup = testing::torus(1.0, 0.4, grid_options(p, static_cast<int>(std::lround(2 * kPi * p.cells_per_unit)),
-                                                   static_cast<int>(std::lround(2 * kPi * 0.4 * p.cells_per_unit))));
+  s.soup = testing::torus(1.0, 0.4,
+                          grid_options(p, static_cast<int>(std::lround(2 * kPi * p.cells_per_unit)),
+                                       static_cast<int>(std::lround(2 * kPi * 0.4 * p.cells_per_unit))));
   s.excluded = [](const Vec3&, double) { return false; };
   return s;
 }

@@ -3,8 +3,8 @@
 #define CATCH_CONFIG_MAIN
 #include <catch2/catch.hpp>
 
-#include "crestline/mesh/repair.h"
 #include "analytic_meshes.h"
+#include "crestline/mesh/repair.h"
 #include "quality_metrics.h"
 
 using namespace crestline;
@@ -113,7 +113,8 @@ TEST_CASE("closed feature curves come out as closed lines", "[quality][polylines
         int n = 0;
         for (const Polyline& l : p.lines()) {
           bool along = l.closed && l.type == type;
-          for (const Vec3& q : l.points) along = along && std::abs(std::hypot(q.x() - 1.6, q.y() - 1.6) - radius) < 2 * h;
+          for (const Vec3& q : l.points)
+            along = along && std::abs(std::hypot(q.x() - 1.6, q.y() - 1.6) - radius) < 2 * h;
           n += along;
         }
         return n;

@@ -1,7 +1,8 @@
+#include "crestline/curvature/shape_operator_averaging.h"
+
 #include <catch2/catch.hpp>
 
 #include "analytic_meshes.h"
-#include "crestline/curvature/shape_operator_averaging.h"
 #include "crestline/mesh/repair.h"
 
 using namespace crestline;

@@ -25,11 +25,11 @@ inline void add_triangle(TriangleSoup& s, uint32_t a, uint32_t b, uint32_t c) {
 /// Geodesic sphere: an icosahedron subdivided `levels` times, projected.
 inline TriangleSoup icosphere(int levels, double radius = 1.0) {
   const double t = (1.0 + std::sqrt(5.0)) / 2.0;
-  std::vector<Vec3> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                         {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-  std::vector<Triangle> f = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+  std::vector<Vec3> v = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+                         {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
+  std::vector<Triangle> f = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
                              {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-                             {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+                             {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
   for (Vec3& p : v) p.normalize();
   for (int l = 0; l < levels; ++l) {
     std::map<std::pair<uint32_t, uint32_t>, uint32_t> mid;
@@ -88,9 +88,13 @@ inline TriangleSoup parametric_grid(const std::function<Vec3(double, double)>& s
     for (int i = 0; i < o.nu; ++i) {
       const uint32_t a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
       const Diagonals kind = o.random_diagonals ? Diagonals::Random : o.diagonals;
-      const bool flip = kind == Diagonals::Random ? coin(rng) : kind == Diagonals::Alternating ? (i + j) % 2 == 0 : true;
-      if (flip) add_triangle(s, a, b, c), add_triangle(s, a, c, d);
-      else add_triangle(s, a, b, d), add_triangle(s, b, c, d);
+      const bool flip = kind == Diagonals::Random        ? coin(rng)
+                        : kind == Diagonals::Alternating ? (i + j) % 2 == 0
+                                                         : true;
+      if (flip)
+        add_triangle(s, a, b, c), add_triangle(s, a, c, d);
+      else
+        add_triangle(s, a, b, d), add_triangle(s, b, c, d);
     }
   return s;
 }

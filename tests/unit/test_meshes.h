@@ -14,10 +14,10 @@ inline std::string mesh_path(const std::string& relative) { return (meshes_dir()
 }  // namespace crestline::testing
 
 // Catch2 v2 has no SKIP: warn (shown in the output) and leave the test case.
-#define SKIP_WITHOUT_MESHES()                                                              \
-  do {                                                                                     \
-    if (!crestline::testing::have_meshes()) {                                              \
-      WARN("SKIPPED: " << crestline::testing::meshes_dir().string() << " is absent");      \
-      return;                                                                              \
-    }                                                                                      \
+#define SKIP_WITHOUT_MESHES()                                                         \
+  do {                                                                                \
+    if (!crestline::testing::have_meshes()) {                                         \
+      WARN("SKIPPED: " << crestline::testing::meshes_dir().string() << " is absent"); \
+      return;                                                                         \
+    }                                                                                 \
   } while (0)

@@ -54,9 +54,9 @@ struct PipelineStats {
   size_t singular_max = 0, singular_min = 0;
   size_t ridges = 0, valleys = 0;  // kept lines
   double ridge_length = 0, valley_length = 0;
-  double threshold = 0;            // used by the filter
-  double noise_level = 0;          // surface_noise_level of the input
-  int presmooth_steps = 0;         // used (the automatic choice resolved)
+  double threshold = 0;     // used by the filter
+  double noise_level = 0;   // surface_noise_level of the input
+  int presmooth_steps = 0;  // used (the automatic choice resolved)
   double mean_edge_length = 0;
   double seconds[static_cast<int>(Stage::Count)] = {};  // last run time per stage
 };

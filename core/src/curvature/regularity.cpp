@@ -18,8 +18,10 @@ Regularity classify_triangles(const Mesh& mesh, const Curvature& curvature) {
   std::array<double, 3> signs;
   for (size_t t = 0; t < nt; ++t) {
     const Triangle& f = mesh.triangles[t];
-    r.regular_max[t] = consistent_signs(curvature.dir_max[f[0]], curvature.dir_max[f[1]], curvature.dir_max[f[2]], signs);
-    r.regular_min[t] = consistent_signs(curvature.dir_min[f[0]], curvature.dir_min[f[1]], curvature.dir_min[f[2]], signs);
+    r.regular_max[t] =
+        consistent_signs(curvature.dir_max[f[0]], curvature.dir_max[f[1]], curvature.dir_max[f[2]], signs);
+    r.regular_min[t] =
+        consistent_signs(curvature.dir_min[f[0]], curvature.dir_min[f[1]], curvature.dir_min[f[2]], signs);
     r.singular_max += !r.regular_max[t];
     r.singular_min += !r.regular_min[t];
   }

@@ -74,7 +74,8 @@ uint32_t read_u32(const uint8_t* p) {
 std::string split_glb(const Input& in, Files& files) {
   if (in.size < 20) fail(ErrorKind::InvalidInput, in, "the GLB file is shorter than its 20-byte header.");
   if (read_u32(in.data + 4) != 2) {
-    fail(ErrorKind::Unsupported, in, "only GLB version 2 is supported, not " + std::to_string(read_u32(in.data + 4)) + ".");
+    fail(ErrorKind::Unsupported, in,
+         "only GLB version 2 is supported, not " + std::to_string(read_u32(in.data + 4)) + ".");
   }
   const size_t total = std::min<size_t>(read_u32(in.data + 8), in.size);
   const size_t json_length = read_u32(in.data + 12);
@@ -121,7 +122,8 @@ std::string prepare_json(const Input& in, const std::string& text, bool binary, 
       } else if (binary && i == 0) {
         buffer["uri"] = kGlbBin;
         const Json& length = buffer.contains("byteLength") ? buffer["byteLength"] : Json();
-        if (length.is_number_unsigned()) files.glb_bin_size = std::min<size_t>(files.glb_bin_size, length.get<size_t>());
+        if (length.is_number_unsigned())
+          files.glb_bin_size = std::min<size_t>(files.glb_bin_size, length.get<size_t>());
       }
     }
   }
@@ -193,8 +195,7 @@ class GltfReader {
     }
     traverse(roots);
     if (skipped_primitives_ > 0) {
-      soup_.notes.push_back(std::to_string(skipped_primitives_) +
-                            " point or line primitives were ignored.");
+      soup_.notes.push_back(std::to_string(skipped_primitives_) + " point or line primitives were ignored.");
     }
     return std::move(soup_);
   }
@@ -233,7 +234,8 @@ class GltfReader {
         if (gpu == node.extensions.end()) {
           add_instance(node.mesh, world);
         } else {
-          for (const Eigen::Matrix4d& instance : gpu_instances(gpu->second, n)) add_instance(node.mesh, world * instance);
+          for (const Eigen::Matrix4d& instance : gpu_instances(gpu->second, n))
+            add_instance(node.mesh, world * instance);
         }
       }
       stack.push_back({frame.node, Eigen::Matrix4d::Identity(), true});
@@ -341,8 +343,8 @@ class GltfReader {
         if (!indexed) return uint32_t(k);
         const double index = indices[k];
         if (!(index >= 0 && index < double(vertices))) {
-          invalid(where + " refers to vertex " + number_text(index) + " but has only " +
-                  std::to_string(vertices) + " vertices.");
+          invalid(where + " refers to vertex " + number_text(index) + " but has only " + std::to_string(vertices) +
+                  " vertices.");
         }
         return uint32_t(index);
       };
@@ -352,8 +354,10 @@ class GltfReader {
       } else if (source.mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
         // Every other triangle is flipped to keep one orientation.
         for (size_t k = 0; k + 2 < count; ++k) {
-          if (k % 2 == 0) out.insert(out.end(), {corner(k), corner(k + 1), corner(k + 2)});
-          else out.insert(out.end(), {corner(k + 1), corner(k), corner(k + 2)});
+          if (k % 2 == 0)
+            out.insert(out.end(), {corner(k), corner(k + 1), corner(k + 2)});
+          else
+            out.insert(out.end(), {corner(k + 1), corner(k), corner(k + 2)});
         }
       } else {
         for (size_t k = 1; k + 1 < count; ++k) out.insert(out.end(), {corner(0), corner(k), corner(k + 1)});
@@ -387,7 +391,8 @@ class GltfReader {
         const double v = int8_t(*p);
         return normalized ? std::max(v / 127.0, -1.0) : v;
       }
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? *p / 255.0 : *p;
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+        return normalized ? *p / 255.0 : *p;
       case TINYGLTF_COMPONENT_TYPE_SHORT: {
         int16_t s;
         std::memcpy(&s, p, 2);
@@ -446,7 +451,8 @@ class GltfReader {
       for (size_t i = 0; i < count; ++i) {
         const uint8_t* p = data + accessor.byteOffset + i * stride;
         for (int c = 0; c < components; ++c) {
-          out[i * size_t(components) + size_t(c)] = component(p + c * size, accessor.componentType, accessor.normalized);
+          out[i * size_t(components) + size_t(c)] =
+              component(p + c * size, accessor.componentType, accessor.normalized);
         }
       }
     } else {
@@ -466,8 +472,8 @@ class GltfReader {
     }
     const auto [index_data, index_length] = view_bytes(sparse.indices.bufferView, what + " sparse indices");
     const auto [value_data, value_length] = view_bytes(sparse.values.bufferView, what + " sparse values");
-    check_range(size_t(std::max(sparse.indices.byteOffset, 0)), sparse_count, size_t(index_size),
-                size_t(index_size), index_length, what + " sparse indices");
+    check_range(size_t(std::max(sparse.indices.byteOffset, 0)), sparse_count, size_t(index_size), size_t(index_size),
+                index_length, what + " sparse indices");
     check_range(size_t(std::max(sparse.values.byteOffset, 0)), sparse_count, element, element, value_length,
                 what + " sparse values");
     for (size_t k = 0; k < sparse_count; ++k) {
@@ -515,10 +521,9 @@ class GltfReader {
       }
       // meshoptimizer asserts these (the extension requires them).
       const bool valid_layout =
-          mode == "ATTRIBUTES" ? stride % 4 == 0 && (filter.empty() || filter == "NONE" ||
-                                                      (filter == "OCTAHEDRAL" && (stride == 4 || stride == 8)) ||
-                                                      (filter == "QUATERNION" && stride == 8) ||
-                                                      filter == "EXPONENTIAL")
+          mode == "ATTRIBUTES"  ? stride % 4 == 0 && (filter.empty() || filter == "NONE" ||
+                                                     (filter == "OCTAHEDRAL" && (stride == 4 || stride == 8)) ||
+                                                     (filter == "QUATERNION" && stride == 8) || filter == "EXPONENTIAL")
           : mode == "TRIANGLES" ? (stride == 2 || stride == 4) && count % 3 == 0
           : mode == "INDICES"   ? stride == 2 || stride == 4
                                 : false;
@@ -549,7 +554,8 @@ class GltfReader {
     buffer.Init(reinterpret_cast<const char*>(data), length);
     draco::Decoder decoder;
     auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
-    if (!decoded.ok()) invalid(where + " has Draco data that cannot be decoded (" + decoded.status().error_msg_string() + ").");
+    if (!decoded.ok())
+      invalid(where + " has Draco data that cannot be decoded (" + decoded.status().error_msg_string() + ").");
     const draco::Mesh& mesh = *decoded.value();
     const draco::PointAttribute* attribute =
         position_id >= 0 ? mesh.GetAttributeByUniqueId(uint32_t(position_id)) : nullptr;
@@ -597,8 +603,7 @@ TriangleSoup read_gltf(const Input& in, const ReadOptions& options) {
   files.in = &in;
   const bool binary = in.size >= 4 && std::memcmp(in.data, "glTF", 4) == 0;
   const std::string json = prepare_json(
-      in, binary ? split_glb(in, files) : std::string(reinterpret_cast<const char*>(in.data), in.size), binary,
-      files);
+      in, binary ? split_glb(in, files) : std::string(reinterpret_cast<const char*>(in.data), in.size), binary, files);
 
   tinygltf::TinyGLTF loader;
   loader.SetFsCallbacks({file_exists, expand_path, read_companion, write_file, &files});

@@ -16,12 +16,10 @@
 namespace crestline::io {
 namespace detail {
 
-void fail(ErrorKind kind, const Input& in, const std::string& problem) {
-  throw Error(kind, in.name + ": " + problem);
-}
+void fail(ErrorKind kind, const Input& in, const std::string& problem) { throw Error(kind, in.name + ": " + problem); }
 
-void check_claim(const Input& in, const ReadOptions& options, uint64_t count,
-                 uint64_t min_bytes_each, size_t bytes_left, const char* what) {
+void check_claim(const Input& in, const ReadOptions& options, uint64_t count, uint64_t min_bytes_each,
+                 size_t bytes_left, const char* what) {
   if (count > options.max_triangles) {
     fail(ErrorKind::TooLarge, in,
          "the header claims " + std::to_string(count) + " " + what + ", more than the limit of " +
@@ -29,8 +27,8 @@ void check_claim(const Input& in, const ReadOptions& options, uint64_t count,
   }
   if (min_bytes_each > 0 && count > bytes_left / min_bytes_each) {
     fail(ErrorKind::InvalidInput, in,
-         "the header claims " + std::to_string(count) + " " + what + " but only " +
-             std::to_string(bytes_left) + " bytes follow it.");
+         "the header claims " + std::to_string(count) + " " + what + " but only " + std::to_string(bytes_left) +
+             " bytes follow it.");
   }
 }
 
@@ -191,8 +189,8 @@ void finish_soup(TriangleSoup& soup, const Input& in) {
     const uint32_t index = soup.indices[k];
     if (index >= vertices) {
       fail(ErrorKind::InvalidInput, in,
-           "triangle " + std::to_string(k / 3) + " refers to vertex " + std::to_string(index) +
-               " but the file has " + std::to_string(vertices) + " vertices.");
+           "triangle " + std::to_string(k / 3) + " refers to vertex " + std::to_string(index) + " but the file has " +
+               std::to_string(vertices) + " vertices.");
     }
     any_finite_referenced = any_finite_referenced || !non_finite[index];
   }
@@ -245,9 +243,8 @@ bool looks_like_obj(const uint8_t* data, size_t size) {
   if (!looks_like_text(data, size)) return false;
   const std::string word = first_word(data, size);
   static const char* const keywords[] = {"#", "v", "vn", "vt", "f", "o", "g", "mtllib", "usemtl", "s"};
-  return std::any_of(std::begin(keywords), std::end(keywords), [&](const char* k) {
-    return word == k || (word[0] == '#' && k[0] == '#');
-  });
+  return std::any_of(std::begin(keywords), std::end(keywords),
+                     [&](const char* k) { return word == k || (word[0] == '#' && k[0] == '#'); });
 }
 
 }  // namespace
@@ -291,17 +288,22 @@ TriangleSoup dispatch_format(const detail::Input& in, const ReadOptions& options
   const MeshFormat format =
       options.format == MeshFormat::Auto ? detect_format(in.name, in.data, in.size) : options.format;
   switch (format) {
-    case MeshFormat::Obj: return read_obj(in, options);
+    case MeshFormat::Obj:
+      return read_obj(in, options);
     case MeshFormat::Gltf:
-    case MeshFormat::Glb: return read_gltf(in, options);
-    case MeshFormat::Ply: return read_ply(in, options);
-    case MeshFormat::Stl: return read_stl(in, options);
-    case MeshFormat::Off: return read_off(in, options);
-    case MeshFormat::Auto: break;
+    case MeshFormat::Glb:
+      return read_gltf(in, options);
+    case MeshFormat::Ply:
+      return read_ply(in, options);
+    case MeshFormat::Stl:
+      return read_stl(in, options);
+    case MeshFormat::Off:
+      return read_off(in, options);
+    case MeshFormat::Auto:
+      break;
   }
   if (in.size == 0) fail(ErrorKind::InvalidInput, in, "the file is empty.");
-  fail(ErrorKind::Unsupported, in,
-       "the format is not recognised (Crestline reads OBJ, glTF/GLB, PLY, STL and OFF).");
+  fail(ErrorKind::Unsupported, in, "the format is not recognised (Crestline reads OBJ, glTF/GLB, PLY, STL and OFF).");
 }
 
 // Whatever a library throws becomes one sentence about the file too.

@@ -90,8 +90,7 @@ void on_face(void* user, tinyobj::index_t* indices, int count) {
     // Refers ahead to a vertex not read yet: legal only if it comes later.
     // Fanned now, checked at the end (rare enough not to ear-clip).
     for (size_t i = 1; i + 1 < state.polygon.size(); ++i) {
-      state.soup.indices.insert(state.soup.indices.end(),
-                                {state.polygon[0], state.polygon[i], state.polygon[i + 1]});
+      state.soup.indices.insert(state.soup.indices.end(), {state.polygon[0], state.polygon[i], state.polygon[i + 1]});
     }
   }
 }
@@ -156,14 +155,12 @@ TriangleSoup read_obj(const Input& in, const ReadOptions& options) {
   if (state.largest_index >= int64_t(vertices)) {
     fail(ErrorKind::InvalidInput, in,
          "face " + std::to_string(state.largest_index_face) + " refers to vertex " +
-             std::to_string(state.largest_index + 1) + " but the file has " + std::to_string(vertices) +
-             " vertices.");
+             std::to_string(state.largest_index + 1) + " but the file has " + std::to_string(vertices) + " vertices.");
   }
   if (mentions_non_finite(text)) restore_non_finite(text, soup.positions);
   if (utf16) soup.notes.push_back("The file is UTF-16 text; it was read as ASCII.");
   if (state.short_faces > 0) {
-    soup.notes.push_back(std::to_string(state.short_faces) +
-                         " faces with fewer than 3 vertices were skipped.");
+    soup.notes.push_back(std::to_string(state.short_faces) + " faces with fewer than 3 vertices were skipped.");
   }
   finish_soup(soup, in);
   return std::move(soup);

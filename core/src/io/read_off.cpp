@@ -9,8 +9,7 @@ namespace crestline::io::detail {
 TriangleSoup read_off(const Input& in, const ReadOptions& options) {
   TextScanner text(in.data, in.size, true);
   std::string_view keyword;
-  if (!text.next_line() || !text.word(keyword) || keyword.size() < 3 ||
-      keyword.substr(keyword.size() - 3) != "OFF") {
+  if (!text.next_line() || !text.word(keyword) || keyword.size() < 3 || keyword.substr(keyword.size() - 3) != "OFF") {
     fail(ErrorKind::InvalidInput, in, "the file does not start with the OFF keyword.");
   }
   if (keyword.find('4') != std::string_view::npos || keyword.find('n') != std::string_view::npos) {
@@ -77,8 +76,7 @@ TriangleSoup read_off(const Input& in, const ReadOptions& options) {
     }
     add_polygon(soup, polygon.data(), polygon.size());
     if (soup.triangle_count() > options.max_triangles) {
-      fail(ErrorKind::TooLarge, in,
-           "the file has more than " + std::to_string(options.max_triangles) + " triangles.");
+      fail(ErrorKind::TooLarge, in, "the file has more than " + std::to_string(options.max_triangles) + " triangles.");
     }
   }
   if (short_faces > 0) {

@@ -48,7 +48,8 @@ double binary_value(const uint8_t*& p, Type type, bool big_endian) {
   for (uint8_t k = 0; k < type.size; ++k) bytes[k] = p[big_endian ? type.size - 1 - k : k];
   p += type.size;
   switch (type.size) {
-    case 1: return type.is_signed ? double(int8_t(bytes[0])) : double(bytes[0]);
+    case 1:
+      return type.is_signed ? double(int8_t(bytes[0])) : double(bytes[0]);
     case 2: {
       uint16_t v;
       std::memcpy(&v, bytes, 2);
@@ -99,8 +100,8 @@ class ValueReader {
     const size_t room = encoding_ == Encoding::Ascii ? text_->bytes_left() + 4096 : size_t(end_ - p_);
     if (!(count >= 0) || count > double(room)) {
       fail(ErrorKind::InvalidInput, in_,
-           element_->name + " " + std::to_string(index_) + " has a " + property.name +
-               " list of impossible length " + std::to_string(count) + ".");
+           element_->name + " " + std::to_string(index_) + " has a " + property.name + " list of impossible length " +
+               std::to_string(count) + ".");
     }
     return uint64_t(count);
   }
@@ -135,10 +136,14 @@ TriangleSoup read_ply(const Input& in, const ReadOptions& options) {
     header.word(word);
     if (word == "format") {
       header.word(word);
-      if (word == "ascii") encoding = Encoding::Ascii;
-      else if (word == "binary_little_endian") encoding = Encoding::Little;
-      else if (word == "binary_big_endian") encoding = Encoding::Big;
-      else fail(ErrorKind::Unsupported, in, "the PLY format '" + std::string(word) + "' is unknown.");
+      if (word == "ascii")
+        encoding = Encoding::Ascii;
+      else if (word == "binary_little_endian")
+        encoding = Encoding::Little;
+      else if (word == "binary_big_endian")
+        encoding = Encoding::Big;
+      else
+        fail(ErrorKind::Unsupported, in, "the PLY format '" + std::string(word) + "' is unknown.");
     } else if (word == "element") {
       Element element;
       int64_t count = -1;
@@ -231,8 +236,8 @@ TriangleSoup read_ply(const Input& in, const ReadOptions& options) {
           if (!wanted) continue;
           if (!(v >= 0 && v < double(vertices))) {
             fail(ErrorKind::InvalidInput, in,
-                 "face " + std::to_string(i) + " refers to vertex " + number_text(v) +
-                     " but the file has " + std::to_string(vertices) + " vertices.");
+                 "face " + std::to_string(i) + " refers to vertex " + number_text(v) + " but the file has " +
+                     std::to_string(vertices) + " vertices.");
           }
           polygon.push_back(uint32_t(v));
         }

@@ -34,8 +34,7 @@ TriangleSoup read_ascii(const Input& in, const ReadOptions& options) {
     if (loop.size() >= 3) add_polygon(soup, loop.data(), loop.size());
     loop.clear();
     if (soup.triangle_count() > options.max_triangles) {
-      fail(ErrorKind::TooLarge, in,
-           "the file has more than " + std::to_string(options.max_triangles) + " triangles.");
+      fail(ErrorKind::TooLarge, in, "the file has more than " + std::to_string(options.max_triangles) + " triangles.");
     }
   };
   std::string_view word;
@@ -78,8 +77,8 @@ TriangleSoup read_stl(const Input& in, const ReadOptions& options) {
     std::memcpy(&count, in.data + 80, 4);
     fail(ErrorKind::InvalidInput, in,
          "the binary STL header claims " + std::to_string(count) + " triangles (" +
-             std::to_string(84 + 50 * uint64_t(count)) + " bytes) but the file has " +
-             std::to_string(in.size) + " bytes.");
+             std::to_string(84 + 50 * uint64_t(count)) + " bytes) but the file has " + std::to_string(in.size) +
+             " bytes.");
   } else {
     fail(ErrorKind::InvalidInput, in, "the file is too short to be an STL file.");
   }

@@ -35,8 +35,8 @@ struct Input {
 /// Refuses a header claim of `count` items before anything is allocated for
 /// it: TooLarge beyond `options.max_triangles`, InvalidInput when the file
 /// is too short to hold `count` items of at least `min_bytes_each` bytes.
-void check_claim(const Input& in, const ReadOptions& options, uint64_t count,
-                 uint64_t min_bytes_each, size_t bytes_left, const char* what);
+void check_claim(const Input& in, const ReadOptions& options, uint64_t count, uint64_t min_bytes_each,
+                 size_t bytes_left, const char* what);
 
 /// Appends the triangulation of polygon `poly` (n vertex indices into
 /// soup.positions, all valid) to soup.indices: n - 2 triangles with the

@@ -28,35 +28,40 @@ struct Camera {
 Camera camera_for(View view) {
   const Vec3 x = Vec3::UnitX(), y = Vec3::UnitY(), z = Vec3::UnitZ();
   switch (view) {
-    case View::Back: return {-x, y, -z};    // looking along +z
-    case View::Left: return {z, y, -x};     // from -x, looking along +x
-    case View::Right: return {-z, y, x};    // from +x, looking along -x
-    case View::Top: return {x, -z, y};      // from +y, looking down, front at the bottom
-    case View::Bottom: return {x, z, -y};   // from -y, looking up
+    case View::Back:
+      return {-x, y, -z};  // looking along +z
+    case View::Left:
+      return {z, y, -x};  // from -x, looking along +x
+    case View::Right:
+      return {-z, y, x};  // from +x, looking along -x
+    case View::Top:
+      return {x, -z, y};  // from +y, looking down, front at the bottom
+    case View::Bottom:
+      return {x, z, -y};  // from -y, looking up
     case View::Front:
-    default: return {x, y, z};              // looking along -z, +y up
+    default:
+      return {x, y, z};  // looking along -z, +y up
   }
 }
 
-constexpr double kSupersample = 2;    // depth pixels per drawing pixel…
-constexpr double kMaxRaster = 8192;   // …up to this many on the longer side (memory)
+constexpr double kSupersample = 2;   // depth pixels per drawing pixel…
+constexpr double kMaxRaster = 8192;  // …up to this many on the longer side (memory)
 constexpr double kMarginFraction = 0.02;
 
 /// Maps world points to drawing coordinates (x right, y down) and depth.
 struct Projection {
   Camera camera;
   double u_min = 0, v_max = 0, scale = 1, margin = 0;
-  double depth_origin = 0;  // depth is stored as float: measure it from the model
+  double depth_origin = 0;       // depth is stored as float: measure it from the model
   double width = 0, height = 0;  // of the drawing, in drawing pixels
 
   Vec3 operator()(const Vec3& p) const {
-    return {(p.dot(camera.right) - u_min) * scale + margin,
-            (v_max - p.dot(camera.up)) * scale + margin, p.dot(camera.toward) - depth_origin};
+    return {(p.dot(camera.right) - u_min) * scale + margin, (v_max - p.dot(camera.up)) * scale + margin,
+            p.dot(camera.toward) - depth_origin};
   }
 };
 
-Projection make_projection(const std::vector<Polyline>& lines, const Mesh& surface,
-                           const SvgOptions& options) {
+Projection make_projection(const std::vector<Polyline>& lines, const Mesh& surface, const SvgOptions& options) {
   Projection proj;
   proj.camera = camera_for(options.view);
   constexpr double inf = std::numeric_limits<double>::infinity();
@@ -170,15 +175,14 @@ struct Run {
 
 /// Splits a projected polyline into visible runs. Vertices are kept; inside a
 /// segment only the samples where visibility changes become points.
-std::vector<Run> visible_runs(const std::vector<Vec3>& projected, bool closed,
-                              const DepthBuffer& depth) {
+std::vector<Run> visible_runs(const std::vector<Vec3>& projected, bool closed, const DepthBuffer& depth) {
   std::vector<Run> runs;
   const size_t n = projected.size();
   if (n < 2) return runs;
   const size_t segments = closed ? n : n - 1;
   Run current;
-  bool open = false;        // a run is being built
-  bool pending = false;     // `last` is a visible sample not yet in the run
+  bool open = false;     // a run is being built
+  bool pending = false;  // `last` is a visible sample not yet in the run
   Vec3 last;
   bool any_hidden = false;
   auto finish = [&] {
@@ -279,8 +283,10 @@ std::vector<Run> chain_runs(std::vector<Run> pieces) {
       if (used[id / 2]) continue;
       used[id / 2] = 1;
       const std::vector<Vec3>& p = pieces[id / 2].points;
-      if (id % 2 == 0) chain.points.insert(chain.points.end(), p.begin() + 1, p.end());
-      else chain.points.insert(chain.points.end(), p.rbegin() + 1, p.rend());
+      if (id % 2 == 0)
+        chain.points.insert(chain.points.end(), p.begin() + 1, p.end());
+      else
+        chain.points.insert(chain.points.end(), p.rbegin() + 1, p.rend());
       return true;
     }
     return false;
@@ -330,16 +336,14 @@ std::vector<Run> silhouette_runs(const Mesh& surface, const Topology& topology, 
 
 }  // namespace
 
-std::string write_lines_svg(const std::vector<Polyline>& lines, const Mesh& surface,
-                            const SvgOptions& options) {
+std::string write_lines_svg(const std::vector<Polyline>& lines, const Mesh& surface, const SvgOptions& options) {
   // Adjacency only matters for the silhouette.
-  const Topology topology =
-      options.silhouette && !surface.triangles.empty() ? build_topology(surface) : Topology{};
+  const Topology topology = options.silhouette && !surface.triangles.empty() ? build_topology(surface) : Topology{};
   return write_lines_svg(lines, surface, topology, options);
 }
 
-std::string write_lines_svg(const std::vector<Polyline>& lines, const Mesh& surface,
-                            const Topology& topology, const SvgOptions& options) {
+std::string write_lines_svg(const std::vector<Polyline>& lines, const Mesh& surface, const Topology& topology,
+                            const SvgOptions& options) {
   const Projection proj = make_projection(lines, surface, options);
   const DepthBuffer depth(surface, proj, options.surface_tolerance);
 
@@ -366,8 +370,7 @@ std::string write_lines_svg(const std::vector<Polyline>& lines, const Mesh& surf
     LineType type;
     const char* id;
     const std::string& color;
-  } groups[] = {{LineType::Ridge, "ridges", options.ridge_color},
-                {LineType::Valley, "valleys", options.valley_color}};
+  } groups[] = {{LineType::Ridge, "ridges", options.ridge_color}, {LineType::Valley, "valleys", options.valley_color}};
   std::vector<Vec3> projected;
   for (const auto& group : groups) {
     open_group(out, group.id, group.color, options.stroke_width);

@@ -2,14 +2,14 @@
 // object. Hand-formatted (no JSON library) so the file compiles unchanged
 // with em++; every coordinate is printed so that it parses back to the same
 // double.
+#include "crestline/io/write_lines.h"
+
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include "crestline/io/write_lines.h"
 
 namespace crestline::io {
 namespace {
@@ -107,11 +107,13 @@ std::string write_mesh_and_lines_obj(const Mesh& mesh, const std::vector<Polylin
 }
 
 std::string stats_json(const PipelineStats& stats) {
-  const std::pair<const char*, size_t> counts[] = {
-      {"vertices", stats.vertices},         {"triangles", stats.triangles},
-      {"singular_max", stats.singular_max}, {"singular_min", stats.singular_min},
-      {"ridges", stats.ridges},             {"valleys", stats.valleys},
-      {"presmooth_steps", static_cast<size_t>(stats.presmooth_steps)}};
+  const std::pair<const char*, size_t> counts[] = {{"vertices", stats.vertices},
+                                                   {"triangles", stats.triangles},
+                                                   {"singular_max", stats.singular_max},
+                                                   {"singular_min", stats.singular_min},
+                                                   {"ridges", stats.ridges},
+                                                   {"valleys", stats.valleys},
+                                                   {"presmooth_steps", static_cast<size_t>(stats.presmooth_steps)}};
   const std::pair<const char*, double> measures[] = {{"ridge_length", stats.ridge_length},
                                                      {"valley_length", stats.valley_length},
                                                      {"threshold", stats.threshold},

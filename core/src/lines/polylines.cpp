@@ -166,7 +166,8 @@ std::vector<Polyline> bridge_gaps(std::vector<Polyline> lines, const std::vector
   for (uint32_t l = 0; l < lines.size(); ++l)
     for (int back = 0; back < 2; ++back)
       if (open_end[2 * l + back] && lines[l].points.size() >= 2)
-        ends.push_back({back ? lines[l].points.back() : lines[l].points.front(), end_tangent(lines[l], back), 2 * l + back});
+        ends.push_back(
+            {back ? lines[l].points.back() : lines[l].points.front(), end_tangent(lines[l], back), 2 * l + back});
   std::sort(ends.begin(), ends.end(), [](const End& a, const End& b) { return a.point.x() < b.point.x(); });
   struct Gap {
     double length;
@@ -180,7 +181,8 @@ std::vector<Polyline> bridge_gaps(std::vector<Polyline> lines, const std::vector
       const Vec3 g = b.point - a.point;
       const double len = g.norm();
       if (len > max_gap) continue;
-      if (len > tiny_gap && (a.tangent.dot(g) < kGapAlignment * len || -b.tangent.dot(g) < kGapAlignment * len)) continue;
+      if (len > tiny_gap && (a.tangent.dot(g) < kGapAlignment * len || -b.tangent.dot(g) < kGapAlignment * len))
+        continue;
       if (-a.tangent.dot(b.tangent) < kGapAlignment) continue;
       gaps.push_back({len, a.id, b.id});
     }

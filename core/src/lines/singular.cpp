@@ -20,7 +20,8 @@ SingularTriangleCounts connect_field(const Mesh& mesh, const Topology& topology,
       const Triangle& f = mesh.triangles[t];
       const uint32_t centre = static_cast<uint32_t>(graph.points.size());
       graph.points.push_back((mesh.positions[f[0]] + mesh.positions[f[1]] + mesh.positions[f[2]]) / 3.0);
-      graph.curvature.push_back((graph.curvature[marked[0]] + graph.curvature[marked[1]] + graph.curvature[marked[2]]) / 3.0);
+      graph.curvature.push_back((graph.curvature[marked[0]] + graph.curvature[marked[1]] + graph.curvature[marked[2]]) /
+                                3.0);
       graph.source.push_back(t);
       graph.edge_parameter.push_back(0);
       graph.trisector.push_back(1);

@@ -52,8 +52,8 @@ uint32_t crossing_node(FeatureGraph& graph, const Mesh& mesh, const Topology& to
   return node;
 }
 
-void trace_field(const Mesh& mesh, const Topology& topology, const Field& field,
-                 const std::vector<uint8_t>& excluded, FeatureGraph& graph) {
+void trace_field(const Mesh& mesh, const Topology& topology, const Field& field, const std::vector<uint8_t>& excluded,
+                 FeatureGraph& graph) {
   graph.type = field.type;
   graph.edge_node.assign(topology.edges.size(), kNone);
   const std::vector<Vec3>& x = mesh.positions;
@@ -120,10 +120,10 @@ TraceResult trace_regular_triangles(const Mesh& mesh, const Topology& topology, 
   for (size_t t = 0; t < mesh.triangles.size(); ++t)
     for (uint32_t v : mesh.triangles[t]) out.excluded[t] |= distance[v] < rings;
 
-  const Field ridge{LineType::Ridge, extremality.e_max, curvature.dir_max, curvature.kappa_max, curvature.kappa_min,
-                    regularity.regular_max};
-  const Field valley{LineType::Valley, extremality.e_min, curvature.dir_min, curvature.kappa_min, curvature.kappa_max,
-                     regularity.regular_min};
+  const Field ridge{LineType::Ridge,     extremality.e_max,   curvature.dir_max,
+                    curvature.kappa_max, curvature.kappa_min, regularity.regular_max};
+  const Field valley{LineType::Valley,    extremality.e_min,   curvature.dir_min,
+                     curvature.kappa_min, curvature.kappa_max, regularity.regular_min};
   trace_field(mesh, topology, ridge, out.excluded, out.ridges);
   trace_field(mesh, topology, valley, out.excluded, out.valleys);
   return out;

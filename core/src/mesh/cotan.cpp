@@ -24,8 +24,7 @@ CotanWeights cotan_weights(const std::vector<Vec3>& positions, const Mesh& mesh,
   out.vertex_mass.assign(positions.size(), 0.0);
   for (size_t t = 0; t < mesh.triangles.size(); ++t) {
     const Triangle& f = mesh.triangles[t];
-    const double twice_area =
-        (positions[f[1]] - positions[f[0]]).cross(positions[f[2]] - positions[f[0]]).norm();
+    const double twice_area = (positions[f[1]] - positions[f[0]]).cross(positions[f[2]] - positions[f[0]]).norm();
     for (int k = 0; k < 3; ++k) out.vertex_mass[f[k]] += twice_area / 6.0;
     if (!(twice_area > 0)) continue;
     for (int k = 0; k < 3; ++k) {

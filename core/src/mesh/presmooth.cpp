@@ -54,8 +54,7 @@ int automatic_presmooth_steps(double noise_level) { return noise_level > kNoisyS
 
 std::vector<Vec3> presmooth_surface(const Mesh& mesh, const Topology& topology, const PresmoothOptions& options) {
   std::vector<Vec3> x = mesh.positions;
-  const int steps =
-      options.steps < 0 ? automatic_presmooth_steps(surface_noise_level(mesh, topology)) : options.steps;
+  const int steps = options.steps < 0 ? automatic_presmooth_steps(surface_noise_level(mesh, topology)) : options.steps;
   if (steps <= 0 || options.time_step <= 0) return x;
   const size_t nv = x.size();
   const double h = mean_edge_length(mesh);
@@ -78,8 +77,10 @@ std::vector<Vec3> presmooth_surface(const Mesh& mesh, const Topology& topology, 
       if (fixed[p] && fixed[q]) continue;
       diagonal[p] += w;
       diagonal[q] += w;
-      if (fixed[q]) rhs.row(p) += w * x[q].transpose();
-      else if (fixed[p]) rhs.row(q) += w * x[p].transpose();
+      if (fixed[q])
+        rhs.row(p) += w * x[q].transpose();
+      else if (fixed[p])
+        rhs.row(q) += w * x[p].transpose();
       else {
         triplets.emplace_back(p, q, -w);
         triplets.emplace_back(q, p, -w);

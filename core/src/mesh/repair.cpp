@@ -22,8 +22,8 @@ void check_soup(const TriangleSoup& soup, const RepairOptions& options) {
     throw Error(ErrorKind::InvalidInput, "the index array length is not a multiple of 3.");
   if (soup.triangle_count() > options.max_triangles)
     throw Error(ErrorKind::TooLarge, "the mesh has " + std::to_string(soup.triangle_count()) +
-                                         " triangles, more than the limit of " +
-                                         std::to_string(options.max_triangles) + ".");
+                                         " triangles, more than the limit of " + std::to_string(options.max_triangles) +
+                                         ".");
   if (soup.triangle_count() == 0) throw Error(ErrorKind::InvalidInput, "the mesh contains no triangles.");
   const size_t nv = soup.vertex_count();
   for (size_t i = 0; i < soup.indices.size(); ++i)
@@ -279,7 +279,8 @@ RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options)
     throw Error(ErrorKind::InvalidInput, "the coordinates are too large to compute with (the bounding box overflows).");
   }
 
-  const std::vector<uint32_t> rep = weld(points, weldable, lo, options.weld_tolerance * diagonal, report.welded_vertices);
+  const std::vector<uint32_t> rep =
+      weld(points, weldable, lo, options.weld_tolerance * diagonal, report.welded_vertices);
 
   // Triangles on welded vertices; drop non-finite, degenerate and duplicates.
   std::vector<Triangle> tris;
@@ -315,7 +316,8 @@ RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options)
     tris.resize(n);
   }
   if (tris.empty())
-    throw Error(ErrorKind::InvalidInput, "no usable triangle remains (all are degenerate or have non-finite coordinates).");
+    throw Error(ErrorKind::InvalidInput,
+                "no usable triangle remains (all are degenerate or have non-finite coordinates).");
 
   Orientation orientation = orient(tris, points, report);
   report.components = orientation.components;
@@ -352,8 +354,7 @@ RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options)
     size_t j = i;
     while (j < keys.size() && keys[j] == keys[i]) ++j;
     if (j - i == 1) ++report.boundary_edges;
-    if (j - i > 2)
-      throw Error(ErrorKind::InvalidInput, "the mesh has an edge that could not be made manifold.");
+    if (j - i > 2) throw Error(ErrorKind::InvalidInput, "the mesh has an edge that could not be made manifold.");
     i = j;
   }
   return result;
@@ -365,14 +366,19 @@ std::vector<std::string> RepairReport::notes() const {
     if (n) out.push_back(text);
   };
   add(welded_vertices, "Welded " + count_text(welded_vertices, "duplicate vertex", "duplicate vertices") + ".");
-  add(nonfinite_triangles, "Dropped " + count_text(nonfinite_triangles, "triangle", "triangles") +
-                               " with non-finite coordinates.");
-  add(degenerate_triangles, "Dropped " + count_text(degenerate_triangles, "degenerate triangle", "degenerate triangles") + ".");
-  add(duplicate_triangles, "Dropped " + count_text(duplicate_triangles, "duplicate triangle", "duplicate triangles") + ".");
-  add(unreferenced_vertices, "Dropped " + count_text(unreferenced_vertices, "unreferenced vertex", "unreferenced vertices") + ".");
+  add(nonfinite_triangles,
+      "Dropped " + count_text(nonfinite_triangles, "triangle", "triangles") + " with non-finite coordinates.");
+  add(degenerate_triangles,
+      "Dropped " + count_text(degenerate_triangles, "degenerate triangle", "degenerate triangles") + ".");
+  add(duplicate_triangles,
+      "Dropped " + count_text(duplicate_triangles, "duplicate triangle", "duplicate triangles") + ".");
+  add(unreferenced_vertices,
+      "Dropped " + count_text(unreferenced_vertices, "unreferenced vertex", "unreferenced vertices") + ".");
   add(nonmanifold_edges, "Cut " + count_text(nonmanifold_edges, "non-manifold edge", "non-manifold edges") + ".");
-  add(nonmanifold_vertices, "Split " + count_text(nonmanifold_vertices, "non-manifold vertex", "non-manifold vertices") + ".");
-  add(flipped_triangles, "Reoriented " + count_text(flipped_triangles, "triangle", "triangles") + " to agree with their neighbours.");
+  add(nonmanifold_vertices,
+      "Split " + count_text(nonmanifold_vertices, "non-manifold vertex", "non-manifold vertices") + ".");
+  add(flipped_triangles,
+      "Reoriented " + count_text(flipped_triangles, "triangle", "triangles") + " to agree with their neighbours.");
   return out;
 }
 

@@ -44,8 +44,7 @@ Topology build_topology(const Mesh& mesh) {
   for (size_t i = 0; i < half.size();) {
     size_t j = i;
     while (j < half.size() && half[j].key == half[i].key) ++j;
-    if (j - i > 2)
-      throw Error(ErrorKind::InvalidInput, "the mesh has an edge shared by more than two triangles.");
+    if (j - i > 2) throw Error(ErrorKind::InvalidInput, "the mesh has an edge shared by more than two triangles.");
     const uint32_t e = static_cast<uint32_t>(topo.edges.size());
     topo.edges.push_back({static_cast<uint32_t>(half[i].key >> 32), static_cast<uint32_t>(half[i].key)});
     std::array<uint32_t, 2> tris{half[i].corner / 3, kNone};

@@ -1,9 +1,10 @@
+#include "crestline/curvature/extremality_smoothing.h"
+
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <random>
 
 #include "analytic_meshes.h"
-#include "crestline/curvature/extremality_smoothing.h"
 #include "crestline/mesh/repair.h"
 
 using namespace crestline;
@@ -24,7 +25,9 @@ Fixture noisy_bump() {
   grid.jitter = 0.2;
   Fixture f;
   f.mesh = repair_mesh(testing::height_field(
-                           [](double x, double y) { return 0.3 * std::cos(2 * testing::kPi * x) * std::cos(2 * testing::kPi * y); },
+                           [](double x, double y) {
+                             return 0.3 * std::cos(2 * testing::kPi * x) * std::cos(2 * testing::kPi * y);
+                           },
                            1, 1, grid))
                .mesh;
   testing::add_normal_noise(f.mesh, 0.1 * mean_edge_length(f.mesh), 7);
@@ -116,10 +119,10 @@ TEST_CASE("inhomogeneous smoothing: weight 0 freezes, larger weights smooth more
   strong.vertex_weights.assign(f.mesh.vertex_count(), 3.0);
   ExtremalitySmoothingOptions plain;
   plain.steps = 2;
-  const double r_strong =
-      roughness(f, smooth_extremality(f.mesh, f.topology, f.curvature, f.extremality, strong).e_max, f.curvature.dir_max);
-  const double r_plain =
-      roughness(f, smooth_extremality(f.mesh, f.topology, f.curvature, f.extremality, plain).e_max, f.curvature.dir_max);
+  const double r_strong = roughness(f, smooth_extremality(f.mesh, f.topology, f.curvature, f.extremality, strong).e_max,
+                                    f.curvature.dir_max);
+  const double r_plain = roughness(f, smooth_extremality(f.mesh, f.topology, f.curvature, f.extremality, plain).e_max,
+                                   f.curvature.dir_max);
   CHECK(r_strong < r_plain);
 
   ExtremalitySmoothingOptions wrong;

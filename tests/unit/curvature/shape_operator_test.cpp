@@ -1,10 +1,11 @@
+#include "crestline/curvature/shape_operator.h"
+
 #include <catch2/catch.hpp>
 #include <cmath>
 
 #include "analytic_meshes.h"
 #include "crestline/curvature/extremality.h"
 #include "crestline/curvature/regularity.h"
-#include "crestline/curvature/shape_operator.h"
 #include "crestline/mesh/repair.h"
 
 using namespace crestline;

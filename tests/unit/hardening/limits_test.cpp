@@ -87,18 +87,21 @@ ErrorKind refusal(const std::string& name, const std::vector<uint8_t>& bytes, co
 std::string gltf_with_accessor(const std::string& count, const std::string& byte_length, size_t bytes = 12) {
   return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
     "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
-    "buffers":[{"byteLength":)" + byte_length + R"(,"uri":"data:application/octet-stream;base64,)" +
-         std::string(bytes / 3 * 4, 'A') + R"("}],
-    "bufferViews":[{"buffer":0,"byteLength":)" + std::to_string(bytes) + R"(}],
-    "accessors":[{"bufferView":0,"componentType":5126,"count":)" + count + R"(,"type":"VEC3"}]})";
+    "buffers":[{"byteLength":)" +
+         byte_length + R"(,"uri":"data:application/octet-stream;base64,)" + std::string(bytes / 3 * 4, 'A') + R"("}],
+    "bufferViews":[{"buffer":0,"byteLength":)" +
+         std::to_string(bytes) + R"(}],
+    "accessors":[{"bufferView":0,"componentType":5126,"count":)" +
+         count + R"(,"type":"VEC3"}]})";
 }
 
 }  // namespace
 
 TEST_CASE("headers claiming gigabytes are refused before allocating", "[hardening][limits]") {
   const std::string ply_vertices = "ply\nformat binary_little_endian 1.0\nelement vertex ";
-  const std::string ply_rest = "\nproperty float x\nproperty float y\nproperty float z\nelement face 1\n"
-                               "property list uchar int vertex_indices\nend_header\n";
+  const std::string ply_rest =
+      "\nproperty float x\nproperty float y\nproperty float z\nelement face 1\n"
+      "property list uchar int vertex_indices\nend_header\n";
   // Beyond the limit of 50M triangles: TooLarge. Below it but more than the
   // bytes that follow: InvalidInput. Either way nothing is allocated for it.
   CHECK(refusal("huge.ply", bytes_of(ply_vertices + "4000000000" + ply_rest)) == ErrorKind::TooLarge);
@@ -106,7 +109,8 @@ TEST_CASE("headers claiming gigabytes are refused before allocating", "[hardenin
         ErrorKind::InvalidInput);
   CHECK(refusal("faces.ply", bytes_of("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                                       "property float z\nelement face 45000000\nproperty list uint int vertex_indices\n"
-                                      "end_header\n0 0 0\n1 0 0\n0 1 0\n4000000000 0 1 2\n")) == ErrorKind::InvalidInput);
+                                      "end_header\n0 0 0\n1 0 0\n0 1 0\n4000000000 0 1 2\n")) ==
+        ErrorKind::InvalidInput);
 
   std::vector<uint8_t> stl(84 + 50, 0);
   const uint32_t claimed = 0xFFFFFFFFu;  // 214 GB of facets
@@ -121,8 +125,7 @@ TEST_CASE("headers claiming gigabytes are refused before allocating", "[hardenin
 
   // OBJ has no header: its claims are indices far beyond the vertices read.
   CHECK(refusal("index.obj", bytes_of("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4000000000\n")) == ErrorKind::InvalidInput);
-  CHECK(refusal("negative.obj", bytes_of("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -4000000000\n")) ==
-        ErrorKind::InvalidInput);
+  CHECK(refusal("negative.obj", bytes_of("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -4000000000\n")) == ErrorKind::InvalidInput);
 
   CHECK(refusal("count.gltf", bytes_of(gltf_with_accessor("1000000000", "12"))) == ErrorKind::TooLarge);
   CHECK(refusal("lying.gltf", bytes_of(gltf_with_accessor("40000000", "12"))) == ErrorKind::InvalidInput);
@@ -202,7 +205,8 @@ TEST_CASE("thousands of tiny components cost linear time", "[hardening][limits][
     const uint32_t base = uint32_t(s.vertex_count());
     const Vec3 corners[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1.0 + 0.01 * (c % 5)}, {0, 0, -1}};
     for (const Vec3& p : corners) add_vertex(s, centre + p);
-    const uint32_t faces[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+    const uint32_t faces[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
+                                  {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
     for (const auto& f : faces) add_triangle(s, base + f[0], base + f[1], base + f[2]);
   }
   const RepairResult repaired = repair_mesh(s);

@@ -73,8 +73,11 @@ TEST_CASE("the same mesh at 1e-8, 1 and 1e8, and moved by 1e6, gives the same li
     double scale;
     Vec3 shift;
   };
-  const Case cases[] = {{1e-8, Vec3::Zero()}, {1e8, Vec3::Zero()}, {1, Vec3(1e6, 1e6, 1e6)},
-                        {1e-8, Vec3(1e-2, 0, 0)}, {1e8, Vec3(0, -1e14, 1e14)}};
+  const Case cases[] = {{1e-8, Vec3::Zero()},
+                        {1e8, Vec3::Zero()},
+                        {1, Vec3(1e6, 1e6, 1e6)},
+                        {1e-8, Vec3(1e-2, 0, 0)},
+                        {1e8, Vec3(0, -1e14, 1e14)}};
   for (const Case& c : cases) {
     INFO("scale " << c.scale << ", shift " << c.shift.transpose());
     const Pipeline p = testing::run_pipeline(transformed(waves(), c.scale, c.shift));
@@ -102,18 +105,18 @@ TEST_CASE("slivers, zero-area triangles and duplicated vertices give no NaN", "[
     grid.nu = grid.nv = 24;
     grid.jitter = 0.499;  // vertices almost reach their neighbours
     grid.random_diagonals = true;
-    check_finite(testing::run_pipeline(testing::height_field(
-        [](double x, double y) { return 0.2 * std::sin(5 * x) * std::sin(4 * y); }, 1, 1, grid)));
+    check_finite(testing::run_pipeline(
+        testing::height_field([](double x, double y) { return 0.2 * std::sin(5 * x) * std::sin(4 * y); }, 1, 1, grid)));
   }
   SECTION("zero-area triangles, exact and near-duplicate vertices") {
     TriangleSoup s = waves();
     const uint32_t n = static_cast<uint32_t>(s.vertex_count());
     for (uint32_t v = 0; v + 2 < n; v += 37) {
       const Vec3 p(s.positions[3 * v], s.positions[3 * v + 1], s.positions[3 * v + 2]);
-      add_vertex(s, p);                          // an exact duplicate, welded
-      add_vertex(s, p + Vec3(1e-12, 0, 1e-12));  // below the weld tolerance
+      add_vertex(s, p);                                            // an exact duplicate, welded
+      add_vertex(s, p + Vec3(1e-12, 0, 1e-12));                    // below the weld tolerance
       add_triangle(s, v, n + (v / 37) * 2, n + (v / 37) * 2 + 1);  // zero area
-      add_triangle(s, v, v + 1, v + 1);                             // repeated corner
+      add_triangle(s, v, v + 1, v + 1);                            // repeated corner
     }
     // Collinear triangles along the first row of the grid.
     add_triangle(s, 0, 1, 2);

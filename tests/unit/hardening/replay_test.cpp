@@ -70,8 +70,9 @@ TEST_CASE("a face without ears costs no more than a convex one", "[hardening][fu
   while (std::getline(file, line))
     if (line.rfind("f ", 0) == 0 && line.size() > face.size() + 1) face = line.substr(1);  // the longest
   REQUIRE(!face.empty());
-  std::string earless = "v -0.5 -0.5 0.5\nv -0.5 -0.5 -0.5\nv -0.5 0.5 -0.5\nv -0.5 0.5 0.5\n"
-                        "v 0.5 -0.5 0.5\nv 0.5 -0.5 -0.5\nv 0.5 0.5 -0.5\nv 0.5 0.5 0.5\nf";
+  std::string earless =
+      "v -0.5 -0.5 0.5\nv -0.5 -0.5 -0.5\nv -0.5 0.5 -0.5\nv -0.5 0.5 0.5\n"
+      "v 0.5 -0.5 0.5\nv 0.5 -0.5 -0.5\nv 0.5 0.5 -0.5\nv 0.5 0.5 0.5\nf";
   for (int copy = 0; copy < 4; ++copy) earless += face;
   earless += "\n";
   std::istringstream words(earless.substr(earless.find('f') + 1));

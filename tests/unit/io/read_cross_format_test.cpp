@@ -9,14 +9,14 @@
 #include <sstream>
 
 #include "crestline/io/read_mesh.h"
-#include "run_pipeline.h"
 #include "read_test_bytes.h"
+#include "run_pipeline.h"
 #include "test_meshes.h"
 
 using crestline::TriangleSoup;
+using crestline::io::read_mesh_bytes;
 using crestline::testing::bytes_of;
 using crestline::testing::put;
-using crestline::io::read_mesh_bytes;
 
 namespace {
 
@@ -59,7 +59,8 @@ std::vector<uint8_t> to_binary_stl(const TriangleSoup& soup) {
   put(out, uint32_t(soup.triangle_count()));
   for (size_t t = 0; t < soup.triangle_count(); ++t) {
     for (int k = 0; k < 3; ++k) put(out, 0.0f);
-    for (int k = 0; k < 9; ++k) put(out, float(soup.positions[3 * soup.indices[3 * t + size_t(k / 3)] + size_t(k % 3)]));
+    for (int k = 0; k < 9; ++k)
+      put(out, float(soup.positions[3 * soup.indices[3 * t + size_t(k / 3)] + size_t(k % 3)]));
     put(out, uint16_t(0));
   }
   return out;

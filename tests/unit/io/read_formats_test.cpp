@@ -16,11 +16,11 @@
 using crestline::Error;
 using crestline::ErrorKind;
 using crestline::TriangleSoup;
-using crestline::testing::bytes_of;
-using crestline::testing::put;
 using crestline::io::MeshFormat;
 using crestline::io::NamedBuffer;
 using crestline::io::read_mesh_bytes;
+using crestline::testing::bytes_of;
+using crestline::testing::put;
 
 namespace {
 
@@ -101,18 +101,21 @@ TEST_CASE("PLY: ascii, little- and big-endian binary give the same soup", "[io][
 }
 
 TEST_CASE("PLY: claims the file cannot hold are refused before allocating", "[io][ply]") {
-  std::string huge = "ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\n"
-                     "property float y\nproperty float z\nend_header\n";
+  std::string huge =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\n"
+      "property float y\nproperty float z\nend_header\n";
   CHECK(error_kind("huge.ply", bytes_of(huge)) == ErrorKind::TooLarge);
-  std::string lying = "ply\nformat binary_little_endian 1.0\nelement vertex 1000\nproperty float x\n"
-                      "property float y\nproperty float z\nend_header\n0000";
+  std::string lying =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 1000\nproperty float x\n"
+      "property float y\nproperty float z\nend_header\n0000";
   CHECK(error_kind("lying.ply", bytes_of(lying)) == ErrorKind::InvalidInput);
   std::vector<uint8_t> truncated = square_ply("binary_big_endian");
   truncated.resize(truncated.size() - 3);
   CHECK(error_kind("truncated.ply", truncated) == ErrorKind::InvalidInput);
-  std::string out_of_range = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                             "property float z\nelement face 1\nproperty list uchar int vertex_index\nend_header\n"
-                             "0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n";
+  std::string out_of_range =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list uchar int vertex_index\nend_header\n"
+      "0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n";
   CHECK(error_kind("range.ply", bytes_of(out_of_range)) == ErrorKind::InvalidInput);
 }
 
@@ -148,9 +151,8 @@ TEST_CASE("OBJ: concave polygons are ear-clipped inside their outline", "[io][ob
   // A comb-shaped 12-gon in a tilted plane: a fan from vertex 1 would leave
   // the polygon.
   const std::vector<std::array<double, 2>> outline = {{0, 0}, {5, 0}, {5, 3}, {4, 3}, {4, 1}, {3, 1},
-                                                       {3, 3}, {2, 3}, {2, 1}, {1, 1}, {1, 3}, {0, 3}};
-  const Eigen::Matrix3d tilt =
-      (Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized())).toRotationMatrix();
+                                                      {3, 3}, {2, 3}, {2, 1}, {1, 1}, {1, 3}, {0, 3}};
+  const Eigen::Matrix3d tilt = (Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized())).toRotationMatrix();
   std::string obj = "# comb\n";
   for (auto& p : outline) {
     const Eigen::Vector3d q = tilt * Eigen::Vector3d(p[0], p[1], 0) + Eigen::Vector3d(10, -4, 2);
@@ -169,7 +171,8 @@ TEST_CASE("OBJ: concave polygons are ear-clipped inside their outline", "[io][ob
     Eigen::Vector3d corner[3];
     for (int k = 0; k < 3; ++k) corner[k] = Eigen::Vector3d(&soup.positions[3 * soup.indices[3 * t + size_t(k)]]);
     CHECK((corner[1] - corner[0]).cross(corner[2] - corner[0]).dot(normal) > 0);
-    const Eigen::Vector3d local = tilt.transpose() * ((corner[0] + corner[1] + corner[2]) / 3 - Eigen::Vector3d(10, -4, 2));
+    const Eigen::Vector3d local =
+        tilt.transpose() * ((corner[0] + corner[1] + corner[2]) / 3 - Eigen::Vector3d(10, -4, 2));
     bool inside = false;
     for (size_t i = 0, j = outline.size() - 1; i < outline.size(); j = i++) {
       const auto& a = outline[i];
@@ -194,7 +197,8 @@ TEST_CASE("OBJ: the 66-gon of polygon-concave.obj keeps its area", "[io][obj][me
   for (size_t t = 0; t < soup.triangle_count(); ++t) {
     const uint32_t* i = &soup.indices[3 * t];
     const double y0 = p[3 * i[0] + 1], z0 = p[3 * i[0] + 2];
-    const double cross = (p[3 * i[1] + 1] - y0) * (p[3 * i[2] + 2] - z0) - (p[3 * i[1] + 2] - z0) * (p[3 * i[2] + 1] - y0);
+    const double cross =
+        (p[3 * i[1] + 1] - y0) * (p[3 * i[2] + 2] - z0) - (p[3 * i[1] + 2] - z0) * (p[3 * i[2] + 1] - y0);
     total += std::abs(cross) / 2;
     signed_sum += cross / 2;
   }
@@ -296,7 +300,8 @@ TEST_CASE("glTF: data URIs, strips, instancing with transforms, companions", "[i
   }
   // Scaled child of a rotated parent.
   const TriangleSoup nested = read_text(
-      "n.gltf", square_gltf(uri, 4, R"([{"children":[1],"rotation":[0,0,0.7071068,0.7071068]},{"mesh":0,"scale":[2,2,2]}])"));
+      "n.gltf",
+      square_gltf(uri, 4, R"([{"children":[1],"rotation":[0,0,0.7071068,0.7071068]},{"mesh":0,"scale":[2,2,2]}])"));
   CHECK(nested.positions[3 * 1 + 1] == Approx(2.0));  // (1,0,0) scaled to (2,0,0), turned to (0,2,0)
   // An external buffer comes from the companions, by URI.
   const std::string external = square_gltf("sub/square.bin", 4, R"([{"mesh":0}])");
@@ -342,7 +347,8 @@ TEST_CASE("glTF: EXT_mesh_gpu_instancing is expanded", "[io][gltf]") {
   std::vector<uint8_t> buffer = square_buffer();
   for (float c : {0.f, 0.f, 0.f, 10.f, 0.f, 0.f, 0.f, 10.f, 0.f}) put(buffer, c);  // 3 translations
   const std::string json = R"({"asset":{"version":"2.0"},"extensionsUsed":["EXT_mesh_gpu_instancing"],
-  "buffers":[{"byteLength":84,"uri":"data:application/octet-stream;base64,)" + base64(buffer) + R"("}],
+  "buffers":[{"byteLength":84,"uri":"data:application/octet-stream;base64,)" +
+                           base64(buffer) + R"("}],
   "bufferViews":[{"buffer":0,"byteLength":48},{"buffer":0,"byteOffset":48,"byteLength":36}],
   "accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3"},
                {"bufferView":1,"componentType":5126,"count":3,"type":"VEC3"}],
@@ -351,7 +357,7 @@ TEST_CASE("glTF: EXT_mesh_gpu_instancing is expanded", "[io][gltf]") {
   const TriangleSoup soup = read_text("instances.gltf", json);
   CHECK(soup.vertex_count() == 12);
   CHECK(soup.triangle_count() == 6);
-  CHECK(area(soup) == Approx(3 * 4.0));  // node scale 2 applies after the instance offsets
+  CHECK(area(soup) == Approx(3 * 4.0));          // node scale 2 applies after the instance offsets
   CHECK(soup.positions[3 * 4] == Approx(20.0));  // instance 1, vertex 0: (10,0,0) scaled by 2
 }
 

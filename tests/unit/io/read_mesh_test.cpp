@@ -2,13 +2,14 @@
 // outcome, written down here: the soup as read (vertices and triangles,
 // unwelded) or the kind of error. The counts are the MANIFEST's stored V and
 // T columns unless a comment says why they differ.
+#include "crestline/io/read_mesh.h"
+
 #include <algorithm>
 #include <cmath>
 #include <optional>
 #include <set>
 
 #include "crestline/error.h"
-#include "crestline/io/read_mesh.h"
 #include "test_meshes.h"
 
 using crestline::Error;
@@ -184,8 +185,7 @@ TEST_CASE("every shared mesh reads with its expected outcome", "[io][meshes]") {
     CHECK(soup.vertex_count() == c.vertices);
     CHECK(soup.triangle_count() == c.triangles);
     CHECK(soup.positions.size() % 3 == 0);
-    CHECK(std::all_of(soup.indices.begin(), soup.indices.end(),
-                      [&](uint32_t i) { return i < soup.vertex_count(); }));
+    CHECK(std::all_of(soup.indices.begin(), soup.indices.end(), [&](uint32_t i) { return i < soup.vertex_count(); }));
     if (std::string(c.path) != "robust/obj/syntax-number-formats.obj") CHECK(all_finite(soup));
   }
 }

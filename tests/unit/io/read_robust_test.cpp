@@ -38,15 +38,18 @@ void replace_number(std::vector<uint8_t>& bytes, size_t at, size_t end, const st
 }
 
 std::vector<uint8_t> mutate(const std::vector<uint8_t>& original, bool glb, std::mt19937& random) {
-  static const char* const numbers[] = {"0", "1", "2", "3", "4", "7", "255", "65535", "4294967295",
-                                        "4294967296", "2147483647", "1000000000", "99999999999"};
+  static const char* const numbers[] = {"0",          "1",          "2",          "3",          "4",
+                                        "7",          "255",        "65535",      "4294967295", "4294967296",
+                                        "2147483647", "1000000000", "99999999999"};
   std::vector<uint8_t> bytes = original;
   if (bytes.size() < 24) return bytes;
   uint32_t json_length = 0;
   std::memcpy(&json_length, &bytes[12], 4);
   const size_t json_end = glb ? std::min<size_t>(20 + size_t(json_length), bytes.size()) : bytes.size();
   switch (random() % 4) {
-    case 0: bytes.resize(random() % bytes.size()); break;
+    case 0:
+      bytes.resize(random() % bytes.size());
+      break;
     case 1:
       for (int k = 0; k < 1 + int(random() % 6); ++k) bytes[random() % bytes.size()] = uint8_t(random());
       break;
@@ -68,18 +71,24 @@ std::vector<uint8_t> mutate(const std::vector<uint8_t>& original, bool glb, std:
 TEST_CASE("mutated files give crestline::Error or a soup, never anything else", "[io][robust][meshes]") {
   SKIP_WITHOUT_MESHES();
   const char* const files[] = {
-      "robust/obj/polygon-concave-o2g.obj",  "robust/obj/negative-indices-box.obj",
-      "robust/obj/syntax-utf16be.obj",       "glb/Box.glb",
-      "glb/Box-draco.glb",                   "glb/BoxMeshopt.glb",
-      "glb/Duck-quantized.glb",              "gltf/SimpleSparseAccessor/SimpleSparseAccessor.gltf",
-      "gltf/Box-draco/Box.gltf",             "robust/gltf/Mesh_PrimitiveMode/Mesh_PrimitiveMode_12.gltf",
+      "robust/obj/polygon-concave-o2g.obj",
+      "robust/obj/negative-indices-box.obj",
+      "robust/obj/syntax-utf16be.obj",
+      "glb/Box.glb",
+      "glb/Box-draco.glb",
+      "glb/BoxMeshopt.glb",
+      "glb/Duck-quantized.glb",
+      "gltf/SimpleSparseAccessor/SimpleSparseAccessor.gltf",
+      "gltf/Box-draco/Box.gltf",
+      "robust/gltf/Mesh_PrimitiveMode/Mesh_PrimitiveMode_12.gltf",
   };
   for (const char* file : files) {
     const std::filesystem::path path = crestline::testing::mesh_path(file);
     const std::vector<uint8_t> original = load(path);
     std::vector<NamedBuffer> companions;
     for (const auto& entry : std::filesystem::directory_iterator(path.parent_path())) {
-      if (entry.path().extension() == ".bin") companions.push_back({entry.path().filename().string(), load(entry.path())});
+      if (entry.path().extension() == ".bin")
+        companions.push_back({entry.path().filename().string(), load(entry.path())});
     }
     const bool glb = path.extension() == ".glb";
     std::mt19937 random(12345);

@@ -90,9 +90,12 @@ std::vector<Path> paths_in(const std::string& svg, const std::string& group) {
   for (std::sregex_iterator it(body.begin(), body.end(), path_re), stop; it != stop; ++it) {
     const std::string data = (*it)[1];
     for (std::sregex_iterator t(data.begin(), data.end(), token_re); t != stop; ++t) {
-      if ((*t)[1] == "M") out.emplace_back();
-      else if ((*t)[1] == "Z") out.back().closed = true;
-      else if ((*t)[1].length() == 0) out.back().points.emplace_back(std::stod((*t)[2]), std::stod((*t)[3]));
+      if ((*t)[1] == "M")
+        out.emplace_back();
+      else if ((*t)[1] == "Z")
+        out.back().closed = true;
+      else if ((*t)[1].length() == 0)
+        out.back().points.emplace_back(std::stod((*t)[2]), std::stod((*t)[3]));
     }
   }
   return out;
@@ -208,8 +211,7 @@ TEST_CASE("SVG: document structure, groups and views", "[io][svg]") {
   CHECK(outline[0].length() == Approx(4 * 960).margin(4.0));
 
   // The caller's adjacency gives the same drawing as the one built inside.
-  CHECK(crestline::io::write_lines_svg({ridge, valley}, plane(), crestline::build_topology(plane()), options) ==
-        svg);
+  CHECK(crestline::io::write_lines_svg({ridge, valley}, plane(), crestline::build_topology(plane()), options) == svg);
 
   // Ridge above the valley in front view (SVG y grows downwards).
   CHECK(paths_in(svg, "ridges")[0].points[0].second < paths_in(svg, "valleys")[0].points[0].second);

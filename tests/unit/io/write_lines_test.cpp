@@ -1,12 +1,12 @@
 // OBJ and JSON line writers: the file contracts other tools rely on.
+#include "crestline/io/write_lines.h"
+
 #include <catch2/catch.hpp>
-#include <nlohmann/json.hpp>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include "crestline/io/write_lines.h"
 
 using crestline::LineType;
 using crestline::Polyline;
@@ -43,8 +43,7 @@ std::vector<std::string> lines_of(const std::string& text) {
 
 }  // namespace
 
-TEST_CASE("OBJ output follows the contract: v lines, o ridges, o valleys, one l per polyline",
-          "[io][writers]") {
+TEST_CASE("OBJ output follows the contract: v lines, o ridges, o valleys, one l per polyline", "[io][writers]") {
   const std::vector<Polyline> lines = sample_lines();
   const std::string obj = crestline::io::write_lines_obj(lines);
 
@@ -151,8 +150,8 @@ TEST_CASE("stats JSON is one object on one line", "[io][writers]") {
   const std::string text = crestline::io::stats_json(crestline::PipelineStats{});
   CHECK(text.find('\n') == std::string::npos);
   const auto json = nlohmann::json::parse(text);
-  for (const char* key : {"vertices", "triangles", "singular_max", "singular_min", "ridges", "valleys",
-                          "ridge_length", "valley_length", "seconds"})
+  for (const char* key : {"vertices", "triangles", "singular_max", "singular_min", "ridges", "valleys", "ridge_length",
+                          "valley_length", "seconds"})
     CHECK(json.contains(key));
 }
 
@@ -183,8 +182,7 @@ crestline::Mesh square_mesh() {
 
 }  // namespace
 
-TEST_CASE("OBJ with the mesh: o surface with v/f first, line indices numbered after it",
-          "[io][writers]") {
+TEST_CASE("OBJ with the mesh: o surface with v/f first, line indices numbered after it", "[io][writers]") {
   const crestline::Mesh mesh = square_mesh();
   const std::vector<Polyline> lines = sample_lines();
   const std::string obj = crestline::io::write_mesh_and_lines_obj(mesh, lines);

@@ -1,9 +1,10 @@
+#include "crestline/lines/fairing.h"
+
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <random>
 
 #include "analytic_meshes.h"
-#include "crestline/lines/fairing.h"
 
 using namespace crestline;
 
@@ -31,7 +32,8 @@ double hausdorff(const Polyline& a, const Polyline& b) {
 // Sum of squared second differences: how wiggly a polyline is.
 double wiggle(const Polyline& l) {
   double s = 0;
-  for (size_t i = 1; i + 1 < l.points.size(); ++i) s += (l.points[i - 1] - 2 * l.points[i] + l.points[i + 1]).squaredNorm();
+  for (size_t i = 1; i + 1 < l.points.size(); ++i)
+    s += (l.points[i - 1] - 2 * l.points[i] + l.points[i + 1]).squaredNorm();
   return s;
 }
 

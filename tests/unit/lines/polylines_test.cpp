@@ -1,8 +1,9 @@
+#include "crestline/lines/polylines.h"
+
 #include <catch2/catch.hpp>
 #include <cmath>
 
 #include "crestline/lines/filter.h"
-#include "crestline/lines/polylines.h"
 
 using namespace crestline;
 
@@ -72,7 +73,8 @@ TEST_CASE("filter keeps lines at or above the threshold, automatic one drops the
 TEST_CASE("a line runs straight through a junction; its side branch ends there", "[polylines]") {
   // A straight line along x through node 0 and a branch going up from it.
   FeatureGraph g = graph_with_points(7, 1.0);
-  g.points = {Vec3(0, 0, 0), Vec3(-1, 0, 0), Vec3(-2, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0), Vec3(0.1, 1, 0), Vec3(0.2, 2, 0)};
+  g.points = {Vec3(0, 0, 0), Vec3(-1, 0, 0),  Vec3(-2, 0, 0), Vec3(1, 0, 0),
+              Vec3(2, 0, 0), Vec3(0.1, 1, 0), Vec3(0.2, 2, 0)};
   g.trisector[0] = 1;
   g.segments = {{0, 1}, {1, 2}, {0, 3}, {3, 4}, {0, 5}, {5, 6}};
   const auto lines = join_polylines(g);

@@ -1,7 +1,8 @@
+#include "crestline/mesh/presmooth.h"
+
 #include <catch2/catch.hpp>
 
 #include "analytic_meshes.h"
-#include "crestline/mesh/presmooth.h"
 #include "crestline/mesh/repair.h"
 
 using namespace crestline;

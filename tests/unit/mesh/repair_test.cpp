@@ -1,9 +1,10 @@
+#include "crestline/mesh/repair.h"
+
 #include <catch2/catch.hpp>
 #include <cmath>
 
 #include "analytic_meshes.h"
 #include "crestline/error.h"
-#include "crestline/mesh/repair.h"
 #include "crestline/mesh/topology.h"
 
 using namespace crestline;
@@ -15,9 +16,10 @@ namespace {
 // A unit cube stored like a glTF export: every face has its own 4 vertices.
 TriangleSoup split_cube() {
   TriangleSoup s;
-  const int faces[6][4][3] = {{{0, 0, 0}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0}}, {{0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}},
-                              {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}}, {{0, 1, 0}, {0, 1, 1}, {1, 1, 1}, {1, 1, 0}},
-                              {{0, 0, 0}, {0, 0, 1}, {0, 1, 1}, {0, 1, 0}}, {{1, 0, 0}, {1, 1, 0}, {1, 1, 1}, {1, 0, 1}}};
+  const int faces[6][4][3] = {
+      {{0, 0, 0}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0}}, {{0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}},
+      {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}}, {{0, 1, 0}, {0, 1, 1}, {1, 1, 1}, {1, 1, 0}},
+      {{0, 0, 0}, {0, 0, 1}, {0, 1, 1}, {0, 1, 0}}, {{1, 0, 0}, {1, 1, 0}, {1, 1, 1}, {1, 0, 1}}};
   for (int f = 0; f < 6; ++f) {
     const uint32_t base = static_cast<uint32_t>(s.vertex_count());
     for (int k = 0; k < 4; ++k) add_vertex(s, Vec3(faces[f][k][0], faces[f][k][1], faces[f][k][2]));
@@ -46,7 +48,8 @@ TEST_CASE("repair welds seam vertices and orients a closed mesh outwards", "[rep
 
   // The same cube inside out comes back outwards.
   TriangleSoup inverted = split_cube();
-  for (size_t t = 0; t < inverted.triangle_count(); ++t) std::swap(inverted.indices[3 * t + 1], inverted.indices[3 * t + 2]);
+  for (size_t t = 0; t < inverted.triangle_count(); ++t)
+    std::swap(inverted.indices[3 * t + 1], inverted.indices[3 * t + 2]);
   RepairResult r2 = repair_mesh(inverted);
   CHECK(signed_volume(r2.mesh) == Approx(1.0));
   CHECK(r2.report.flipped_triangles == 12);
@@ -165,7 +168,8 @@ TEST_CASE("repair rejects unusable input with one clear sentence", "[repair]") {
 TEST_CASE("welding tolerance is relative to the model size", "[repair]") {
   for (double scale : {1e-6, 1.0, 1e6}) {
     TriangleSoup s = split_cube();
-    for (size_t i = 0; i < s.positions.size(); ++i) s.positions[i] = s.positions[i] * scale + (i % 3 == 0 ? 1e3 * scale : 0);
+    for (size_t i = 0; i < s.positions.size(); ++i)
+      s.positions[i] = s.positions[i] * scale + (i % 3 == 0 ? 1e3 * scale : 0);
     RepairResult r = repair_mesh(s);
     CHECK(r.mesh.vertex_count() == 8);
   }

@@ -90,8 +90,10 @@ TEST_CASE("stats count what the pipeline produced", "[pipeline]") {
   size_t ridges = 0, valleys = 0;
   double ridge_length = 0;
   for (const Polyline& l : p.lines()) {
-    if (l.type == LineType::Ridge) ++ridges, ridge_length += l.length;
-    else ++valleys;
+    if (l.type == LineType::Ridge)
+      ++ridges, ridge_length += l.length;
+    else
+      ++valleys;
   }
   CHECK(s.ridges == ridges);
   CHECK(s.valleys == valleys);

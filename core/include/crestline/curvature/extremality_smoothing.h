@@ -23,7 +23,6 @@ struct ExtremalitySmoothingOptions {
 /// dir(p) and e(p) at any vertices before smoothing flips exactly those
 /// values after it.
 Extremality smooth_extremality(const Mesh& mesh, const Topology& topology, const Curvature& curvature,
-                               const Extremality& extremality,
-                               const ExtremalitySmoothingOptions& options);
+                               const Extremality& extremality, const ExtremalitySmoothingOptions& options);
 
 }  // namespace crestline

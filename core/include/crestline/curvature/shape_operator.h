@@ -21,9 +21,9 @@ struct Curvature {
   std::vector<Vec3> vertex_normals;  // unit, area-weighted average of triangle normals
   std::vector<double> kappa_max;     // pointwise, κ_max ≥ κ_min
   std::vector<double> kappa_min;
-  std::vector<Vec3> dir_max;         // unit eigenvectors; the sign is arbitrary
+  std::vector<Vec3> dir_max;  // unit eigenvectors; the sign is arbitrary
   std::vector<Vec3> dir_min;
-  std::vector<double> star_area;     // sum of the areas of the triangles around each vertex
+  std::vector<double> star_area;  // sum of the areas of the triangles around each vertex
 };
 
 /// S(e) = H_e (ē×N_e)(ē×N_e)^T with H_e = 2|e|cos(θ_e/2) (signed: + on convex

@@ -43,8 +43,7 @@ struct NamedBuffer {
   std::vector<uint8_t> bytes;
 };
 TriangleSoup read_mesh_bytes(const std::string& name, const std::vector<uint8_t>& bytes,
-                             const std::vector<NamedBuffer>& companions = {},
-                             const ReadOptions& options = {});
+                             const std::vector<NamedBuffer>& companions = {}, const ReadOptions& options = {});
 
 MeshFormat detect_format(const std::string& name, const uint8_t* bytes, size_t size);
 

@@ -53,11 +53,10 @@ struct SvgOptions {
 
 /// Orthographic drawing of the lines with the parts hidden by `surface` removed.
 /// Linear in the mesh size; the silhouette needs adjacency, built here.
-std::string write_lines_svg(const std::vector<Polyline>& lines, const Mesh& surface,
-                            const SvgOptions& options);
+std::string write_lines_svg(const std::vector<Polyline>& lines, const Mesh& surface, const SvgOptions& options);
 /// The same, reusing the surface's adjacency (e.g. Pipeline::topology()) for
 /// the silhouette instead of building it (about a second per 1M triangles).
-std::string write_lines_svg(const std::vector<Polyline>& lines, const Mesh& surface,
-                            const Topology& topology, const SvgOptions& options);
+std::string write_lines_svg(const std::vector<Polyline>& lines, const Mesh& surface, const Topology& topology,
+                            const SvgOptions& options);
 
 }  // namespace crestline::io

@@ -17,7 +17,7 @@ struct SingularResult {
   SingularTriangleCounts valleys;
 };
 
-SingularResult connect_singular_triangles(const Mesh& mesh, const Topology& topology,
-                                          const Regularity& regularity, TraceResult traced);
+SingularResult connect_singular_triangles(const Mesh& mesh, const Topology& topology, const Regularity& regularity,
+                                          TraceResult traced);
 
 }  // namespace crestline

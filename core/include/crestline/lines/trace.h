@@ -20,8 +20,8 @@ struct TraceResult {
   std::vector<uint8_t> excluded;
 };
 
-TraceResult trace_regular_triangles(const Mesh& mesh, const Topology& topology,
-                                    const Curvature& curvature, const Extremality& extremality,
-                                    const Regularity& regularity, const TraceOptions& options);
+TraceResult trace_regular_triangles(const Mesh& mesh, const Topology& topology, const Curvature& curvature,
+                                    const Extremality& extremality, const Regularity& regularity,
+                                    const TraceOptions& options);
 
 }  // namespace crestline

@@ -1,10 +1,10 @@
 #pragma once
 // Paper Table 1, step 1 (optional): smooth the surface before computing
 // curvature, by implicit cotan (mean-curvature) flow [DMSB99].
+#include <vector>
+
 #include "crestline/mesh/mesh.h"
 #include "crestline/mesh/topology.h"
-
-#include <vector>
 
 namespace crestline {
 
@@ -35,7 +35,6 @@ int automatic_presmooth_steps(double noise_level);
 
 /// Returns the smoothed vertex positions (same connectivity). Boundary
 /// vertices stay fixed so open meshes do not shrink inwards.
-std::vector<Vec3> presmooth_surface(const Mesh& mesh, const Topology& topology,
-                                    const PresmoothOptions& options);
+std::vector<Vec3> presmooth_surface(const Mesh& mesh, const Topology& topology, const PresmoothOptions& options);
 
 }  // namespace crestline

@@ -20,15 +20,15 @@ struct RepairOptions {
 struct RepairReport {
   size_t input_vertices = 0;
   size_t input_triangles = 0;
-  size_t welded_vertices = 0;          // vertices merged into another one
-  size_t nonfinite_triangles = 0;      // dropped: a corner had NaN/inf coordinates
-  size_t degenerate_triangles = 0;     // dropped: repeated corner or zero area
-  size_t duplicate_triangles = 0;      // dropped: same three vertices as another
-  size_t unreferenced_vertices = 0;    // dropped
-  size_t nonmanifold_edges = 0;        // cut: more than two triangles met there
-  size_t nonmanifold_vertices = 0;     // split: more than one triangle fan met there
-  size_t flipped_triangles = 0;        // reoriented to agree with their neighbours
-  size_t components = 0;               // edge-connected pieces after repair
+  size_t welded_vertices = 0;        // vertices merged into another one
+  size_t nonfinite_triangles = 0;    // dropped: a corner had NaN/inf coordinates
+  size_t degenerate_triangles = 0;   // dropped: repeated corner or zero area
+  size_t duplicate_triangles = 0;    // dropped: same three vertices as another
+  size_t unreferenced_vertices = 0;  // dropped
+  size_t nonmanifold_edges = 0;      // cut: more than two triangles met there
+  size_t nonmanifold_vertices = 0;   // split: more than one triangle fan met there
+  size_t flipped_triangles = 0;      // reoriented to agree with their neighbours
+  size_t components = 0;             // edge-connected pieces after repair
   size_t boundary_edges = 0;
 
   /// One sentence per non-zero repair, for logs and the UI.
