@@ -95,7 +95,7 @@ void Pipeline::run(const ProgressCallback& progress) {
     const FeatureGraph* ridges = &singular_.lines.ridges;
     const FeatureGraph* valleys_graph = &singular_.lines.valleys;
     FeatureGraph placed_ridges, placed_valleys;
-    if (surface_.positions != input_.positions) {
+    if (presmooth_steps_ > 0) {  // the surface was smoothed
       placed_ridges = *ridges;
       placed_valleys = *valleys_graph;
       place_nodes_on(placed_ridges, input_, topology_.edges);
