@@ -52,6 +52,83 @@ double surface_noise_level(const Mesh& mesh, const Topology& topology) {
 
 int automatic_presmooth_steps(double noise_level) { return noise_level > kNoisySurface ? kNoisySurfaceSteps : 0; }
 
+// Solves the SPD system given by `triplets` for the three coordinates at once
+// (one factorization or preconditioner), starting from and replacing x.
+static void solve_positions(const Triplets& triplets, const Eigen::MatrixXd& rhs, std::vector<Vec3>& x) {
+  const size_t nv = x.size();
+  SparseMatrix system(nv, nv);
+  system.setFromTriplets(triplets.begin(), triplets.end());
+  SpdSolver solver;
+  solver.compute(std::move(system));
+  for (int axis = 0; axis < 3; ++axis) {
+    Eigen::VectorXd guess(nv);
+    for (size_t v = 0; v < nv; ++v) guess[v] = x[v][axis];
+    const Eigen::VectorXd solved = solver.solve(rhs.col(axis), guess);
+    for (size_t v = 0; v < nv; ++v) x[v][axis] = solved[v];
+  }
+}
+
+// One implicit step of the 1-D Laplacian along the boundary curves,
+// (M + tL) x' = M x with M the half lengths of the adjacent boundary edges and
+// L the 1-D cotan Laplacian (weights 1 / edge length). Corners and
+// non-manifold boundary vertices are held, so corners do not round off and
+// pull their sides inwards; interior vertices keep identity rows. See
+// presmooth_surface for why.
+static void smooth_boundary_curves(std::vector<Vec3>& x, const Mesh& mesh, const Topology& topology, double t) {
+  const size_t nv = x.size();
+  std::vector<std::vector<uint32_t>> along(nv);  // boundary neighbours
+  for (size_t e = 0; e < topology.edges.size(); ++e) {
+    if (!topology.is_boundary_edge(static_cast<uint32_t>(e))) continue;
+    const uint32_t p = topology.edges[e][0], q = topology.edges[e][1];
+    along[p].push_back(q), along[q].push_back(p);
+  }
+  // A corner is where the triangles' angles at a boundary vertex sum to less
+  // than 135° (the boundary turns by more than 45° within the surface); the
+  // angle sum, unlike the turn of the boundary polygon, ignores noise along
+  // the normal.
+  constexpr double kCornerAngleSum = 0.75 * 3.14159265358979;
+  std::vector<double> angle_sum(nv, 0.0);
+  for (const Triangle& tri : mesh.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t v = tri[k];
+      if (along[v].empty()) continue;
+      const Vec3 a = x[tri[(k + 1) % 3]] - x[v], b = x[tri[(k + 2) % 3]] - x[v];
+      angle_sum[v] += std::atan2(a.cross(b).norm(), a.dot(b));
+    }
+  std::vector<uint8_t> free(nv, 0);
+  bool any = false;
+  for (size_t v = 0; v < nv; ++v) {
+    const bool has_length =
+        along[v].size() == 2 && (x[v] - x[along[v][0]]).norm() > 0 && (x[v] - x[along[v][1]]).norm() > 0;
+    free[v] = has_length && angle_sum[v] >= kCornerAngleSum;
+    any = any || free[v];
+  }
+  if (!any) return;
+  // Row of a free vertex v: (m_v + Σ w) x'_v − Σ_free w x'_q = m_v x_v + Σ_held w x_q.
+  Eigen::MatrixXd rhs(nv, 3);
+  Triplets triplets;
+  for (size_t v = 0; v < nv; ++v) {
+    if (!free[v]) {
+      triplets.emplace_back(v, v, 1.0);
+      rhs.row(v) = x[v].transpose();
+      continue;
+    }
+    double mass = 0, diagonal = 0;
+    Eigen::RowVector3d held = Eigen::RowVector3d::Zero();
+    for (uint32_t q : along[v]) {
+      const double length = (x[v] - x[q]).norm(), w = t / length;
+      mass += 0.5 * length, diagonal += w;
+      if (free[q])
+        triplets.emplace_back(v, q, -w);
+      else
+        held += w * x[q].transpose();
+    }
+    triplets.emplace_back(v, v, mass + diagonal);
+    rhs.row(v) = mass * x[v].transpose() + held;
+  }
+  solve_positions(triplets, rhs, x);
+}
+
 std::vector<Vec3> presmooth_surface(const Mesh& mesh, const Topology& topology, const PresmoothOptions& options) {
   std::vector<Vec3> x = mesh.positions;
   const int steps = options.steps < 0 ? automatic_presmooth_steps(surface_noise_level(mesh, topology)) : options.steps;
@@ -62,9 +139,11 @@ std::vector<Vec3> presmooth_surface(const Mesh& mesh, const Topology& topology, 
   const std::vector<uint8_t>& fixed = topology.boundary_vertex;
 
   for (int step = 0; step < steps; ++step) {
+    smooth_boundary_curves(x, mesh, topology, t);
     // Weights from the current surface: mean-curvature flow, linearised per step.
     const CotanWeights cotan = cotan_weights(x, mesh, topology);
-    // (M + tL) x' = M x on free vertices; fixed (boundary) ones move to the right side.
+    // (M + tL) x' = M x on interior vertices; boundary ones (just smoothed
+    // along their curve) are held and move to the right side.
     std::vector<double> diagonal(cotan.vertex_mass);
     Eigen::MatrixXd rhs(nv, 3);
     for (size_t v = 0; v < nv; ++v) rhs.row(v) = cotan.vertex_mass[v] * x[v].transpose();
@@ -94,16 +173,7 @@ std::vector<Vec3> presmooth_surface(const Mesh& mesh, const Topology& topology, 
         triplets.emplace_back(v, v, diagonal[v]);
       }
     }
-    SparseMatrix system(nv, nv);
-    system.setFromTriplets(triplets.begin(), triplets.end());
-    SpdSolver solver;
-    solver.compute(std::move(system));
-    for (int axis = 0; axis < 3; ++axis) {
-      Eigen::VectorXd guess(nv);
-      for (size_t v = 0; v < nv; ++v) guess[v] = x[v][axis];
-      const Eigen::VectorXd solved = solver.solve(rhs.col(axis), guess);
-      for (size_t v = 0; v < nv; ++v) x[v][axis] = solved[v];
-    }
+    solve_positions(triplets, rhs, x);
   }
   return x;
 }
