@@ -67,7 +67,8 @@ int parse_options(int argc, char** argv, CliOptions& o) {
   parameter("--fairing-iterations", p.fairing.iterations, "Line fairing iterations (paper 5.2)");
   app.add_option("--threshold", p.filter.threshold,
                  "Drop lines whose strength (integral of |curvature| along the line) is below this; "
-                 "negative: chosen automatically from the mesh")
+                 "negative: chosen automatically from the mesh, also dropping weak lines (strength < 1) "
+                 "shorter than 6 mean edge lengths")
       ->group("Pipeline");
 
   std::string view = "front";

@@ -108,7 +108,7 @@ void Pipeline::run(const ProgressCallback& progress) {
     joined_.insert(joined_.end(), std::make_move_iterator(valleys.begin()), std::make_move_iterator(valleys.end()));
   });
   step(Stage::Fairing, [&] { faired_ = fair_polylines(joined_, mean_edge_, options_.fairing); });
-  step(Stage::Filter, [&] { filtered_ = filter_lines(faired_, options_.filter); });
+  step(Stage::Filter, [&] { filtered_ = filter_lines(faired_, options_.filter, mean_edge_); });
 }
 
 std::vector<Polyline> Pipeline::lines() const {

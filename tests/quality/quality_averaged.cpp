@@ -39,7 +39,7 @@ Score run_case_averaged(const Surface& surface, double noise, unsigned noise_see
   for (Polyline& l : join_polylines(lines.lines.valleys)) all.push_back(std::move(l));
   all = fair_polylines(all, edge, options.fairing);
   std::vector<Polyline> kept;
-  for (uint32_t i : filter_lines(all, options.filter).kept) kept.push_back(all[i]);
+  for (uint32_t i : filter_lines(all, options.filter, h).kept) kept.push_back(all[i]);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   Score s = score_lines(surface, kept, h);
   s.vertices = mesh.positions.size();

@@ -14,12 +14,18 @@ namespace {
 constexpr double kStraightThrough = -0.7071;
 // Two line ends are bridged when they are at most this many mean segment
 // lengths apart (a segment crosses one triangle, so about an edge length)...
-constexpr double kMaxGapSegments = 2.0;
-// ...and both end tangents point across the gap and at each other (cos 60°).
-// Across a gap shorter than a segment the gap's own direction is
-// round-off; only the tangents are compared there.
+constexpr double kMaxGapSegments = 4.0;
+// ...and both end tangents point across the gap (within 60°) and continue
+// each other (within 45°: where three ridges meet at a rounded corner, about
+// 60° apart, they stay separate lines). Across a gap shorter than a segment
+// the gap's own direction is round-off; only the tangents are compared there.
 constexpr double kGapAlignment = 0.5;
+constexpr double kEndsContinue = 0.7071;
 constexpr double kTinyGapSegments = 1.0;
+// End tangents are taken over 2 segments (tightly curved lines, such as a
+// small loop with a gap) and over 5 (the last one or two segments often hook
+// sideways where the zero set breaks up); either pair may qualify a gap.
+constexpr size_t kEndTangentSegments[] = {2, 5};
 
 struct NodeIncidence {
   std::vector<uint32_t> offsets, incident;
@@ -141,10 +147,10 @@ std::vector<Polyline> walk_chains(const FeatureGraph& graph, const NodeIncidence
   return lines;
 }
 
-// Unit tangent pointing out of the line at one end, over about two segments.
-Vec3 end_tangent(const Polyline& line, bool back) {
+// Unit tangent pointing out of the line at one end, over `segments`.
+Vec3 end_tangent(const Polyline& line, bool back, size_t segments) {
   const size_t n = line.points.size();
-  const size_t reach = std::min<size_t>(2, n - 1);
+  const size_t reach = std::min<size_t>(segments, n - 1);
   const Vec3 end = back ? line.points[n - 1] : line.points[0];
   const Vec3 inner = back ? line.points[n - 1 - reach] : line.points[reach];
   const Vec3 t = end - inner;
@@ -159,15 +165,17 @@ Vec3 end_tangent(const Polyline& line, bool back) {
 std::vector<Polyline> bridge_gaps(std::vector<Polyline> lines, const std::vector<uint8_t>& open_end, double segment) {
   const double max_gap = kMaxGapSegments * segment, tiny_gap = kTinyGapSegments * segment;
   struct End {
-    Vec3 point, tangent;
-    uint32_t id;  // 2 · line + (1 for the back end)
+    Vec3 point, tangent[2];  // over kEndTangentSegments
+    uint32_t id;             // 2 · line + (1 for the back end)
   };
   std::vector<End> ends;
   for (uint32_t l = 0; l < lines.size(); ++l)
     for (int back = 0; back < 2; ++back)
       if (open_end[2 * l + back] && lines[l].points.size() >= 2)
         ends.push_back(
-            {back ? lines[l].points.back() : lines[l].points.front(), end_tangent(lines[l], back), 2 * l + back});
+            {back ? lines[l].points.back() : lines[l].points.front(),
+             {end_tangent(lines[l], back, kEndTangentSegments[0]), end_tangent(lines[l], back, kEndTangentSegments[1])},
+             2 * l + back});
   std::sort(ends.begin(), ends.end(), [](const End& a, const End& b) { return a.point.x() < b.point.x(); });
   struct Gap {
     double length;
@@ -181,9 +189,12 @@ std::vector<Polyline> bridge_gaps(std::vector<Polyline> lines, const std::vector
       const Vec3 g = b.point - a.point;
       const double len = g.norm();
       if (len > max_gap) continue;
-      if (len > tiny_gap && (a.tangent.dot(g) < kGapAlignment * len || -b.tangent.dot(g) < kGapAlignment * len))
-        continue;
-      if (-a.tangent.dot(b.tangent) < kGapAlignment) continue;
+      auto aligned = [&](int k) {
+        const Vec3 &ta = a.tangent[k], &tb = b.tangent[k];
+        if (len > tiny_gap && (ta.dot(g) < kGapAlignment * len || -tb.dot(g) < kGapAlignment * len)) return false;
+        return -ta.dot(tb) >= kEndsContinue;
+      };
+      if (!aligned(0) && !aligned(1)) continue;
       gaps.push_back({len, a.id, b.id});
     }
   if (gaps.empty()) return lines;

@@ -60,14 +60,35 @@ TEST_CASE("cycles become closed polylines, junctions end chains", "[polylines]")
 TEST_CASE("filter keeps lines at or above the threshold, automatic one drops the weak tail", "[filter]") {
   std::vector<Polyline> lines(6);
   const double strengths[] = {50, 40, 30, 0.5, 0.2, 0.1};
-  for (int i = 0; i < 6; ++i) lines[i].strength = strengths[i];
+  for (int i = 0; i < 6; ++i) lines[i].strength = strengths[i], lines[i].length = 100;
   FilterOptions manual;
   manual.threshold = 30;
-  CHECK(filter_lines(lines, manual).kept == std::vector<uint32_t>{0, 1, 2});
-  const FilterResult automatic = filter_lines(lines, {});
+  CHECK(filter_lines(lines, manual, 1.0).kept == std::vector<uint32_t>{0, 1, 2});
+  // Reference: 40 (50 + 40 pass half of 120.8); 0.15 · 40 = 6.
+  const FilterResult automatic = filter_lines(lines, {}, 1.0);
   CHECK(automatic.kept == std::vector<uint32_t>{0, 1, 2});
-  CHECK(automatic.threshold > 0.5);
-  CHECK(automatic.threshold < 30);
+  CHECK(automatic.threshold == Approx(6.0));
+}
+
+TEST_CASE("automatic threshold: a floor for featureless meshes, weak lines kept only when long", "[filter]") {
+  // All lines alike (a scan's bumps, or noise): the share of the reference
+  // alone would keep them all; the floor of 0.35 drops them.
+  std::vector<Polyline> noise(20);
+  for (Polyline& l : noise) l.strength = 0.3, l.length = 10;
+  const FilterResult featureless = filter_lines(noise, {}, 1.0);
+  CHECK(featureless.threshold == Approx(0.35));
+  CHECK(featureless.kept.empty());
+  // Weak lines (strength 0.5–1) pass when they run for 6 mean edges or more.
+  std::vector<Polyline> weak(4);
+  const double lengths[] = {5.9, 6.0, 20, 3};
+  for (int i = 0; i < 4; ++i) weak[i].strength = 0.8, weak[i].length = lengths[i] * 0.5;
+  CHECK(filter_lines(weak, {}, 0.5).kept == std::vector<uint32_t>{1, 2});
+  // A strong short line passes; a manual threshold ignores length.
+  weak[3].strength = 1.5;
+  CHECK(filter_lines(weak, {}, 0.5).kept == std::vector<uint32_t>{1, 2, 3});
+  FilterOptions manual;
+  manual.threshold = 0.5;
+  CHECK(filter_lines(weak, manual, 0.5).kept == std::vector<uint32_t>{0, 1, 2, 3});
 }
 
 TEST_CASE("a line runs straight through a junction; its side branch ends there", "[polylines]") {
