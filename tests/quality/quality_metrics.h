@@ -13,12 +13,10 @@ namespace crestline::quality {
 
 constexpr double kTolerance = 2.0;  // mean edges
 
-/// The pipeline defaults plus implicit pre-smoothing of the surface (Table 1,
-/// step 1). Extremality smoothing alone cannot meet the targets under noise:
-/// with σ = 0.1 h the principal directions themselves are random, and no
-/// smoothing of e repairs that. Two steps of one mean edge² each measured best
-/// (1–4 steps, 0.5–4 edge²) at 32 cells per wavelength. Not the default: it
-/// also rounds coarse CAD meshes (see README, Line quality).
+/// The pipeline options with pre-smoothing forced to two implicit steps of one
+/// mean edge² (Table 1, step 1), also on clean meshes: the report's comparison
+/// row when it runs with --presmooth 0. The defaults decide by themselves
+/// (automatic_presmooth_steps).
 inline PipelineOptions with_presmoothing(PipelineOptions options = {}) {
   options.presmooth.steps = 2;
   options.presmooth.time_step = 1.0;
