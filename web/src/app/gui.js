@@ -20,7 +20,7 @@ export function defaultParams() {
     threshold: 1,
     hausdorffBound: 0.25,
     autoPresmooth: true,
-    presmoothSteps: 2,
+    presmoothSteps: 3,
     showRidges: true,
     showValleys: true,
     lineWidth: 2.5,
