@@ -70,7 +70,7 @@ void Pipeline::run(const ProgressCallback& progress) {
     surface_.positions = presmooth_surface(input_, topology_, presmooth);
   });
   step(Stage::Curvature, [&] { curvature_ = compute_curvature(surface_, topology_); });
-  step(Stage::Extremality, [&] { raw_extremality_ = compute_extremality(surface_, topology_, curvature_); });
+  step(Stage::Extremality, [&] { raw_extremality_ = compute_extremality(surface_, curvature_); });
   step(Stage::Regularity, [&] { regularity_ = classify_triangles(surface_, curvature_); });
   step(Stage::Smoothing, [&] {
     // The boundary band is frozen: its curvature sees half a neighbourhood

@@ -31,7 +31,7 @@ Score run_case_averaged(const Surface& surface, double noise, unsigned noise_see
   for (size_t v = 0; v < distance.size(); ++v)
     if (distance[v] < band) smoothing.vertex_weights[v] = 0;
   const Extremality extremality =
-      smooth_extremality(mesh, topology, curvature, compute_extremality(mesh, topology, curvature), smoothing);
+      smooth_extremality(mesh, topology, curvature, compute_extremality(mesh, curvature), smoothing);
   const SingularResult lines = connect_singular_triangles(
       mesh, topology, regularity,
       trace_regular_triangles(mesh, topology, curvature, extremality, regularity, options.trace));

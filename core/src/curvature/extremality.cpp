@@ -4,8 +4,7 @@
 
 namespace crestline {
 
-Extremality compute_extremality(const Mesh& mesh, const Topology& topology, const Curvature& curvature) {
-  (void)topology;
+Extremality compute_extremality(const Mesh& mesh, const Curvature& curvature) {
   const size_t nv = mesh.positions.size();
   const std::vector<Vec3>& x = mesh.positions;
   Extremality out;

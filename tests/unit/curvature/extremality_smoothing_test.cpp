@@ -33,7 +33,7 @@ Fixture noisy_bump() {
   testing::add_normal_noise(f.mesh, 0.1 * mean_edge_length(f.mesh), 7);
   f.topology = build_topology(f.mesh);
   f.curvature = compute_curvature(f.mesh, f.topology);
-  f.extremality = compute_extremality(f.mesh, f.topology, f.curvature);
+  f.extremality = compute_extremality(f.mesh, f.curvature);
   return f;
 }
 

@@ -134,7 +134,7 @@ TEST_CASE("extremality vanishes where curvature is constant along its lines", "[
   grid.nu = 128;
   grid.nv = 64;
   const Computed c = compute(testing::torus(3, 1, grid));
-  const Extremality e = compute_extremality(c.mesh, c.topology, c.curvature);
+  const Extremality e = compute_extremality(c.mesh, c.curvature);
   double max_abs = 0, min_abs = 0;
   for (double v : e.e_max) max_abs = std::max(max_abs, std::abs(v));
   for (double v : e.e_min) min_abs = std::max(min_abs, std::abs(v));

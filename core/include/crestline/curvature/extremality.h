@@ -15,6 +15,6 @@ struct Extremality {
   std::vector<double> e_min;
 };
 
-Extremality compute_extremality(const Mesh& mesh, const Topology& topology, const Curvature& curvature);
+Extremality compute_extremality(const Mesh& mesh, const Curvature& curvature);
 
 }  // namespace crestline
