@@ -2,49 +2,37 @@
 // the page (two static servers): load then lines, a re-threshold that changes
 // the count, the exports, 20 viewers on one page without WebGL context loss,
 // clear errors for bad sources, and the iframe embed. The widget is built
-// afresh (web/vite.widget.config.js, as web/build.sh does) into a private
-// folder: web/dist is rebuilt by other work while tests run. Needs wasm/dist.
+// afresh into a private folder (widget-site.mjs). Needs wasm/dist.
 import assert from 'node:assert/strict';
-import { execFileSync } from 'node:child_process';
-import { existsSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
+import { mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { after, before, test } from 'node:test';
 import { launch } from './browser.mjs';
-import { serve } from './server.mjs';
 import { MESHES, ROOT, haveMeshes, sineHeightField } from '../node/helpers.mjs';
 import { glbFromSoup } from './widget-glb.mjs';
+import { serveWidgetSite } from './widget-site.mjs';
 
-let dist;
 // The page's site (its pages, its meshes) and the widget's (a CDN, say).
-const SITE_HEADERS = { 'Cross-Origin-Opener-Policy': null, 'Cross-Origin-Embedder-Policy': null, 'Cross-Origin-Resource-Policy': null, 'Access-Control-Allow-Origin': '*' };
-const CDN_HEADERS = { ...SITE_HEADERS, 'Cross-Origin-Resource-Policy': 'cross-origin' };
-let site, cdn, browser, pages, siteUrl, cdnUrl;
+let servers, browser, pages, siteUrl, cdnUrl;
 
 // Real meshes when ../shared/meshes is there, otherwise a generated GLB.
 const MAIN_MESH = haveMeshes ? '/meshes/glb/fandisk.glb' : '/pages/sine.glb';
 const SECOND_MESH = haveMeshes ? '/meshes/glb/pmndrs-bunny-draco.glb' : '/pages/sine.glb';
 
 before(async () => {
-  assert.ok(existsSync(join(ROOT, 'wasm/dist/crestline.wasm')), 'wasm/dist is missing: run wasm/build.sh');
-  dist = mkdtempSync(join(tmpdir(), 'crestline-widget-dist-'));
-  execFileSync(join(ROOT, 'node_modules/.bin/vite'), ['build', '--config', join(ROOT, 'web/vite.widget.config.js'), '--outDir', dist, '--logLevel', 'error'], { cwd: ROOT, stdio: ['ignore', 'ignore', 'inherit'] });
   pages = mkdtempSync(join(tmpdir(), 'crestline-widget-'));
   writeFileSync(join(pages, 'sine.glb'), glbFromSoup(sineHeightField({ n: 40 })));
   writeFileSync(join(pages, 'garbage.glb'), 'this is not a mesh');
-  site = await serve({ '/meshes/': MESHES, '/pages/': pages }, SITE_HEADERS);
-  cdn = await serve({ '/': dist }, CDN_HEADERS);
-  siteUrl = `http://127.0.0.1:${site.address().port}`;
-  // "localhost" vs "127.0.0.1": another origin even on the same port range.
-  cdnUrl = `http://localhost:${cdn.address().port}`;
+  servers = await serveWidgetSite({ '/meshes/': MESHES, '/pages/': pages });
+  ({ siteUrl, cdnUrl } = servers);
   browser = await launch();
 });
 
 after(async () => {
   await browser?.close();
-  site?.close();
-  cdn?.close();
-  for (const folder of [pages, dist]) if (folder) rmSync(folder, { recursive: true, force: true });
+  servers?.close();
+  if (pages) rmSync(pages, { recursive: true, force: true });
 });
 
 /** A page on the site that loads the element from the CDN; events are recorded in window.events. */
