@@ -6,7 +6,7 @@ import { exportGlb, linesSummary, renderPng } from './exports.js';
 import { nameOf } from './fetch-mesh.js';
 import { PipelineSession } from './pool.js';
 import { viewToSvg } from './svg.js';
-import { DISPLAY_DEFAULTS, TEMPLATE } from './template.js';
+import { DISPLAY_DEFAULTS, fillShadowRoot } from './template.js';
 import { WidgetView } from './view.js';
 
 const reducedMotion = globalThis.matchMedia?.('(prefers-reduced-motion: reduce)');
@@ -27,7 +27,7 @@ export class CrestlineViewer extends HTMLElement {
 
   constructor() {
     super();
-    this.attachShadow({ mode: 'open' }).innerHTML = TEMPLATE;
+    fillShadowRoot(this.attachShadow({ mode: 'open' }));
     const $ = (part) => this.shadowRoot.querySelector(`[part=${part}]`);
     this.parts = { canvas: $('canvas'), poster: $('poster'), progress: $('progress'), error: $('error') };
     this.view = new WidgetView(this.parts.canvas);

@@ -1,7 +1,6 @@
 // The element's shadow DOM: the canvas, the poster, the progress bar and the
 // error line, with the CSS custom properties it reads.
-export const TEMPLATE = `
-<style>
+const STYLES = `
   :host {
     display: inline-block;
     position: relative;
@@ -29,12 +28,37 @@ export const TEMPLATE = `
   }
   [part=error]:empty { display: none; }
   @media (prefers-reduced-motion: reduce) { [part=progress] { transition: none; } }
-</style>
+`;
+
+const MARKUP = `
 <canvas part="canvas" role="img"></canvas>
 <img part="poster" alt="" />
 <div part="progress" role="progressbar" aria-valuemin="0" aria-valuemax="1" hidden></div>
 <p part="error" role="alert"></p>
 `;
+
+let sheet = null; // one constructed sheet, shared by every viewer of the document
+
+/**
+ * Fills a viewer's shadow root. The styles go in as a constructed sheet: a
+ * page whose Content-Security-Policy has no style-src 'unsafe-inline' refuses
+ * an inline <style>, but not a sheet built through the CSSOM. Browsers
+ * without constructed sheets (Safari before 16.4) get the <style>.
+ */
+export function fillShadowRoot(root) {
+  root.innerHTML = MARKUP;
+  if ('adoptedStyleSheets' in root && 'replaceSync' in CSSStyleSheet.prototype) {
+    if (!sheet) {
+      sheet = new CSSStyleSheet();
+      sheet.replaceSync(STYLES);
+    }
+    root.adoptedStyleSheets = [sheet];
+  } else {
+    const style = document.createElement('style');
+    style.textContent = STYLES;
+    root.prepend(style);
+  }
+}
 
 /** Display defaults; the CSS custom properties (--crestline-ridge-color, …) override them, attributes override both. */
 export const DISPLAY_DEFAULTS = {
