@@ -3,31 +3,19 @@
 // exporters (SVG, PNG, GLB) or the worker's core writers (OBJ, JSON).
 // Needs web/dist (web/build.sh).
 import assert from 'node:assert/strict';
-import { existsSync } from 'node:fs';
 import { readFile } from 'node:fs/promises';
-import { join } from 'node:path';
 import { after, before, test } from 'node:test';
-import { launch } from './browser.mjs';
-import { serve } from './server.mjs';
-import { ROOT } from '../node/helpers.mjs';
+import { openApp, sampleReady } from './app-page.mjs';
 
-let server, browser, page;
-const pageErrors = [];
+let app, page;
 
 before(async () => {
-  assert.ok(existsSync(join(ROOT, 'web/dist/index.html')), 'web/dist is missing: run web/build.sh');
-  server = await serve({ '/': join(ROOT, 'web/dist') });
-  browser = await launch();
-  page = await browser.newPage({ viewport: { width: 1000, height: 750 }, acceptDownloads: true });
-  page.on('pageerror', (error) => pageErrors.push(error.message));
-  await page.goto(`http://127.0.0.1:${server.address().port}/`);
-  await page.waitForFunction(() => window.crestline?.lastResult && document.body.dataset.state === 'ready', null, { timeout: 60000 });
+  app = await openApp({}, { acceptDownloads: true });
+  ({ page } = app);
+  await sampleReady(page);
 });
 
-after(async () => {
-  await browser?.close();
-  server?.close();
-});
+after(() => app?.close());
 
 /** Clicks the panel's export button `label`; returns {name, bytes} of the download. */
 async function exported(label) {
@@ -83,5 +71,5 @@ test('GLB: mesh and lines', async () => {
   assert.equal(name, 'bunny-lines.glb');
   assert.equal(bytes.subarray(0, 4).toString('latin1'), 'glTF');
   assert.match(bytes.toString('latin1'), /"name":"ridges"/);
-  assert.deepEqual(pageErrors, []);
+  assert.deepEqual(app.pageErrors, []);
 });

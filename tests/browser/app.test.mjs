@@ -4,60 +4,25 @@
 // survives. Needs web/dist (web/build.sh).
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
-import { existsSync, mkdirSync, writeFileSync } from 'node:fs';
+import { mkdirSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { after, before, test } from 'node:test';
-import { launch } from './browser.mjs';
-import { serve } from './server.mjs';
+import { dropFiles, nextResult as waitForResult, openApp } from './app-page.mjs';
 import { MESHES, NATIVE_CLI, ROOT, haveMeshes, haveNativeCli } from '../node/helpers.mjs';
 
 const SHOTS = join(ROOT, 'test-results');
 const noMeshes = !haveMeshes && `SKIPPED: ${MESHES} is absent`;
-let server, browser, page;
-const pageErrors = [];
+let app, page;
 
 before(async () => {
-  assert.ok(existsSync(join(ROOT, 'web/dist/index.html')), 'web/dist is missing: run web/build.sh');
-  server = await serve({ '/meshes/': MESHES, '/': join(ROOT, 'web/dist') });
-  browser = await launch();
-  page = await browser.newPage({ viewport: { width: 1000, height: 750 } });
-  page.on('pageerror', (error) => pageErrors.push(error.message));
-  await page.goto(`http://127.0.0.1:${server.address().port}/`);
+  app = await openApp({ '/meshes/': MESHES });
+  ({ page } = app);
 });
 
-after(async () => {
-  await browser?.close();
-  server?.close();
-});
+after(() => app?.close());
 
-const resultCount = () => page.evaluate(() => window.crestline?.results.length ?? 0);
-
-/** Waits for the next result (or an error) after `action`; returns the result. */
-async function nextResult(action, timeout = 60000) {
-  const count = await resultCount();
-  await action();
-  await page.waitForFunction(
-    (n) => window.crestline.results.length > n || document.body.dataset.state === 'error',
-    count,
-    { timeout },
-  );
-  const error = await page.textContent('#error');
-  assert.equal(error, '', `the page shows an error: ${error}`);
-  return page.evaluate(() => window.crestline.lastResult);
-}
-
-/** Drops files (paths under ../shared/meshes, or {name, text}) on the page as a user would. */
-function drop(files) {
-  const items = files.map((f) => (typeof f === 'string' ? { url: `/meshes/${f}`, name: f.split('/').pop() } : f));
-  return page.evaluate(async (items) => {
-    const transfer = new DataTransfer();
-    for (const item of items) {
-      const body = item.url ? await (await fetch(item.url)).arrayBuffer() : item.text;
-      transfer.items.add(new File([body], item.name));
-    }
-    document.body.dispatchEvent(new DragEvent('drop', { dataTransfer: transfer, bubbles: true, cancelable: true }));
-  }, items);
-}
+const nextResult = (action, timeout) => waitForResult(page, action, timeout);
+const drop = (files) => dropFiles(page, files);
 
 function nativeStats(file) {
   const out = join(SHOTS, 'native-lines.obj');
@@ -269,5 +234,5 @@ test('871k triangles (large/dragon.glb): lines, then an instant re-threshold', {
 });
 
 test('no uncaught errors in the page', () => {
-  assert.deepEqual(pageErrors, []);
+  assert.deepEqual(app.pageErrors, []);
 });
