@@ -1,17 +1,21 @@
-// A minimal GLB writer for the widget tests: one triangle mesh (float32
+// A minimal GLB writer for the browser tests: one triangle mesh (float32
 // positions, uint32 indices), for machines without ../shared/meshes.
-export function glbFromSoup({ positions, indices }) {
+// `translations` ([x, y, z] each) places the mesh once per entry: one node
+// each, all sharing the mesh, as a scene of repeated parts does.
+export function glbFromSoup({ positions, indices }, { translations = null } = {}) {
   const pad = (n) => (n + 3) & ~3;
   const vertexBytes = Float32Array.from(positions);
   const indexBytes = Uint32Array.from(indices);
-  const min = [0, 1, 2].map((k) => Math.min(...vertexBytes.filter((_, i) => i % 3 === k)));
-  const max = [0, 1, 2].map((k) => Math.max(...vertexBytes.filter((_, i) => i % 3 === k)));
+  const min = [Infinity, Infinity, Infinity];
+  const max = [-Infinity, -Infinity, -Infinity];
+  vertexBytes.forEach((x, i) => ([min[i % 3], max[i % 3]] = [Math.min(min[i % 3], x), Math.max(max[i % 3], x)]));
   const binLength = vertexBytes.byteLength + indexBytes.byteLength;
+  const nodes = translations ? translations.map((translation) => ({ mesh: 0, translation })) : [{ mesh: 0 }];
   const json = {
     asset: { version: '2.0' },
     scene: 0,
-    scenes: [{ nodes: [0] }],
-    nodes: [{ mesh: 0 }],
+    scenes: [{ nodes: nodes.map((_, i) => i) }],
+    nodes,
     meshes: [{ primitives: [{ attributes: { POSITION: 0 }, indices: 1 }] }],
     buffers: [{ byteLength: binLength }],
     bufferViews: [

@@ -40,6 +40,8 @@ export class PipelineClient {
     const name = { progress: 'onProgress', loaded: 'onLoaded', result: 'onResult', fields: 'onFields', cancelled: 'onCancelled', error: 'onError' }[message.type];
     if (['result', 'cancelled', 'error'].includes(message.type)) this.busy = false;
     if (message.type === 'loaded') this.hasMesh = true;
+    // Out of memory, the worker frees its mesh (engine.js): the next run sends it again.
+    if (message.type === 'error' && message.kind === 'too large') this.hasMesh = false;
     if (name) this.handlers[name]?.(message);
   }
 
