@@ -8,8 +8,9 @@
 namespace crestline {
 
 struct CotanWeights {
-  /// Per edge: ½(cot α + cot β) over the angles opposite it, clamped at 0 so
-  /// that M + t·L stays positive definite on obtuse triangulations.
+  /// Per edge: ½(cot α + cot β) over the angles opposite it, clamped to
+  /// [0, 5]: at 0 so that M + t·L stays positive definite on obtuse
+  /// triangulations, at 5 so that slivers do not stall the solvers (cotan.cpp).
   std::vector<double> edge_weight;
   /// Per vertex: area(star)/3, the lumped (barycentric) mass.
   std::vector<double> vertex_mass;
