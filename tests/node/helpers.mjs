@@ -47,13 +47,6 @@ export function parseLinesObj(text) {
   return { vertices, ...groups };
 }
 
-export function boundingBoxDiagonal(points) {
-  const lo = [Infinity, Infinity, Infinity];
-  const hi = [-Infinity, -Infinity, -Infinity];
-  for (const p of points) for (let k = 0; k < 3; k++) [lo[k], hi[k]] = [Math.min(lo[k], p[k]), Math.max(hi[k], p[k])];
-  return Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
-}
-
 /** Largest distance from a point of `a` to its nearest point of `b` (flat xyz arrays). */
 export function maxNearestDistance(a, b) {
   let worst = 0;

@@ -15,26 +15,10 @@ import { MESHES, NATIVE_CLI, ROOT, haveNativeCli, parseLinesObj } from './helper
 const ROBUST = join(MESHES, 'robust');
 const GOOD = ['glb/feline.glb', 'classic/mannequin.obj'];
 const MESH_EXTENSIONS = new Set(['.obj', '.gltf', '.glb']);
-// Same reader output and repair report, different lines: on the 8-vertex
-// cube every extremality is zero up to round-off, and last-bit differences
-// between native (Eigen vectorized with SSE2) and WASM (scalar) arithmetic
-// decide whether a noise line appears (native 0 ridges, WASM 1); the tardis
-// has flat CAD patches, like cad/fandisk.obj in cli.test.mjs (34 vs 33
-// ridges). Measured: a native build with -DEIGEN_DONT_VECTORIZE gives WASM's
-// lines on all nine (threads do not matter). A core issue, not a reader one:
-// run and reported as TODO until the core is robust there.
-const CUBE = 'the cube: round-off decides a noise line (native 0 ridges, WASM 1)';
-const NUMERICAL = {
-  'robust/obj/attrs-incomplete-normals.obj': CUBE,
-  'robust/obj/attrs-mixed.obj': CUBE,
-  'robust/obj/attrs-normals-only.obj': CUBE,
-  'robust/obj/attrs-positions-only.obj': CUBE,
-  'robust/obj/attrs-uvs-only.obj': CUBE,
-  'robust/obj/box-uncleaned.obj': CUBE,
-  'robust/obj/box-with-tabs.obj': CUBE,
-  'robust/obj/negative-indices-box.obj': CUBE,
-  'robust/obj/badstl-tardis.obj': 'flat CAD patches: round-off picks principal directions (34 vs 33 ridges)',
-};
+// Before Eigen was built scalar natively (core/CMakeLists.txt), nine of these
+// (8-vertex cubes, whose extremalities are all zero up to round-off, and
+// the tardis's flat CAD patches) differed by one line between native SSE2
+// and scalar WASM arithmetic; they are asserted like every other file now.
 
 function meshFiles(folder) {
   return readdirSync(folder, { withFileTypes: true }).flatMap((entry) => {
@@ -88,7 +72,7 @@ const why = !existsSync(ROBUST)
 describe('same outcome natively and in WASM', { skip: why, concurrency: Math.max(2, availableParallelism()) }, () => {
   for (const input of files) {
     const name = relative(MESHES, input);
-    it(name, { todo: NUMERICAL[name] ?? false }, async () => {
+    it(name, async () => {
       const stem = join(dir, name.replace(/\W/g, '_'));
       const [native, wasm] = await Promise.all([
         outcome(NATIVE_CLI, [], input, `${stem}.native.obj`),
