@@ -1,5 +1,6 @@
 #include "session.h"
 
+#include <emscripten/heap.h>
 #include <emscripten/val.h>
 
 #include <new>
@@ -43,8 +44,26 @@ val error_value(const char* kind, const std::string& message) {
   return out;
 }
 
-std::string too_large(size_t triangles) {
-  return "mesh too large for the browser (" + std::to_string(triangles) + " triangles)";
+// 12000000 → "12,000,000": the sentences below are read by people.
+std::string with_thousands(size_t n) {
+  std::string digits = std::to_string(n), out;
+  for (size_t i = 0; i < digits.size(); ++i) {
+    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
+    out += digits[i];
+  }
+  return out;
+}
+
+std::string over_limit(size_t triangles, size_t limit) {
+  return "the mesh has " + with_thousands(triangles) + " triangles, more than the " + with_thousands(limit) +
+         " this page accepts.";
+}
+
+std::string out_of_memory(size_t triangles) {
+  const size_t gigabytes = (emscripten_get_heap_max() + (size_t(1) << 29)) >> 30;  // rounded
+  return "the browser ran out of memory for a mesh of " + with_thousands(triangles) +
+         " triangles (a page has at most " + std::to_string(gigabytes) +
+         " GB); the command-line tool has no such limit.";
 }
 
 /// Runs `body`, mapping every exception to {error, kind}. `triangles` is read
@@ -60,7 +79,7 @@ val guarded(const size_t& triangles, F&& body) {
   } catch (const Error& e) {
     return error_value(error_kind_name(e.kind()), e.what());
   } catch (const std::bad_alloc&) {
-    return error_value(error_kind_name(ErrorKind::TooLarge), too_large(triangles));
+    return error_value(error_kind_name(ErrorKind::TooLarge), out_of_memory(triangles));
   } catch (const std::exception& e) {
     return error_value("internal", e.what());
   }
@@ -105,7 +124,8 @@ val Session::load(val positions, val indices, val options) {
   triangles_ = indices["length"].as<size_t>() / 3;
   return guarded(triangles_, [&] {
     const RepairOptions repair = repair_options(options);
-    if (triangles_ > repair.max_triangles) throw Error(ErrorKind::TooLarge, too_large(triangles_));
+    if (triangles_ > repair.max_triangles)
+      throw Error(ErrorKind::TooLarge, over_limit(triangles_, repair.max_triangles));
     TriangleSoup soup;
     soup.positions = copy_in<double>(positions);
     soup.indices = copy_in<uint32_t>(indices);

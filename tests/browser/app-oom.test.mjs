@@ -39,7 +39,7 @@ after(async () => {
 });
 
 test('out of WASM memory: one sentence naming the file, then the next file computes', async () => {
-  const sentence = `tiles.glb: mesh too large for the browser (${TRIANGLES} triangles)`;
+  const sentence = `tiles.glb: the browser ran out of memory for a mesh of ${TRIANGLES.toLocaleString('en-US')} triangles (a page has at most 2 GB); the command-line tool has no such limit.`;
   const shown = () => page.evaluate(() => ({
     state: document.body.dataset.state,
     error: document.getElementById('error').textContent,

@@ -40,9 +40,10 @@ export class PipelineClient {
     const name = { progress: 'onProgress', loaded: 'onLoaded', result: 'onResult', fields: 'onFields', cancelled: 'onCancelled', error: 'onError' }[message.type];
     if (['result', 'cancelled', 'error'].includes(message.type)) this.busy = false;
     if (message.type === 'loaded') this.hasMesh = true;
-    // Out of memory, the worker frees its mesh (engine.js): the next run sends it again.
-    if (message.type === 'error' && message.kind === 'too large') this.hasMesh = false;
     if (name) this.handlers[name]?.(message);
+    // Out of memory (or refused as too large): a WASM heap never shrinks, so
+    // a fresh worker gives the memory back; the next run sends the mesh again.
+    if (message.type === 'error' && message.kind === 'too large') this.restart();
   }
 
   send(message) {
