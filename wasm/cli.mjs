@@ -10,16 +10,17 @@ import { basename, dirname, extname, join } from 'node:path';
 import { loadMeshFiles } from '../web/src/io/load-files.js';
 import { loadCrestline } from './node.mjs';
 
-// flag → [Session option key, default shown in --help, description]
+// flag → [Session option key, description]; --help shows the defaults that
+// Session.options() reports before a mesh is loaded.
 const OPTIONS = {
-  '--smoothing-steps': ['smoothingSteps', 3, 'extremality smoothing steps (paper §5.1)'],
-  '--smoothing-time-step': ['smoothingTimeStep', 1, 'time step per smoothing step, in mean edge lengths squared'],
-  '--presmooth-steps': ['presmoothSteps', -1, 'surface pre-smoothing steps (mean-curvature flow); negative: automatic from the noise level'],
-  '--presmooth-time-step': ['presmoothTimeStep', 1, 'time step per pre-smoothing step, in mean edge lengths squared'],
-  '--threshold': ['threshold', -1, 'drop lines with strength ∫|κ|ds below this; negative: automatic'],
-  '--fairing-bound': ['hausdorffBound', 0.25, 'line fairing Hausdorff bound, in mean edge lengths; 0 disables'],
-  '--fairing-iterations': ['fairingIterations', 30, 'line fairing iterations (paper §5.2)'],
-  '--boundary-rings': ['boundaryRings', 2, 'vertex rings along the mesh boundary left untraced'],
+  '--smoothing-steps': ['smoothingSteps', 'extremality smoothing steps (paper §5.1)'],
+  '--smoothing-time-step': ['smoothingTimeStep', 'time step per smoothing step, in mean edge lengths squared'],
+  '--presmooth-steps': ['presmoothSteps', 'surface pre-smoothing steps (mean-curvature flow); negative: automatic from the noise level'],
+  '--presmooth-time-step': ['presmoothTimeStep', 'time step per pre-smoothing step, in mean edge lengths squared'],
+  '--threshold': ['threshold', 'drop lines with strength ∫|κ|ds below this; negative: automatic'],
+  '--fairing-bound': ['hausdorffBound', 'line fairing Hausdorff bound, in mean edge lengths; 0 disables'],
+  '--fairing-iterations': ['fairingIterations', 'line fairing iterations (paper §5.2)'],
+  '--boundary-rings': ['boundaryRings', 'vertex rings along the mesh boundary left untraced'],
 };
 // SVG flag → [writer option key, default, description]
 const SVG_OPTIONS = {
@@ -27,9 +28,9 @@ const SVG_OPTIONS = {
   '--stroke-width': ['strokeWidth', 1.5, 'SVG line width in pixels'],
 };
 
-function usage() {
+function usage(defaults) {
   const lines = ['usage: node wasm/cli.mjs INPUT -o OUTPUT.{obj,json,svg} [options]', ''];
-  for (const [flag, [, def, text]] of Object.entries(OPTIONS)) lines.push(`  ${flag} X`.padEnd(28) + `${text} (default ${def})`);
+  for (const [flag, [key, text]] of Object.entries(OPTIONS)) lines.push(`  ${flag} X`.padEnd(28) + `${text} (default ${defaults[key]})`);
   lines.push('  --weights FILE'.padEnd(28) + 'per-vertex smoothing strength, one number per line (0 freezes a vertex)');
   lines.push('  --view V'.padEnd(28) + 'SVG view: front, back, left, right, top, bottom (default front)');
   for (const [flag, [, def, text]] of Object.entries(SVG_OPTIONS)) lines.push(`  ${flag} X`.padEnd(28) + `${text} (default ${def})`);
@@ -142,10 +143,19 @@ function readWeights(path, vertices) {
   return weights;
 }
 
+async function defaultOptions() {
+  const session = new (await loadCrestline()).Session();
+  try {
+    return session.options();
+  } finally {
+    session.delete();
+  }
+}
+
 async function main(argv) {
   const args = parseArgs(argv);
-  if (args.help) return void console.log(usage());
-  if (!args.input || !args.output) throw new Error(`an INPUT and -o OUTPUT are required.\n${usage()}`);
+  if (args.help) return void console.log(usage(await defaultOptions()));
+  if (!args.input || !args.output) throw new Error(`an INPUT and -o OUTPUT are required.\n${usage(await defaultOptions())}`);
   const format = extname(args.output).slice(1).toLowerCase();
   if (!['obj', 'json', 'svg'].includes(format)) throw new Error(`${args.output}: unknown output format (use .obj, .json or .svg).`);
   let bytes;

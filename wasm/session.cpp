@@ -195,8 +195,9 @@ val Session::setOptions(val o) {
 }
 
 val Session::options() const {
-  if (!pipeline_) return val::object();
-  const PipelineOptions& p = pipeline_->options();
+  // Without a mesh: the defaults, so JavaScript never keeps copies of them.
+  const PipelineOptions defaults;
+  const PipelineOptions& p = pipeline_ ? pipeline_->options() : defaults;
   val o = val::object();
   o.set("presmoothSteps", p.presmooth.steps);
   o.set("presmoothTimeStep", p.presmooth.time_step);

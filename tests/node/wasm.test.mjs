@@ -3,6 +3,7 @@
 import assert from 'node:assert/strict';
 import { test } from 'node:test';
 import { loadCrestline } from '../../wasm/node.mjs';
+import { defaultParams, pipelineOptions } from '../../web/src/app/gui.js';
 import { Engine } from '../../web/src/worker/engine.js';
 import { maxNearestDistance, sineHeightField } from './helpers.mjs';
 
@@ -175,4 +176,18 @@ test('loadFile reads bytes with the C++ readers: OBJ polygons, .gltf companions,
   }
   assert.ok(session.loadFile('quad.obj', text('v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n'), [], {}).ok);
   session.delete();
+});
+
+test('without a mesh, Session.options() reports the core defaults; the app panel starts from them', () => {
+  const session = new module.Session();
+  const defaults = session.options();
+  session.delete();
+  // PipelineOptions{} (core/include/crestline/pipeline.h and its stages).
+  assert.deepEqual(defaults, {
+    presmoothSteps: -1, presmoothTimeStep: 1, smoothingSteps: 3, smoothingTimeStep: 1, boundaryRings: 2,
+    hausdorffBound: 0.25, fairingIterations: 30, threshold: -1, weighted: false,
+  });
+  // The panel keeps its own copy (it is drawn before the module loads): the two must agree.
+  const panel = pipelineOptions(defaultParams());
+  for (const key of Object.keys(panel)) assert.equal(panel[key], defaults[key], `panel default ${key}`);
 });
