@@ -74,7 +74,8 @@ static void solve_positions(const Triplets& triplets, const Eigen::MatrixXd& rhs
 // non-manifold boundary vertices are held, so corners do not round off and
 // pull their sides inwards; interior vertices keep identity rows. See
 // presmooth_surface for why.
-static void smooth_boundary_curves(std::vector<Vec3>& x, const Mesh& mesh, const Topology& topology, double t) {
+static void smooth_boundary_curves(std::vector<Vec3>& x, const Mesh& mesh, const Topology& topology, double t,
+                                   double h) {
   const size_t nv = x.size();
   std::vector<std::vector<uint32_t>> along(nv);  // boundary neighbours
   for (size_t e = 0; e < topology.edges.size(); ++e) {
@@ -95,11 +96,15 @@ static void smooth_boundary_curves(std::vector<Vec3>& x, const Mesh& mesh, const
       const Vec3 a = x[tri[(k + 1) % 3]] - x[v], b = x[tri[(k + 2) % 3]] - x[v];
       angle_sum[v] += std::atan2(a.cross(b).norm(), a.dot(b));
     }
+  // Boundary edges far shorter than the mean (a weld tolerance of 0 keeps
+  // near-coincident vertices) would give weights t / length that overflow:
+  // their ends are held.
+  const double shortest = 1e-3 * h;
   std::vector<uint8_t> free(nv, 0);
   bool any = false;
   for (size_t v = 0; v < nv; ++v) {
     const bool has_length =
-        along[v].size() == 2 && (x[v] - x[along[v][0]]).norm() > 0 && (x[v] - x[along[v][1]]).norm() > 0;
+        along[v].size() == 2 && (x[v] - x[along[v][0]]).norm() > shortest && (x[v] - x[along[v][1]]).norm() > shortest;
     free[v] = has_length && angle_sum[v] >= kCornerAngleSum;
     any = any || free[v];
   }
@@ -139,7 +144,7 @@ std::vector<Vec3> presmooth_surface(const Mesh& mesh, const Topology& topology, 
   const std::vector<uint8_t>& fixed = topology.boundary_vertex;
 
   for (int step = 0; step < steps; ++step) {
-    smooth_boundary_curves(x, mesh, topology, t);
+    smooth_boundary_curves(x, mesh, topology, t, h);
     // Weights from the current surface: mean-curvature flow, linearised per step.
     const CotanWeights cotan = cotan_weights(x, mesh, topology);
     // (M + tL) x' = M x on interior vertices; boundary ones (just smoothed

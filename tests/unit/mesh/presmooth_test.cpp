@@ -57,3 +57,32 @@ TEST_CASE("noise level measures normal noise in edge lengths, not curvature", "[
   }
   CHECK(automatic_presmooth_steps(0.01) == 0);
 }
+
+TEST_CASE("a boundary edge far shorter than the rest neither overflows nor stops pre-smoothing", "[presmooth]") {
+  testing::GridOptions grid;
+  grid.nu = grid.nv = 10;
+  RepairOptions keep_all;
+  keep_all.weld_tolerance = 0;  // keeps the near-coincident pair below
+  Mesh mesh = repair_mesh(testing::height_field([](double, double) { return 0.0; }, 1, 1, grid), keep_all).mesh;
+  const Topology topo = build_topology(mesh);
+  // Two neighbours on the side y = 0, away from the corners: with the mesh
+  // scaled by 1e75 (t ≈ 1e148), b at the origin and a moved to 1e-161 from it
+  // along the side (the shortest length whose square is not 0), t / length
+  // overflows.
+  uint32_t a = kNone, b = kNone;
+  for (uint32_t v = 0; v < mesh.positions.size(); ++v) {
+    const Vec3& p = mesh.positions[v];
+    if (p.y() != 0) continue;
+    if (std::abs(p.x() - 0.3) < 1e-9) b = v;
+    if (std::abs(p.x() - 0.4) < 1e-9) a = v;
+  }
+  REQUIRE((a != kNone && b != kNone));
+  const Vec3 origin = mesh.positions[b];
+  for (Vec3& p : mesh.positions) p = 1e75 * (p - origin);
+  mesh.positions[a] = Vec3(1e-161, 0, 0);
+  PresmoothOptions options;
+  options.steps = 2;
+  std::vector<Vec3> smoothed;
+  REQUIRE_NOTHROW(smoothed = presmooth_surface(mesh, topo, options));
+  for (const Vec3& p : smoothed) CHECK(p.allFinite());
+}
