@@ -68,21 +68,28 @@ static void solve_positions(const Triplets& triplets, const Eigen::MatrixXd& rhs
   }
 }
 
-// One implicit step of the 1-D Laplacian along the boundary curves,
-// (M + tL) x' = M x with M the half lengths of the adjacent boundary edges and
-// L the 1-D cotan Laplacian (weights 1 / edge length). Corners and
-// non-manifold boundary vertices are held, so corners do not round off and
-// pull their sides inwards; interior vertices keep identity rows. See
-// presmooth_surface for why.
-static void smooth_boundary_curves(std::vector<Vec3>& x, const Mesh& mesh, const Topology& topology, double t,
-                                   double h) {
-  const size_t nv = x.size();
-  std::vector<std::vector<uint32_t>> along(nv);  // boundary neighbours
+// Each vertex's neighbours along the mesh boundary (none for interior
+// vertices); empty for a closed mesh. Topology only: computed once.
+static std::vector<std::vector<uint32_t>> boundary_neighbours(const Topology& topology, size_t nv) {
+  std::vector<std::vector<uint32_t>> along;
   for (size_t e = 0; e < topology.edges.size(); ++e) {
     if (!topology.is_boundary_edge(static_cast<uint32_t>(e))) continue;
+    if (along.empty()) along.resize(nv);
     const uint32_t p = topology.edges[e][0], q = topology.edges[e][1];
     along[p].push_back(q), along[q].push_back(p);
   }
+  return along;
+}
+
+// One implicit step of the 1-D Laplacian along the boundary curves,
+// (M + tL) x' = M x with M the half lengths of the adjacent boundary edges and
+// L the 1-D cotan Laplacian (weights 1 / edge length), solved over the free
+// boundary vertices only. Corners and non-manifold boundary vertices are
+// held, so corners do not round off and pull their sides inwards. See
+// presmooth_surface for why.
+static void smooth_boundary_curves(std::vector<Vec3>& x, const Mesh& mesh,
+                                   const std::vector<std::vector<uint32_t>>& along, double t, double h) {
+  const size_t nv = x.size();
   // A corner is where the triangles' angles at a boundary vertex sum to less
   // than 135° (the boundary turns by more than 45° within the surface); the
   // angle sum, unlike the turn of the boundary polygon, ignores noise along
@@ -100,38 +107,37 @@ static void smooth_boundary_curves(std::vector<Vec3>& x, const Mesh& mesh, const
   // near-coincident vertices) would give weights t / length that overflow:
   // their ends are held.
   const double shortest = 1e-3 * h;
-  std::vector<uint8_t> free(nv, 0);
-  bool any = false;
-  for (size_t v = 0; v < nv; ++v) {
+  std::vector<uint32_t> free_vertices, row(nv, kNone);  // row of each free vertex
+  for (uint32_t v = 0; v < nv; ++v) {
     const bool has_length =
         along[v].size() == 2 && (x[v] - x[along[v][0]]).norm() > shortest && (x[v] - x[along[v][1]]).norm() > shortest;
-    free[v] = has_length && angle_sum[v] >= kCornerAngleSum;
-    any = any || free[v];
+    if (has_length && angle_sum[v] >= kCornerAngleSum)
+      row[v] = static_cast<uint32_t>(free_vertices.size()), free_vertices.push_back(v);
   }
-  if (!any) return;
+  if (free_vertices.empty()) return;
   // Row of a free vertex v: (m_v + Σ w) x'_v − Σ_free w x'_q = m_v x_v + Σ_held w x_q.
-  Eigen::MatrixXd rhs(nv, 3);
+  const size_t n = free_vertices.size();
+  Eigen::MatrixXd rhs(n, 3);
   Triplets triplets;
-  for (size_t v = 0; v < nv; ++v) {
-    if (!free[v]) {
-      triplets.emplace_back(v, v, 1.0);
-      rhs.row(v) = x[v].transpose();
-      continue;
-    }
+  std::vector<Vec3> y(n);
+  for (uint32_t i = 0; i < n; ++i) {
+    const uint32_t v = free_vertices[i];
     double mass = 0, diagonal = 0;
     Eigen::RowVector3d held = Eigen::RowVector3d::Zero();
     for (uint32_t q : along[v]) {
       const double length = (x[v] - x[q]).norm(), w = t / length;
       mass += 0.5 * length, diagonal += w;
-      if (free[q])
-        triplets.emplace_back(v, q, -w);
+      if (row[q] != kNone)
+        triplets.emplace_back(i, row[q], -w);
       else
         held += w * x[q].transpose();
     }
-    triplets.emplace_back(v, v, mass + diagonal);
-    rhs.row(v) = mass * x[v].transpose() + held;
+    triplets.emplace_back(i, i, mass + diagonal);
+    rhs.row(i) = mass * x[v].transpose() + held;
+    y[i] = x[v];
   }
-  solve_positions(triplets, rhs, x);
+  solve_positions(triplets, rhs, y);
+  for (uint32_t i = 0; i < n; ++i) x[free_vertices[i]] = y[i];
 }
 
 std::vector<Vec3> presmooth_surface(const Mesh& mesh, const Topology& topology, const PresmoothOptions& options) {
@@ -142,9 +148,10 @@ std::vector<Vec3> presmooth_surface(const Mesh& mesh, const Topology& topology, 
   const double h = mean_edge_length(mesh);
   const double t = options.time_step * h * h;
   const std::vector<uint8_t>& fixed = topology.boundary_vertex;
+  const std::vector<std::vector<uint32_t>> along = boundary_neighbours(topology, nv);
 
   for (int step = 0; step < steps; ++step) {
-    smooth_boundary_curves(x, mesh, topology, t, h);
+    if (!along.empty()) smooth_boundary_curves(x, mesh, along, t, h);
     // Weights from the current surface: mean-curvature flow, linearised per step.
     const CotanWeights cotan = cotan_weights(x, mesh, topology);
     // (M + tL) x' = M x on interior vertices; boundary ones (just smoothed
