@@ -3,11 +3,11 @@
 //   node wasm/cli.mjs INPUT -o OUT.{obj,json,svg} [options]
 // Same readers (io::read_mesh_bytes through Session.loadFile), options, messages
 // and writers as the native build/cli/crestline. Only Draco/meshopt glTF, which
-// the C++ readers leave to the browser under Emscripten, is decoded by web/src/io
-// (three.js: meshopt works in node, Draco does not).
+// the C++ readers leave to the browser under Emscripten, is decoded by
+// web/src/worker/compressed-gltf.js (three.js: meshopt works in node, Draco does not).
 import { readFileSync, renameSync, writeFileSync } from 'node:fs';
 import { basename, dirname, extname, join } from 'node:path';
-import { loadMeshFiles } from '../web/src/io/load-files.js';
+import { decodeCompressedGltf } from '../web/src/worker/compressed-gltf.js';
 import { loadCrestline } from './node.mjs';
 
 // flag → [Session option key, description]; --help shows the defaults that
@@ -109,17 +109,17 @@ function check(file, result) {
 // The C++ readers refuse compressed glTF under Emscripten (core/src/io/read_gltf.cpp).
 const isCompressedGltf = (result) => result.kind === 'unsupported' && /is compressed with/.test(result.error);
 
-/** Reads the input with the C++ readers; compressed glTF through web/src/io. */
+/** Reads the input with the C++ readers; compressed glTF through three.js (web/src/worker/compressed-gltf.js). */
 async function loadInput(session, path, bytes) {
   const companions = gltfCompanions(path, bytes);
   const loaded = session.loadFile(basename(path), bytes, companions, {});
   if (!isCompressedGltf(loaded)) return check(path, loaded);
-  const toBuffer = (data) => data.buffer.slice(data.byteOffset, data.byteOffset + data.byteLength);
   let soup;
   try {
-    soup = await loadMeshFiles([{ name: basename(path), bytes: toBuffer(bytes) }, ...companions]);
+    soup = await decodeCompressedGltf({ name: basename(path), bytes }, companions);
   } catch (error) {
-    throw new Error(named(path, error.message));
+    if (/DRACOLoader/.test(error.message)) throw new Error(named(path, 'is Draco-compressed, which only the browser app and the native CLI decode.'));
+    throw new Error(named(path, `cannot be decoded (${error.message.replace(/^THREE\.\w+:\s*/, '').split('\n')[0].replace(/\.$/, '')}).`));
   }
   return check(path, session.load(soup.positions, soup.indices, {}));
 }

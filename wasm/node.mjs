@@ -8,7 +8,7 @@ import { fileURLToPath } from 'node:url';
 
 const dist = new URL('./dist/', import.meta.url);
 
-// Node runs web/src/io too (wasm/cli.mjs, tests): three's FileLoader, which
+// Node runs web/src/worker too (wasm/cli.mjs, tests): three's FileLoader, which
 // reads a .gltf's companion files, reports progress with a DOM event node lacks.
 globalThis.ProgressEvent ??= class ProgressEvent extends Event {
   constructor(type, init = {}) {

@@ -20,7 +20,7 @@ const policy = (cdnUrl) => [
   // the worker, which inherits this policy) needs 'wasm-unsafe-eval', and
   // nothing more: no 'unsafe-eval'.
   `script-src ${cdnUrl} 'wasm-unsafe-eval'`,
-  // pool.js starts its worker from a blob: module (a Worker's URL must be
+  // client/browser.js starts the worker from a blob: module (a Worker's URL must be
   // same-origin with the page) that imports the worker script from the CDN;
   // the imports of a module worker are checked against worker-src too.
   `worker-src blob: ${cdnUrl}`,

@@ -1,74 +1,135 @@
-// The browser's own readers (OBJ, OFF) and the scene merge of three.js loaders.
+// The page's reader path against the native CLI: files dropped on the page
+// go as bytes to the worker (web/src/worker/handler.js, run here in node on
+// the real WASM module), whose C++ readers read them as build/cli/crestline
+// does. Every mesh of ../shared/meshes (robust/ included; large/ with
+// CRESTLINE_LARGE_MESHES=1) must give the same line counts and the same
+// lines (OBJ text byte for byte), or the same first sentence of its error.
+// Draco glTF cannot be decoded in node (the browser test drops one).
+// Skips visibly without the mesh folder or the native CLI.
 import assert from 'node:assert/strict';
-import { readFileSync } from 'node:fs';
-import { join } from 'node:path';
-import { test } from 'node:test';
-import { BufferAttribute, BufferGeometry, Group, Mesh } from 'three';
-import { loadMeshFiles, pickMainFile } from '../../web/src/io/load-files.js';
-import { mergeScene } from '../../web/src/io/merge-scene.js';
-import { parseObj } from '../../web/src/io/obj.js';
-import { parseOff } from '../../web/src/io/off.js';
-import { MESHES, haveMeshes } from './helpers.mjs';
+import { execFile } from 'node:child_process';
+import { existsSync, mkdtempSync, readFileSync, readdirSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { basename, dirname, extname, join, relative } from 'node:path';
+import { after, describe, it, test } from 'node:test';
+import { loadCrestline } from '../../wasm/node.mjs';
+import { createHandler } from '../../web/src/worker/handler.js';
+import { concaveOctagonObj } from './concave-octagons.mjs';
+import { MESHES, NATIVE_CLI, haveMeshes, haveNativeCli, parseLinesObj } from './helpers.mjs';
 
-const bytes = (text) => new TextEncoder().encode(text).buffer;
+const MESH_EXTENSIONS = new Set(['.obj', '.ply', '.stl', '.off', '.gltf', '.glb']);
+const large = process.env.CRESTLINE_LARGE_MESHES === '1';
 
-test('OBJ: fan-triangulated polygons, negative and slashed indices, double precision', () => {
-  const { positions, indices } = parseObj('v 0 0 0\nv 1 0 0\nv 1 1 0.1234567890123\nv 0 1 0\nf 1/1/1 2/2/2 3/3/3 4/4/4\nf -4 -3 -1\n');
-  assert.deepEqual(Array.from(indices), [0, 1, 2, 0, 2, 3, 0, 1, 3]);
-  assert.equal(positions[8], 0.1234567890123);
-});
+function meshFiles(folder) {
+  return readdirSync(folder, { withFileTypes: true }).flatMap((entry) => {
+    const path = join(folder, entry.name);
+    if (entry.isDirectory()) return entry.name === 'large' && !large ? [] : meshFiles(path);
+    return MESH_EXTENSIONS.has(extname(entry.name).toLowerCase()) ? [path] : [];
+  }).sort();
+}
 
-test('OFF: header variants, polygons and per-face colours', () => {
-  const { positions, indices } = parseOff('OFF\n# comment\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3 255 0 0\n3 0 1 3\n');
-  assert.equal(positions.length, 12);
-  assert.deepEqual(Array.from(indices), [0, 1, 2, 0, 2, 3, 0, 1, 3]);
-  assert.throws(() => parseOff('PLY\n', 'x.off'), /x\.off: not an OFF file/);
-  assert.throws(() => parseOff('OFF 3 1 0\n0 0 0\n', 'short.off'), /short\.off: the file ends/);
-});
+const dir = mkdtempSync(join(tmpdir(), 'crestline-io-'));
+after(() => rmSync(dir, { recursive: true, force: true }));
 
-test('merging applies world transforms (and fixes mirrored winding)', () => {
-  const geometry = new BufferGeometry();
-  geometry.setAttribute('position', new BufferAttribute(new Float32Array([0, 0, 0, 1, 0, 0, 0, 1, 0]), 3));
-  const group = new Group();
-  const a = new Mesh(geometry);
-  a.position.set(10, 0, 0);
-  const b = new Mesh(geometry);
-  b.scale.set(-1, 1, 1);
-  group.add(a, b);
-  const { positions, indices } = mergeScene(group);
-  assert.deepEqual(Array.from(positions.slice(0, 6)), [10, 0, 0, 11, 0, 0]);
-  assert.deepEqual(Array.from(indices), [0, 1, 2, 3, 5, 4]);
-});
-
-test('STL and PLY go through three.js loaders into an indexed soup', async () => {
-  const stl = 'solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid t\n';
-  const fromStl = await loadMeshFiles([{ name: 'tri.stl', bytes: bytes(stl) }]);
-  assert.deepEqual(Array.from(fromStl.positions), [0, 0, 0, 1, 0, 0, 0, 1, 0]);
-  assert.equal(fromStl.indices.length, 3);
-  const ply = 'ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n' +
-    'element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n';
-  const fromPly = await loadMeshFiles([{ name: 'quad.ply', bytes: bytes(ply) }]);
-  assert.equal(fromPly.positions.length, 12);
-  assert.equal(fromPly.indices.length, 6);
-});
-
-test('unsupported files and broken files name the file in one sentence', async () => {
-  assert.throws(() => pickMainFile([{ name: 'notes.txt', bytes: bytes('hello') }]), /notes\.txt: unsupported format/);
-  await assert.rejects(loadMeshFiles([{ name: 'broken.glb', bytes: bytes('glTF garbage') }]), /broken\.glb: cannot be read as GLB/);
-  await assert.rejects(loadMeshFiles([{ name: 'empty.obj', bytes: bytes('# nothing\n') }]), /empty\.obj: contains no triangles/);
-});
-
-test('multi-file glTF: a missing .bin is named', { skip: !haveMeshes && `SKIPPED: ${MESHES} is absent` }, async () => {
-  const gltf = readFileSync(join(MESHES, 'gltf/Duck/Duck.gltf'));
-  await assert.rejects(loadMeshFiles([{ name: 'Duck.gltf', bytes: gltf.buffer.slice(gltf.byteOffset, gltf.byteOffset + gltf.length) }]),
-    /Duck\.gltf: needs its companion file "Duck0\.bin"/);
-});
-
-for (const [file, triangles] of [['glb/pirate-meshopt.glb', 5010], ['glb/Duck-quantized.glb', 4212], ['glb/DamagedHelmet.glb', 15452]]) {
-  test(`${file} (meshopt / quantized / textured) decodes to ${triangles} triangles`, { skip: !haveMeshes && `SKIPPED: ${MESHES} is absent` }, async () => {
-    const glb = readFileSync(join(MESHES, file));
-    const soup = await loadMeshFiles([{ name: file, bytes: glb.buffer.slice(glb.byteOffset, glb.byteOffset + glb.length) }]);
-    assert.equal(soup.indices.length / 3, triangles);
-    assert.ok(soup.positions.every(Number.isFinite));
+/** The native CLI's outcome: {ok, obj} or {ok: false, message} (its first sentence, file named by its base name). */
+function native(input) {
+  const output = join(dir, `${relative(dir, input).replace(/\W/g, '_')}.obj`);
+  return new Promise((resolve) => {
+    execFile(NATIVE_CLI, [input, '-o', output, '-q'], { timeout: 300_000 }, (error, _stdout, stderr) => {
+      if (!error) return resolve({ ok: true, obj: readFileSync(output, 'utf8') });
+      const line = stderr.trim().split('\n').filter(Boolean).at(-1) ?? '';
+      resolve({ ok: false, message: firstSentence(line.replace(/^crestline: /, '').replace(`${input}: `, `${basename(input)}: `)) });
+    });
   });
 }
+
+const firstSentence = (message) => message.split(/(?<=\.)\s/)[0];
+
+/** One worker for the whole file, as the page has: sessions by id. */
+const messages = [];
+const handler = createHandler({ startModule: loadCrestline, post: (m) => messages.push(m) });
+let nextId = 1;
+
+/** The page's outcome for dropped `files` ([{name, bytes}]): {ok, obj, loaded} or {ok: false, message}. */
+async function page(files) {
+  const id = nextId++;
+  const from = messages.length;
+  await handler.handle({ type: 'open', id, job: 1, files, options: {} });
+  const replies = messages.slice(from).filter((m) => m.id === id);
+  const error = replies.find((m) => m.type === 'error');
+  if (error) return { ok: false, message: firstSentence(error.message), named: error.named };
+  const from2 = messages.length;
+  await handler.handle({ type: 'export', id, request: 1, format: 'obj' });
+  const obj = messages.slice(from2).find((m) => m.id === id && m.type === 'export').text;
+  await handler.handle({ type: 'dispose', id });
+  return { ok: true, obj, loaded: replies.find((m) => m.type === 'loaded') };
+}
+
+const fileOf = (path) => {
+  const b = readFileSync(path);
+  return { name: basename(path), bytes: b.buffer.slice(b.byteOffset, b.byteOffset + b.length) };
+};
+
+/** What a user drops: the file, and for a .gltf every file beside it. */
+function dropped(path) {
+  if (extname(path).toLowerCase() !== '.gltf') return [fileOf(path)];
+  const others = readdirSync(dirname(path), { withFileTypes: true }).filter((e) => e.isFile() && e.name !== basename(path) && !/\.gltf$/i.test(e.name));
+  return [fileOf(path), ...others.map((e) => fileOf(join(dirname(path), e.name)))];
+}
+
+function assertSame(name, nat, pg) {
+  const show = (o) => (o.ok ? `ok, ${parseLinesObj(o.obj).ridges.length} ridges, ${parseLinesObj(o.obj).valleys.length} valleys` : `error: ${o.message}`);
+  const both = `${name}\n  native: ${show(nat)}\n  page:   ${show(pg)}`;
+  assert.equal(pg.ok, nat.ok, `${both}\n  one succeeds, the other fails`);
+  if (!nat.ok) return assert.equal(pg.message, nat.message, `${both}\n  different messages`);
+  const [a, b] = [parseLinesObj(nat.obj), parseLinesObj(pg.obj)];
+  assert.equal(b.ridges.length, a.ridges.length, `${both}\n  ridge count`);
+  assert.equal(b.valleys.length, a.valleys.length, `${both}\n  valley count`);
+  assert.equal(pg.obj, nat.obj, `${both}\n  the lines differ`);
+}
+
+const isDraco = (path) => /draco/i.test(path);
+const why = !haveMeshes ? `SKIPPED: ${MESHES} is absent` : !haveNativeCli ? `SKIPPED: ${NATIVE_CLI} is not built (set CRESTLINE_NATIVE_CLI)` : false;
+
+describe('the page reads every shared mesh as the native CLI does', { skip: why }, () => {
+  const files = haveMeshes ? meshFiles(MESHES) : [];
+  if (haveMeshes && !large) it('large/ (set CRESTLINE_LARGE_MESHES=1)', { skip: 'SKIPPED: large meshes take minutes' }, () => {});
+  for (const input of files) {
+    const name = relative(MESHES, input);
+    it(name, { skip: isDraco(input) && 'SKIPPED: Draco decodes in the browser only (tests/browser)' }, async () => {
+      const [nat, pg] = await Promise.all([native(input), page(dropped(input))]);
+      assertSame(name, nat, pg);
+    });
+  }
+});
+
+test('concave L-shaped octagons: the page gets the CLI\'s lines (the C++ reader ear-clips them)', { skip: !haveNativeCli && `SKIPPED: ${NATIVE_CLI} is not built` }, async () => {
+  const path = join(dir, 'concave-octagons.obj');
+  writeFileSync(path, concaveOctagonObj());
+  const [nat, pg] = await Promise.all([native(path), page([fileOf(path)])]);
+  // Fanned from their first corner, these polygons overlap and lose most lines.
+  assert.ok(pg.loaded.triangles > 10700 && pg.loaded.triangles <= 10800, `${pg.loaded.triangles} triangles`);
+  const lines = parseLinesObj(pg.obj);
+  assert.ok(lines.ridges.length >= 2 && lines.valleys.length >= 2, `${lines.ridges.length} ridges, ${lines.valleys.length} valleys`);
+  assertSame('concave-octagons.obj', nat, pg);
+});
+
+test('unreadable and unsupported files: one sentence naming the file, as the CLI says it', { skip: !haveNativeCli && `SKIPPED: ${NATIVE_CLI} is not built` }, async () => {
+  for (const [name, text] of [['readme.txt', 'hello'], ['broken.glb', 'glTF garbage'], ['empty.obj', '# nothing\n'], ['short.off', 'OFF 3 1 0\n0 0 0\n']]) {
+    const path = join(dir, name);
+    writeFileSync(path, text);
+    const [nat, pg] = await Promise.all([native(path), page([fileOf(path)])]);
+    assert.equal(nat.ok, false, `${name}: the CLI fails`);
+    assert.equal(pg.named, true);
+    assert.ok(pg.message.startsWith(`${name}: `), pg.message);
+    assertSame(name, nat, pg);
+  }
+});
+
+test('compressed glTF in node: meshopt decodes (three.js) into the surface of its plain twin', { skip: !haveMeshes && `SKIPPED: ${MESHES} is absent` }, async () => {
+  const [meshopt, plain] = await Promise.all([page([fileOf(join(MESHES, 'glb/BoxMeshopt.glb'))]), page([fileOf(join(MESHES, 'glb/Box.glb'))])]);
+  assert.deepEqual([meshopt.loaded.vertices, meshopt.loaded.triangles], [plain.loaded.vertices, plain.loaded.triangles]);
+  assert.equal(meshopt.loaded.triangles, 12);
+  const draco = await page([fileOf(join(MESHES, 'glb/Box-draco.glb'))]);
+  assert.match(draco.message, /^Box-draco\.glb: is Draco-compressed/);
+});

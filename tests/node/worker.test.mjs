@@ -1,98 +1,112 @@
-// The worker protocol, message by message, through handler.js (what
-// worker.js runs) on the real WASM module.
+// The one worker protocol (web/src/worker/protocol.js), message by message,
+// through handler.js (what worker.js runs) on the real WASM module, and the
+// client (web/src/client/client.js) over the same handler in this process:
+// pending options, cancel, crash recovery.
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { test } from 'node:test';
 import { loadCrestline } from '../../wasm/node.mjs';
-import { Engine } from '../../web/src/worker/engine.js';
+import { Connection } from '../../web/src/client/client.js';
 import { createHandler } from '../../web/src/worker/handler.js';
 import { MESHES, haveMeshes, sineHeightField } from './helpers.mjs';
 
-function session() {
+function session(startModule = loadCrestline) {
   const messages = [];
-  const handler = createHandler({ startEngine: async () => new Engine(await loadCrestline()), post: (m) => messages.push(m) });
+  const handler = createHandler({ startModule, post: (m) => messages.push(m) });
   const send = async (message) => {
     const from = messages.length;
     await handler.handle(message);
     return messages.slice(from);
   };
-  return { send };
+  return { send, messages, handler };
 }
 
 const types = (messages) => messages.map((m) => m.type);
+const bytes = (text) => new TextEncoder().encode(text).buffer;
+const TET = 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n';
 
-test('init, load, re-threshold, re-smooth, fields: the stages each reply says ran', async () => {
+test('init, load, re-threshold, re-smooth, fields, exports: the stages each reply says ran', async () => {
   const { send } = session();
   assert.deepEqual(types(await send({ type: 'init' })), ['ready']);
   const mesh = sineHeightField({ n: 30 });
-  const loaded = await send({ type: 'load', job: 1, ...mesh, options: {} });
-  const names = types(loaded);
-  assert.equal(names[0], 'progress');
-  assert.ok(names.includes('loaded'));
+  const loaded = await send({ type: 'load', id: 1, job: 1, ...mesh, options: {} });
+  assert.ok(types(loaded).includes('loaded'));
   const result = loaded.at(-1);
-  assert.equal(result.type, 'result');
-  assert.equal(result.job, 1);
+  assert.deepEqual([result.type, result.id, result.job], ['result', 1, 1]);
   assert.ok(result.surface.positions instanceof Float64Array, 'the first result carries the surface');
   assert.ok(result.lines.types.length > 0);
-  const filtered = (await send({ type: 'options', job: 2, options: { threshold: 0 } })).at(-1);
+  const filtered = (await send({ type: 'options', id: 1, job: 2, options: { threshold: 0 } })).at(-1);
   assert.deepEqual(filtered.ran, ['filter']);
   assert.equal(filtered.surface, undefined, 'no surface when it did not change');
-  const smoothed = (await send({ type: 'options', job: 3, options: { smoothingSteps: 1 } })).at(-1);
+  const smoothed = (await send({ type: 'options', id: 1, job: 3, options: { smoothingSteps: 1 } })).at(-1);
   assert.equal(smoothed.ran[0], 'smoothing');
-  const [fields] = await send({ type: 'fields', job: 3 });
+  const [fields] = await send({ type: 'fields', id: 1, job: 3 });
   assert.equal(fields.fields.kappaMax.length, mesh.positions.length / 3);
-  const [obj] = await send({ type: 'export', job: 3, request: 1, format: 'obj' });
+  const [obj] = await send({ type: 'export', id: 1, request: 1, format: 'obj' });
   assert.deepEqual([obj.type, obj.request, obj.format], ['export', 1, 'obj']);
   assert.match(obj.text, /^l \d+ \d+/m);
-  const [json] = await send({ type: 'export', job: 3, request: 2, format: 'json' });
+  const [json] = await send({ type: 'export', id: 1, request: 2, format: 'json' });
   assert.equal(JSON.parse(json.text).stats.ridges, smoothed.stats.ridges, 'the text of the current lines');
+});
+
+test('one worker, two sessions: each keeps its own mesh', async () => {
+  const { send } = session();
+  await send({ type: 'load', id: 1, job: 1, ...sineHeightField({ n: 20 }), options: {} });
+  await send({ type: 'open', id: 2, job: 1, files: [{ name: 'tet.obj', bytes: bytes(TET) }], options: {} });
+  const [a] = (await send({ type: 'options', id: 1, job: 2, options: { threshold: 0 } })).filter((m) => m.type === 'result');
+  const [b] = (await send({ type: 'options', id: 2, job: 2, options: { threshold: 0 } })).filter((m) => m.type === 'result');
+  assert.equal(a.stats.triangles, 2 * 20 * 20);
+  assert.equal(b.stats.triangles, 4);
+  await send({ type: 'dispose', id: 2 });
+  const [lost] = await send({ type: 'options', id: 2, job: 3, options: {} });
+  assert.deepEqual([lost.type, lost.id], ['lost', 2], 'a session without a mesh asks for it again');
 });
 
 test('an export without a mesh fails as an error that carries its request', async () => {
   const { send } = session();
-  await send({ type: 'init' });
-  const [error] = await send({ type: 'export', job: 0, request: 7, format: 'obj' });
-  assert.deepEqual([error.type, error.request], ['error', 7]);
+  const [error] = await send({ type: 'export', id: 1, request: 7, format: 'obj' });
+  assert.deepEqual([error.type, error.request, error.fatal], ['error', 7, false]);
   assert.match(error.message, /no mesh is loaded/);
 });
 
-test('open decodes files in the worker; errors are messages that say whether they name the file', async () => {
+test('files go to the C++ readers; their errors name the file, core errors do not', async () => {
   const { send } = session();
-  const obj = 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n';
-  const opened = await send({ type: 'open', job: 1, files: [{ name: 'tet.obj', bytes: new TextEncoder().encode(obj).buffer }], options: {} });
-  assert.ok(types(opened).includes('loaded'));
+  const opened = await send({ type: 'open', id: 1, job: 1, files: [{ name: 'tet.obj', bytes: bytes(TET) }], options: {} });
   assert.equal(opened.find((m) => m.type === 'loaded').triangles, 4);
-  const [broken] = (await send({ type: 'open', job: 2, files: [{ name: 'broken.glb', bytes: new TextEncoder().encode('glTF nonsense').buffer }] }))
+  const [broken] = (await send({ type: 'open', id: 1, job: 2, files: [{ name: 'broken.glb', bytes: bytes('glTF nonsense') }], options: {} }))
     .filter((m) => m.type === 'error');
-  assert.match(broken.message, /^broken\.glb: cannot be read as GLB/);
+  assert.match(broken.message, /^broken\.glb: /);
   assert.equal(broken.named, true);
-  const [core] = (await send({ type: 'load', job: 3, name: 'bad', positions: new Float64Array(9), indices: new Uint32Array([0, 1, 7]) }))
+  // The session still has the tetrahedron.
+  const [again] = (await send({ type: 'options', id: 1, job: 3, options: {} })).filter((m) => m.type === 'result');
+  assert.equal(again.stats.triangles, 4);
+  const [core] = (await send({ type: 'load', id: 1, job: 4, name: 'bad', positions: new Float64Array(9), indices: new Uint32Array([0, 1, 7]), options: {} }))
     .filter((m) => m.type === 'error');
   assert.match(core.message, /vertex 7/);
-  assert.equal(core.named, false);
-  assert.equal(core.kind, 'invalid input');
+  assert.deepEqual([core.named, core.kind], [false, 'invalid input']);
 });
 
-test('cancel through the shared flag', async () => {
-  const cancelFlag = new Int32Array(new SharedArrayBuffer(4));
-  // The page sets the flag while the worker runs: here, once, when curvature starts.
+test('cancel through the shared flag: the pipeline stops, the worker keeps its mesh', async () => {
+  const cancelFlag = new Int32Array(new SharedArrayBuffer(8));
   let pressed = false;
   const messages = [];
   const handler = createHandler({
-    startEngine: async () => new Engine(await loadCrestline()),
+    startModule: loadCrestline,
     post: (m) => {
       messages.push(m);
+      // The page stores the session's id while the worker runs: here, once, when curvature starts.
       if (m.type === 'progress' && m.stage === 'curvature' && !pressed) {
         pressed = true;
-        Atomics.store(cancelFlag, 0, 1);
+        Atomics.store(cancelFlag, 1, 1);
+        Atomics.store(cancelFlag, 0, 5);
       }
     },
   });
   await handler.handle({ type: 'init', cancelFlag });
-  await handler.handle({ type: 'load', job: 1, ...sineHeightField({ n: 20 }), options: {} });
-  assert.equal(messages.at(-1).type, 'cancelled');
-  await handler.handle({ type: 'options', job: 2, options: {} });
+  await handler.handle({ type: 'load', id: 5, job: 1, ...sineHeightField({ n: 20 }), options: {} });
+  assert.deepEqual([messages.at(-1).type, messages.at(-1).id], ['cancelled', 5]);
+  await handler.handle({ type: 'options', id: 5, job: 2, options: {} });
   assert.equal(messages.at(-1).type, 'result');
 });
 
@@ -102,7 +116,129 @@ test('a multi-file glTF opens with its companion', { skip: !haveMeshes && `SKIPP
     const b = readFileSync(join(MESHES, 'gltf/Duck', f));
     return { name: f, bytes: b.buffer.slice(b.byteOffset, b.byteOffset + b.length) };
   };
-  const opened = await send({ type: 'open', job: 1, files: [read('Duck.gltf'), read('Duck0.bin')], options: {} });
+  const opened = await send({ type: 'open', id: 1, job: 1, files: [read('Duck.gltf'), read('Duck0.bin')], options: {} });
   assert.equal(opened.find((m) => m.type === 'loaded')?.triangles, 4212);
   assert.equal(opened.at(-1).type, 'result');
+});
+
+// ---- The client over the handler, in this process -------------------------
+
+/** A WorkerLike running handler.js here; `modules` counts the WASM modules started. */
+function inProcessWorkers(startModule = loadCrestline) {
+  const stats = { started: 0, terminated: 0 };
+  const start = () => {
+    stats.started += 1;
+    let alive = true;
+    const worker = {
+      onmessage: null,
+      onerror: null,
+      postMessage(message) {
+        setTimeout(() => alive && handler.handle(message), 0);
+      },
+      terminate() {
+        alive = false;
+        stats.terminated += 1;
+      },
+    };
+    const handler = createHandler({ startModule, post: (m) => alive && setTimeout(() => alive && worker.onmessage?.({ data: m }), 0) });
+    return worker;
+  };
+  return { start, stats };
+}
+
+/** A session whose handler callbacks resolve the promises `next(kind)` hands out. */
+function observed(connection) {
+  const waiting = [];
+  const events = [];
+  const push = (kind, value) => {
+    events.push([kind, value]);
+    for (const w of waiting.splice(0)) if (w.kind === kind) w.resolve(value);
+      else waiting.push(w);
+  };
+  const session = connection.session({
+    onResult: (r) => push('result', r),
+    onError: (e) => push('error', e),
+    onCancelled: () => push('cancelled'),
+    onLoaded: (l) => push('loaded', l),
+  });
+  const next = (kind) => new Promise((resolve) => waiting.push({ kind, resolve }));
+  return { session, next, events };
+}
+
+test('client: options sent while a job runs wait for it, and only the latest run', async () => {
+  const workers = inProcessWorkers();
+  const connection = new Connection(workers.start);
+  const { session, next, events } = observed(connection);
+  const first = next('result');
+  session.load(sineHeightField({ n: 20 }), {});
+  session.setOptions({ threshold: 0 });
+  session.setOptions({ threshold: 0.5 });
+  assert.equal(session.busy, true);
+  await first;
+  const second = await next('result');
+  assert.deepEqual(second.ran, ['filter']);
+  assert.equal(second.stats.threshold, 0.5);
+  assert.equal(events.filter(([k]) => k === 'result').length, 2, 'threshold 0 never ran');
+  assert.equal(await session.exportText('json').then((t) => JSON.parse(t).stats.threshold), 0.5);
+});
+
+test('client: a WASM trap restarts the worker once, says so once, and the next run sends the mesh again', async () => {
+  const real = await loadCrestline();
+  let trap = false;
+  // The real module, with a Session whose run traps while `trap` is set.
+  const trapping = async () => ({
+    Session: class {
+      constructor() {
+        this.inner = new real.Session();
+        for (const name of ['load', 'loadFile', 'setOptions', 'options', 'surface', 'lines', 'fields', 'linesObj', 'linesJson'])
+          this[name] = (...args) => this.inner[name](...args);
+      }
+      run(progress) {
+        if (trap) throw new WebAssembly.RuntimeError('unreachable');
+        return this.inner.run(progress);
+      }
+      delete() {
+        this.inner.delete();
+      }
+    },
+  });
+  const workers = inProcessWorkers(trapping);
+  const connection = new Connection(workers.start);
+  const a = observed(connection);
+  const b = observed(connection);
+  a.session.load(sineHeightField({ n: 12 }), {});
+  b.session.load({ name: 'other', ...sineHeightField({ n: 10 }) }, {});
+  await a.next('result');
+  await b.next('result');
+  trap = true;
+  const failed = a.next('error');
+  a.session.setOptions({ threshold: 0 });
+  const error = await failed;
+  assert.match(error.message, /failed inside WebAssembly.*restarted/);
+  assert.equal(workers.stats.started, 2, 'one restart');
+  assert.equal(a.events.filter(([k]) => k === 'error').length, 1, 'said once');
+  assert.equal(b.events.filter(([k]) => k === 'error').length, 0, 'the other viewer is not told');
+  trap = false;
+  const [ra, rb] = [a.next('result'), b.next('result')];
+  a.session.setOptions({ threshold: 0 });
+  b.session.setOptions({ threshold: 0 });
+  assert.deepEqual([(await ra).stats.triangles, (await rb).stats.triangles], [2 * 12 * 12, 2 * 10 * 10], 'both meshes sent again');
+  assert.equal((await ra).ran[0], 'presmooth', 'a fresh pipeline runs every stage');
+});
+
+test('client: cancel stops the job through the shared flag, without a restart', async () => {
+  const workers = inProcessWorkers();
+  const connection = new Connection(workers.start);
+  const { session, next } = observed(connection);
+  const done = next('result');
+  session.load(sineHeightField({ n: 20 }), {});
+  await done;
+  const cancelled = next('cancelled');
+  session.setOptions({ smoothingSteps: 4 });
+  session.cancel(); // before the job reaches the worker: it stops at its first progress report
+  await cancelled;
+  assert.equal(workers.stats.started, 1, 'the worker was not restarted');
+  const again = next('result');
+  session.setOptions({ smoothingSteps: 1 });
+  assert.equal((await again).stats.triangles, 800);
 });

@@ -39,6 +39,6 @@ export function showStats({ stats, ran, milliseconds }, mesh = {}) {
     `valleys ${stats.valleys} (length ${fmt(stats.valleyLength)})`,
     `threshold ${fmt(stats.threshold)}, singular triangles ${stats.singularMax} max / ${stats.singularMin} min`,
     `ran: ${times} — ${milliseconds.toFixed(1)} ms in total`,
-    mesh.repairMs === undefined ? '' : `file read ${(mesh.readMs ?? 0).toFixed(0)} ms, repair ${mesh.repairMs.toFixed(0)} ms`,
+    mesh.loadMs === undefined ? '' : `read and repair ${mesh.loadMs.toFixed(0)} ms`,
   ].filter(Boolean).join('\n');
 }

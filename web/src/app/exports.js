@@ -1,8 +1,8 @@
 // The panel's Export folder: files of what the app shows, made by the
-// element's exporters (../widget) from the app's Viewer and by the worker
+// exporters of ../three (shared with the element) from the app's Viewer and by the worker
 // (the core writers' OBJ and JSON text), downloaded as <mesh>-lines.<ext>.
-import { exportGlb, renderPng } from '../widget/exports.js';
-import { viewToSvg } from '../widget/svg.js';
+import { exportGlb, renderPng } from '../three/exports.js';
+import { viewToSvg } from '../three/svg.js';
 
 /** "feline.obj" → "feline", "bunny (built-in sample)" → "bunny". */
 export function baseName(name) {
@@ -21,7 +21,7 @@ function download(blob, fileName) {
 
 /**
  * The exports of the app. `viewer`: the app's Viewer; `current()` returns
- * {name, lines} of the result shown (or null); `client`: the PipelineClient;
+ * {name, lines} of the result shown (or null); `client`: the client Session;
  * `params`: the panel's values (display style, png scale, svg silhouette).
  */
 export function createExports({ viewer, current, client, params }) {

@@ -1,15 +1,14 @@
-// Wires the page: files → decode (three loaders) → worker (repair + Pipeline)
-// → viewer; the panel re-runs only what a changed parameter needs.
-import { pickMainFile } from '../io/load-files.js';
-import { sampleMesh } from '../io/sample.js';
-import { WeightBrush } from '../viewer/brush.js';
-import { Viewer } from '../viewer/viewer.js';
+// Wires the page: files → the client (../client) → the worker (C++ readers,
+// repair, Pipeline) → viewer; the panel re-runs only what a changed parameter needs.
+import { sharedConnection } from '../client/browser.js';
+import { overallFraction, pickMainFile } from '../client/client.js';
+import { sampleMesh } from './sample.js';
+import { WeightBrush } from '../three/brush.js';
+import { Viewer } from '../three/viewer.js';
 import { setState, showError, showFile, showNotes, showProgress, showStats } from './dom.js';
 import { installDrop } from './drop.js';
 import { createExports } from './exports.js';
 import { createGui, defaultParams, pipelineOptions } from './gui.js';
-import { PipelineClient } from './pipeline-client.js';
-import { STAGES } from '../worker/protocol.js';
 
 const params = defaultParams();
 // Three.js's Draco decoder, served from draco/ beside the app (vite.config.js).
@@ -26,13 +25,12 @@ const brush = new WeightBrush(viewer, { onStroke: () => compute() });
 /** What the worker gets: the panel's values and the brushed weights (a copy: it is transferred). */
 const currentOptions = () => ({ ...pipelineOptions(params), vertexWeights: brush.current()?.slice() ?? null });
 
-let pendingRun = false;
 let rescaleThreshold = false;
 
-const client = new PipelineClient({
-  onProgress: ({ stage, fraction }) => showProgress(stage, (STAGES.indexOf(stage) + fraction) / STAGES.length),
-  onLoaded: ({ name, vertices, triangles, notes, milliseconds, readMs }) => {
-    app.mesh = { name, vertices, triangles, readMs, repairMs: milliseconds };
+const client = sharedConnection({ dracoPath }).session({
+  onProgress: (stage, fraction) => showProgress(stage, overallFraction(stage, fraction)),
+  onLoaded: ({ name, vertices, triangles, notes, milliseconds }) => {
+    app.mesh = { name, vertices, triangles, loadMs: milliseconds }; // reading (C++) and repair
     showFile(`${name}: ${triangles.toLocaleString()} triangles`);
     showNotes(notes);
   },
@@ -53,33 +51,24 @@ const client = new PipelineClient({
     showError(null); // a good result supersedes an earlier failure
     const upstream = ['presmooth', 'curvature', 'extremality', 'regularity', 'smoothing'];
     if (result.ran.some((s) => upstream.includes(s))) app.fields = null;
-    if (pendingRun) {
-      pendingRun = false;
-      compute();
-    } else {
+    if (!client.busy) {
       setState('ready');
       applyView();
     }
   },
-  onFields: ({ fields }) => {
+  onFields: (fields) => {
     app.fields = fields;
     applyView();
   },
   onCancelled: () => {
-    pendingRun = false;
     showProgress(null);
     setState('ready');
     showNotes(['Cancelled: change a parameter to compute again.']);
   },
-  // Core messages are one sentence without the file name: prefix it.
-  onError: ({ message, kind, named }) => {
-    fail(app.mesh?.name && !named && kind !== 'internal' ? `${app.mesh.name}: ${message}` : message);
-    // A file that could not be decoded never reached the pipeline: the
-    // worker still holds the previous mesh, which stays usable.
-    if (named && app.previous) {
-      Object.assign(app, app.previous.state);
-      client.hasMesh = app.previous.hasMesh;
-    }
+  // A file that could not be read never replaced the worker's mesh, which stays usable.
+  onError: ({ message }) => {
+    fail(message);
+    if (app.previous && client.hasMesh) Object.assign(app, app.previous);
     app.previous = null;
   },
 });
@@ -90,20 +79,12 @@ function fail(message) {
   setState('error');
 }
 
+/** Runs with the panel's options (the client queues them behind a running job). */
 function compute() {
   if (!app.mesh) return;
-  if (client.busy) {
-    pendingRun = true;
-    return;
-  }
   setState('busy');
-  // After a cancel that had to restart the worker, the mesh is sent again.
-  if (client.hasMesh) client.setOptions(currentOptions());
-  else if (app.files) client.open(copies(app.files), dracoPath, currentOptions());
-  else if (app.soup) client.load(app.soup.name, app.soup.positions.slice(), app.soup.indices.slice(), currentOptions());
+  client.setOptions(currentOptions());
 }
-
-const copies = (files) => files.map(({ name, bytes }) => ({ name, bytes: bytes.slice(0) }));
 
 function applyDisplay() {
   viewer.lines.setShown(params.showRidges, params.showValleys);
@@ -163,45 +144,37 @@ const gui = createGui(params, {
 
 /** A new mesh: state reset, then `send` starts the worker on it. */
 function startMesh(name, send) {
-  app.previous = { state: { mesh: app.mesh, files: app.files, soup: app.soup, surfaceShown: true }, hasMesh: client.hasMesh };
+  app.previous = { mesh: app.mesh, surfaceShown: true };
   showError(null);
   showNotes([]);
   setState('busy');
   app.fields = null;
   app.surfaceShown = false; // the next surface is framed
   app.mesh = { name };
-  pendingRun = false;
   rescaleThreshold = true;
   brush.weights = null; // a new mesh starts homogeneous
   send({ ...pipelineOptions(params), vertexWeights: null });
 }
 
-/** The built-in sample, already a soup. A copy stays here in case the worker restarts. */
-function loadSoup({ name, positions, indices }) {
-  const kept = { name, positions: positions.slice(), indices: indices.slice() }; // before the transfer
-  startMesh(name, (options) => client.load(name, positions, indices, options));
-  app.files = null;
-  app.soup = kept;
+/** The built-in sample, already a soup. */
+function loadSoup(soup) {
+  startMesh(soup.name, (options) => client.load(soup, options));
 }
 
-/** Dropped or picked files: decoded in the worker, so the page never blocks. */
+/** Dropped or picked files: read by the C++ readers in the worker, so the page never blocks. */
 async function openFiles(fileList) {
   if (!fileList.length) return;
-  if (client.busy) client.restart(); // a new mesh replaces the running job
   try {
     const files = await Promise.all(fileList.map(async (f) => ({ name: f.name, bytes: await f.arrayBuffer() })));
-    const main = pickMainFile(files); // unsupported formats fail here, before any work
-    const kept = copies(files); // kept in case the worker restarts
-    startMesh(main.name, (options) => client.open(files, dracoPath, options));
-    app.files = kept;
-    app.soup = null;
+    startMesh(pickMainFile(files).name, (options) => client.open(files, options));
   } catch (error) {
-    fail(error.kind ? error.message : `${fileList[0].name}: could not be read (${error.message}).`);
+    fail(`${fileList[0].name}: could not be read (${error.message}).`);
   }
 }
 
 // Test hooks: change parameters as the panel would.
 app.viewer = viewer;
+app.client = client;
 /** Makes and downloads an export (the panel's buttons); failures show on the page. */
 app.save = (format) =>
   exporter.save(format).catch((error) => {

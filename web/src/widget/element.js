@@ -1,23 +1,19 @@
 // <crestline-viewer>: a mesh and its ridges and valleys, computed client-side
-// by the shared worker pool and drawn by the page's one WebGL context.
-import { STAGES } from '../worker/protocol.js';
+// in the page's one worker (../client) and drawn by its one WebGL context.
+import { sharedConnection } from '../client/browser.js';
+import { overallFraction } from '../client/client.js';
 import { ATTRIBUTES, parseOrbit, reflectAttributes, upgradeProperties } from './attributes.js';
-import { exportGlb, linesSummary, renderPng } from './exports.js';
-import { nameOf } from './fetch-mesh.js';
-import { PipelineSession } from './pool.js';
-import { viewToSvg } from './svg.js';
+import { exportGlb, linesSummary, renderPng } from '../three/exports.js';
+import { viewToSvg } from '../three/svg.js';
 import { DISPLAY_DEFAULTS, fillShadowRoot } from './template.js';
-import { WidgetView } from './view.js';
+import { WidgetView } from '../three/widget-view.js';
 
 const reducedMotion = globalThis.matchMedia?.('(prefers-reduced-motion: reduce)');
-// Fetching and decoding (in the worker) take the first part of the progress bar, the pipeline the rest.
-const READ_SHARE = 0.2;
 
-/** A worker progress message → the fraction of the whole load. */
-function overallFraction({ stage, fraction }) {
-  if (stage === 'fetch') return (fraction * READ_SHARE) / 2;
-  if (stage === 'decode') return READ_SHARE / 2;
-  return READ_SHARE + ((1 - READ_SHARE) * (Math.max(0, STAGES.indexOf(stage)) + fraction)) / STAGES.length;
+/** The file name messages use: the URL's last path segment ("model" for data: and blob:). @param {URL} url */
+function nameOf(url) {
+  if (url.protocol === 'data:' || url.protocol === 'blob:') return 'model';
+  return decodeURIComponent(url.pathname.split('/').pop() || url.hostname);
 }
 
 export class CrestlineViewer extends HTMLElement {
@@ -35,8 +31,6 @@ export class CrestlineViewer extends HTMLElement {
     this.loadedSrc = null; // the src whose mesh the worker holds (or is loading)
     this.lines = null;
     this.stats = null;
-    this.busy = false;
-    this.pendingOptions = false;
     this.near = false; // within the lazy-loading margin of the viewport
     this.changes = new Set();
     this.parts.canvas.addEventListener('keydown', (event) => {
@@ -145,7 +139,7 @@ export class CrestlineViewer extends HTMLElement {
     return true;
   }
 
-  /** Sends the mesh's URL to the worker, which fetches, decodes and runs the pipeline. */
+  /** Sends the mesh's URL to the worker, which fetches and reads it and runs the pipeline. */
   load(src) {
     this.loadedSrc = src;
     this.lines = null;
@@ -160,51 +154,27 @@ export class CrestlineViewer extends HTMLElement {
       this.fail(`${src}: is not a valid URL.`);
       return;
     }
-    this.session ??= new PipelineSession((message) => this.receive(message));
-    this.busy = true;
-    this.pendingOptions = false;
+    this.session ??= sharedConnection().session({
+      onProgress: (stage, fraction) => this.progress(stage, overallFraction(stage, fraction)),
+      onResult: (result) => this.showResult(result),
+      onCancelled: () => {
+        this.progress(null);
+        this.dispatchEvent(new CustomEvent('cancel'));
+      },
+      onError: ({ message }) => this.fail(message),
+    });
     this.progress('fetch', 0);
-    this.session.send({ type: 'open', url, options: this.pipelineOptions() });
+    this.session.openUrl(url, this.meshName, this.pipelineOptions());
   }
 
-  /** A parameter changed: one re-run at a time, the latest parameters win. */
+  /** A parameter changed: the client runs the latest parameters once the running job is done. */
   compute() {
-    if (!this.session || !this.lines) {
-      this.pendingOptions = this.busy;
-      return;
-    }
-    if (this.busy) {
-      this.pendingOptions = true;
-      return;
-    }
-    this.busy = true;
-    this.session.send({ type: 'options', options: this.pipelineOptions() });
+    this.session?.setOptions(this.pipelineOptions());
   }
 
-  receive(message) {
-    switch (message.type) {
-      case 'progress':
-        this.progress(message.stage, overallFraction(message));
-        break;
-      case 'result':
-        this.busy = false;
-        this.showResult(message);
-        if (this.pendingOptions) {
-          this.pendingOptions = false;
-          this.compute();
-        }
-        break;
-      case 'reload':
-        this.busy = false;
-        this.load(this.loadedSrc);
-        break;
-      case 'error':
-        this.busy = false;
-        this.pendingOptions = false;
-        // Reading errors name the file already; core errors do not.
-        this.fail(message.named || message.kind === 'internal' ? message.message : `${this.meshName}: ${message.message}`);
-        break;
-    }
+  /** Stops the running computation ('cancel' event); the lines shown stay. */
+  cancel() {
+    this.session?.cancel();
   }
 
   showResult({ surface, lines, stats }) {
@@ -248,7 +218,6 @@ export class CrestlineViewer extends HTMLElement {
     this.session = null;
     this.loadedSrc = null;
     this.lines = null;
-    this.busy = false;
     this.view.dispose();
     this.view = new WidgetView(this.parts.canvas);
   }
@@ -286,13 +255,13 @@ export class CrestlineViewer extends HTMLElement {
   /** The lines as OBJ polylines (the CLI's format). */
   async toOBJ() {
     this.requireLines();
-    return (await this.session.request({ type: 'export', format: 'obj' })).text;
+    return this.session.exportText('obj');
   }
 
   /** The lines and stats as JSON text (the CLI's format). */
   async toJSON() {
     this.requireLines();
-    return (await this.session.request({ type: 'export', format: 'json' })).text;
+    return this.session.exportText('json');
   }
 }
 

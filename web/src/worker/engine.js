@@ -1,89 +1,185 @@
-// The worker's work as plain functions over the WASM module, so node tests
-// call them directly; worker.js only wires them to messages.
-import { OPTION_KEYS } from './protocol.js';
+// @ts-check
+// One session's work as plain methods over the WASM module (a Session: one
+// repaired mesh and its Pipeline), so node tests and handler.js call them
+// directly. Files are read by the C++ readers (Session.loadFile), as in the
+// native CLI; only compressed glTF is decoded here first (compressed-gltf.js).
+import { decodeCompressedGltf } from './compressed-gltf.js';
+import { OPTION_KEYS, pickMainFile, toUint8 } from './protocol.js';
 
-/** Creates the WASM module. `wasmBinary` (bytes) or `wasmUrl` locates crestline.wasm. */
-export async function createEngine(factory, { wasmBinary, wasmUrl } = {}) {
-  const settings = {};
-  if (wasmBinary) settings.wasmBinary = wasmBinary;
-  else if (wasmUrl) settings.locateFile = () => wasmUrl;
-  return new Engine(await factory(settings));
-}
+/**
+ * @typedef {import('./protocol.js').NamedBytes} NamedBytes
+ * @typedef {import('./protocol.js').PipelineOptions} PipelineOptions
+ * @typedef {{error?: string, kind?: string, cancelled?: boolean, [key: string]: any}} SessionResult
+ * @typedef {{load: Function, loadFile: Function, setOptions: Function, options: Function, run: Function,
+ *            surface: Function, lines: Function, fields: Function, linesObj: Function, linesJson: Function,
+ *            delete: Function}} WasmSession
+ * @typedef {{Session: new () => WasmSession}} CrestlineModule
+ * @typedef {{name: string, vertices: number, triangles: number, notes: string[],
+ *            report: Record<string, number>, milliseconds: number}} Loaded
+ */
 
-class JobError extends Error {
-  constructor(result) {
-    super(result.error);
-    this.kind = result.kind;
+/** A failure with one sentence for the page; `named`: it already names the file. */
+export class EngineError extends Error {
+  /** @param {string} message @param {string} kind @param {boolean} named */
+  constructor(message, kind, named) {
+    super(message);
+    this.kind = kind;
+    this.named = named;
   }
 }
 
-function check(result) {
-  if (result.error) throw new JobError(result);
+/**
+ * Starts the WASM module. `wasmBinary` (bytes, node) or `wasmUrl` locates crestline.wasm.
+ * @param {(settings: object) => Promise<CrestlineModule>} factory
+ * @param {{wasmBinary?: Uint8Array, wasmUrl?: string}} [where]
+ * @returns {Promise<CrestlineModule>}
+ */
+export function createModule(factory, { wasmBinary, wasmUrl } = {}) {
+  /** @type {Record<string, unknown>} */
+  const settings = {};
+  if (wasmBinary) settings.wasmBinary = wasmBinary;
+  else if (wasmUrl) settings.locateFile = () => wasmUrl;
+  return factory(settings);
+}
+
+/** "FILE: problem", like the CLI: a message that names the file already is not prefixed twice. */
+export function named(/** @type {string} */ file, /** @type {string} */ message) {
+  return message.startsWith(`${file}: `) ? message : `${file}: ${message}`;
+}
+
+/**
+ * @param {SessionResult} result
+ * @param {string} [file] the file the result is about: errors are prefixed with it
+ */
+function check(result, file) {
+  if (result.error) throw new EngineError(file ? named(file, result.error) : result.error, result.kind ?? 'internal', Boolean(file));
   return result;
 }
 
+/** @param {PipelineOptions} options */
 function pickOptions(options = {}) {
+  /** @type {PipelineOptions} */
   const out = {};
   for (const key of OPTION_KEYS) if (options[key] !== undefined) out[key] = options[key];
   return out;
 }
 
+/**
+ * three.js's decoding of a compressed glTF, its failures as one sentence naming the file.
+ * @param {NamedBytes} main @param {NamedBytes[]} companions @param {{dracoLoader?: any}} decoders
+ */
+async function decodeOrExplain(main, companions, decoders) {
+  try {
+    return await decodeCompressedGltf(main, companions, decoders);
+  } catch (error) {
+    const text = String(/** @type {Error} */ (error)?.message ?? error);
+    if (!decoders.dracoLoader && /DRACOLoader/.test(text))
+      throw new EngineError(`${main.name}: is Draco-compressed, which only the browser app and the native CLI decode.`, 'unsupported', true);
+    throw new EngineError(`${main.name}: cannot be decoded (${text.replace(/^THREE\.\w+:\s*/, '').split('\n')[0].replace(/\.$/, '')}).`, 'invalid input', true);
+  }
+}
+
 export class Engine {
+  /** @param {CrestlineModule} module */
   constructor(module) {
     this.module = module;
+    /** @type {WasmSession | null} */
     this.session = null;
   }
 
-  /** Repairs and loads a soup; returns the repair report and the surface. */
-  load({ name, positions, indices, repair = {} }) {
-    this.dispose();
-    this.session = new this.module.Session();
+  /**
+   * Reads dropped or fetched files with the C++ readers (a .gltf's buffers
+   * are its companions); compressed glTF is decoded by three.js first.
+   * Errors name the file.
+   * @param {NamedBytes[]} files
+   * @param {{dracoLoader?: any}} [decoders]
+   * @returns {Promise<Loaded>}
+   */
+  async open(files, decoders = {}) {
+    const main = pickMainFile(files);
+    const companions = files.filter((f) => f !== main).map((f) => ({ name: f.name, bytes: toUint8(f.bytes) }));
     const start = performance.now();
-    const loaded = check(this.session.load(positions, indices, repair));
-    const milliseconds = performance.now() - start; // repair + adjacency
-    return { name, vertices: loaded.vertices, triangles: loaded.triangles, notes: loaded.notes, report: loaded.report, milliseconds };
+    const session = new this.module.Session();
+    try {
+      /** @type {SessionResult} */
+      let loaded = session.loadFile(main.name, toUint8(main.bytes), companions, {});
+      if (loaded.kind === 'unsupported' && /is compressed with/.test(loaded.error ?? '')) {
+        const soup = await decodeOrExplain(main, companions, decoders);
+        loaded = session.load(soup.positions, soup.indices, {});
+      }
+      check(loaded, main.name);
+      return this.adopt(session, main.name, loaded, start);
+    } catch (error) {
+      session.delete();
+      throw error;
+    }
   }
 
-  /** set_options + run. `onProgress(stage, fraction)` returns false to cancel.
-   *  Returns {ran, stats, lines, milliseconds} or {cancelled: true}. */
-  run(options, onProgress) {
-    if (!this.session) throw new Error('no mesh is loaded');
-    check(this.session.setOptions(pickOptions(options)));
+  /**
+   * The new mesh replaces the previous one only once it loaded: a file that
+   * cannot be read leaves the session as it was.
+   * @param {WasmSession} session @param {string} name @param {SessionResult} loaded @param {number} start
+   * @returns {Loaded}
+   */
+  adopt(session, name, loaded, start) {
+    this.dispose();
+    this.session = session;
+    return { name, vertices: loaded.vertices, triangles: loaded.triangles, notes: loaded.notes, report: loaded.report, milliseconds: performance.now() - start };
+  }
+
+  /**
+   * Repairs and loads a soup.
+   * @param {{name: string, positions: Float64Array | Float32Array, indices: Uint32Array}} soup
+   * @returns {Loaded}
+   */
+  load({ name, positions, indices }) {
     const start = performance.now();
-    const result = this.session.run(onProgress ?? (() => true));
+    const session = new this.module.Session();
+    const loaded = session.load(positions, indices, {});
+    if (loaded.error) session.delete();
+    check(loaded);
+    return this.adopt(session, name, loaded, start);
+  }
+
+  /** @returns {WasmSession} */
+  current() {
+    if (!this.session) throw new EngineError('no mesh is loaded', 'invalid input', false);
+    return this.session;
+  }
+
+  /**
+   * set_options + run. `onProgress(stage, fraction)` returns false to cancel.
+   * @param {PipelineOptions} options
+   * @param {(stage: string, fraction: number) => boolean} [onProgress]
+   * @returns {{cancelled: true} | {cancelled?: undefined, ran: string[], stats: Record<string, number>,
+   *            lines: import('./protocol.js').Lines, milliseconds: number}}
+   */
+  run(options, onProgress) {
+    const session = this.current();
+    check(session.setOptions(pickOptions(options)));
+    const start = performance.now();
+    const result = session.run(onProgress ?? (() => true));
     // Out of memory: free what the half-run pipeline holds before reporting.
     if (result.kind === 'too large') this.dispose();
     check(result);
     if (result.cancelled) return { cancelled: true };
-    return {
-      ran: result.ran,
-      stats: result.stats,
-      lines: this.session.lines(false),
-      milliseconds: performance.now() - start,
-    };
+    return { ran: result.ran, stats: result.stats, lines: session.lines(false), milliseconds: performance.now() - start };
   }
 
+  /** @returns {import('./protocol.js').Surface} */
   surface() {
-    return this.session.surface();
+    return this.current().surface();
   }
 
+  /** @returns {import('./protocol.js').Fields} */
   fields() {
-    return this.session.fields();
+    return this.current().fields();
   }
 
-  linesObj() {
-    return this.session.linesObj();
-  }
-
-  /** The lines and stats as the CLI's JSON text. */
-  linesJson() {
-    return this.session.linesJson();
-  }
-
-  /** The CLI's text of the lines: format 'obj' (polylines) or 'json' (lines and stats). */
+  /** The CLI's text of the lines: 'obj' (polylines) or 'json' (lines and stats). @param {string} format */
   exportText(format) {
-    if (!this.session) throw new Error('no mesh is loaded');
-    return format === 'json' ? this.linesJson() : this.linesObj();
+    const session = this.current();
+    return format === 'json' ? session.linesJson() : session.linesObj();
   }
 
   dispose() {

@@ -1,115 +1,183 @@
+// @ts-check
 // The worker's message handling as a plain object, independent of the
 // worker global and of how the WASM module is located, so node tests drive
-// it message by message. worker.js wires it to `self`. Protocol: protocol.js.
+// it message by message; worker.js wires it to `self`. One WASM module
+// serves every session (viewer) of this worker, one Engine per session id.
+// Messages: protocol.js.
 import { DRACOLoader } from 'three/examples/jsm/loaders/DRACOLoader.js';
-import { loadMeshFiles } from '../io/load-files.js';
-import { MeshError } from '../io/mesh-error.js';
+import { Engine, EngineError } from './engine.js';
+import { fetchFiles } from './fetch-files.js';
 
 /**
- * @param {{startEngine: () => Promise<import('./engine.js').Engine>,
- *          post: (message: object) => void}} io
- *   post sends a message (transferring its typed arrays where it can).
+ * @typedef {import('./protocol.js').Request} Request
+ * @typedef {import('./protocol.js').Reply} Reply
+ * @typedef {import('./engine.js').CrestlineModule} CrestlineModule
  */
-export function createHandler({ startEngine, post }) {
-  let engine = null;
-  let starting = null; // the engine's creation, shared by init and the first job
+
+/** three's Draco loader (its decoder is fetched on first use). @param {string | undefined} path */
+function dracoLoaderFor(path) {
+  const loader = new DRACOLoader();
+  if (path) loader.setDecoderPath(path);
+  return loader;
+}
+
+/**
+ * @param {{startModule: () => Promise<CrestlineModule>, post: (message: Reply) => void,
+ *          canDecodeDraco?: boolean}} io
+ *   post sends a message (transferring its typed arrays); canDecodeDraco:
+ *   three's DRACOLoader works here (browsers, not node)
+ */
+export function createHandler({ startModule, post, canDecodeDraco = false }) {
+  /** @type {Promise<CrestlineModule> | null} */
+  let starting = null;
+  /** @type {Map<number, Engine>} */
+  const engines = new Map();
+  /** @type {Map<number, number>} session id → its newest job: an older 'open' stops after its fetch */
+  const latest = new Map();
+  /** @type {Int32Array | null} */
   let cancelFlag = null;
-  let job = 0;
-  let surfaceStale = false;
-  let lastPost = { stage: '', fraction: -1 };
+  /** @type {DRACOLoader | null} */
   let dracoLoader = null;
+  /** @type {Promise<unknown>} */
+  let queue = Promise.resolve();
+  /** @type {Map<Request, Promise<import('./protocol.js').NamedBytes[]>>} the fetches of 'open' messages with a URL, started as they arrive */
+  const fetchedFiles = new Map();
 
-  function progress(stage, fraction) {
-    // Throttled: a message per stage and per 5 %.
-    if (stage !== lastPost.stage || fraction - lastPost.fraction >= 0.05 || fraction === 1) {
-      lastPost = { stage, fraction };
-      post({ type: 'progress', job, stage, fraction });
-    }
-    return !(cancelFlag && Atomics.load(cancelFlag, 0) === 1);
+  /** @param {number} id */
+  async function engineFor(id) {
+    starting ??= startModule();
+    const module = await starting;
+    let engine = engines.get(id);
+    if (!engine) engines.set(id, (engine = new Engine(module)));
+    return engine;
   }
 
-  async function start() {
-    starting ??= startEngine();
-    engine = await starting;
-  }
-
-  function run(options) {
-    lastPost = { stage: '', fraction: -1 };
-    if (cancelFlag) Atomics.store(cancelFlag, 0, 0);
-    const result = engine.run(options, progress);
-    if (result.cancelled) return post({ type: 'cancelled', job });
-    // The surface changes only after a load or when pre-smoothing ran.
-    const sendSurface = surfaceStale || result.ran.includes('presmooth');
-    surfaceStale = false;
-    post({ type: 'result', job, ...result, surface: sendSurface ? engine.surface() : undefined });
-  }
-
-  function load(soup, options) {
-    post({ type: 'progress', job, stage: 'repair', fraction: 0 });
-    const loaded = engine.load(soup);
-    surfaceStale = true;
-    post({ type: 'loaded', job, ...loaded, readMs: soup.readMs });
-    run(options);
-  }
-
-  async function dispatch(message) {
-    job = message.job;
-    await start();
-    switch (message.type) {
-      case 'open': {
-        // Decoding here keeps the page responsive even for a large OBJ.
-        post({ type: 'progress', job, stage: 'reading', fraction: 0 });
-        if (message.dracoPath) dracoLoader ??= new DRACOLoader().setDecoderPath(message.dracoPath);
-        const started = performance.now();
-        const soup = await loadMeshFiles(message.files, { dracoLoader });
-        load({ ...soup, readMs: performance.now() - started }, message.options);
-        break;
+  /** @param {number} id @param {number} job */
+  function progressReporter(id, job) {
+    let last = { stage: '', fraction: -1 };
+    const flag = cancelFlag;
+    return (/** @type {string} */ stage, /** @type {number} */ fraction) => {
+      // Throttled: a message per stage and per 5 %.
+      if (stage !== last.stage || fraction - last.fraction >= 0.05 || fraction === 1) {
+        last = { stage, fraction };
+        post({ type: 'progress', id, job, stage, fraction });
       }
-      case 'load':
-        load(message, message.options);
-        break;
-      case 'options':
-        run(message.options);
-        break;
-      case 'fields':
-        post({ type: 'fields', job, fields: engine.fields() });
-        break;
-      case 'export':
-        post({ type: 'export', job, request: message.request, format: message.format, text: engine.exportText(message.format) });
-        break;
+      return !(flag && Atomics.load(flag, 0) === id && Atomics.load(flag, 1) === job);
+    };
+  }
+
+  /**
+   * @param {Engine} engine
+   * @param {{id: number, job: number, options: import('./protocol.js').PipelineOptions}} message
+   * @param {boolean} sendSurface
+   */
+  function run(engine, { id, job, options }, sendSurface) {
+    const progress = progressReporter(id, job);
+    const result = engine.run(options, progress);
+    if (result.cancelled) return post({ type: 'cancelled', id, job });
+    // The surface changes only after a load or when pre-smoothing ran.
+    const surface = sendSurface || result.ran.includes('presmooth') ? engine.surface() : undefined;
+    post({ type: 'result', id, job, ran: result.ran, stats: result.stats, lines: result.lines, milliseconds: result.milliseconds, surface });
+  }
+
+  /** @param {import('./engine.js').Loaded} loaded @param {number} id @param {number} job */
+  const postLoaded = (loaded, id, job) => post({ type: 'loaded', id, job, ...loaded });
+
+  /** @param {Request} message */
+  async function dispatch(message) {
+    switch (message.type) {
+      case 'dispose':
+        engines.get(message.id)?.dispose();
+        engines.delete(message.id);
+        latest.delete(message.id);
+        return;
+      case 'open': {
+        const { id, job } = message;
+        const engine = await engineFor(id);
+        if (latest.get(id) !== job) return;
+        post({ type: 'progress', id, job, stage: 'read', fraction: 0 });
+        const files = message.files ?? (await fetchedFiles.get(message));
+        fetchedFiles.delete(message);
+        if (!files || latest.get(id) !== job) return;
+        if (canDecodeDraco) dracoLoader ??= dracoLoaderFor(message.dracoPath);
+        const decoders = canDecodeDraco ? { dracoLoader } : {};
+        postLoaded(await engine.open(files, decoders), id, job);
+        return run(engine, message, true);
+      }
+      case 'load': {
+        const engine = await engineFor(message.id);
+        postLoaded(engine.load(message), message.id, message.job);
+        return run(engine, message, true);
+      }
+      case 'options': {
+        const engine = await engineFor(message.id);
+        // After a restart the worker has no mesh for this session: the client sends it again.
+        if (!engine.session) return post({ type: 'lost', id: message.id, job: message.job });
+        return run(engine, message, false);
+      }
+      case 'fields': {
+        const engine = await engineFor(message.id);
+        return post({ type: 'fields', id: message.id, job: message.job, fields: engine.fields() });
+      }
+      case 'export': {
+        const engine = await engineFor(message.id);
+        return post({ type: 'export', id: message.id, request: message.request, format: message.format, text: engine.exportText(message.format) });
+      }
+    }
+  }
+
+  /** @param {Request} message */
+  async function handleOne(message) {
+    try {
+      await dispatch(message);
+    } catch (error) {
+      const err = /** @type {any} */ (error);
+      const trapped = error instanceof WebAssembly.RuntimeError;
+      const fatal = trapped || err?.kind === 'too large';
+      // A trap leaves the module unusable and a WASM heap never shrinks:
+      // the client restarts the worker after either.
+      post({
+        type: 'error',
+        id: 'id' in message ? message.id : undefined,
+        job: 'job' in message ? message.job : undefined,
+        request: 'request' in message ? message.request : undefined,
+        message: trapped ? `The computation failed inside WebAssembly (${err.message}); the engine was restarted.` : String(err?.message ?? err),
+        kind: err?.kind ?? 'internal',
+        named: error instanceof EngineError && error.named,
+        fatal,
+      });
     }
   }
 
   return {
-    /** Handles one message; every failure becomes an 'error' message. */
-    async handle(message) {
+    /**
+     * Handles one message; every failure becomes an 'error' reply. Messages
+     * are handled one after another (a session's jobs run in order); only
+     * the fetches of URLs start at once.
+     * @param {Request} message
+     */
+    handle(message) {
       if (message.type === 'init') {
         cancelFlag = message.cancelFlag ?? null;
-        try {
-          await start();
-          post({ type: 'ready' });
-        } catch (error) {
-          post({ type: 'error', message: `The WebAssembly module failed to start (${error.message}).`, kind: 'internal' });
-        }
-        return;
+        starting ??= startModule();
+        queue = queue.then(() =>
+          /** @type {Promise<CrestlineModule>} */ (starting).then(
+            () => post({ type: 'ready' }),
+            (error) => post({ type: 'error', message: `The WebAssembly module failed to start (${error.message}).`, kind: 'internal', named: false, fatal: true }),
+          ),
+        );
+        return queue;
       }
-      try {
-        await dispatch(message);
-      } catch (error) {
-        const aborted = error instanceof WebAssembly.RuntimeError;
-        // An abort leaves the module unusable: start a fresh one next time.
-        if (aborted) [engine, starting] = [null, null];
-        post({
-          type: 'error',
-          job: message.job,
-          request: message.request, // an export's failure settles its request
-          message: aborted
-            ? `The computation failed inside WebAssembly (${error.message}); the page has reset the engine.`
-            : error.message,
-          kind: error.kind ?? 'internal',
-          named: error instanceof MeshError, // a MeshError already names the file; core errors do not
-        });
+      if ('job' in message) latest.set(message.id, message.job);
+      if (message.type === 'open' && !message.files && message.url) {
+        const { id, job } = message;
+        const onProgress = (/** @type {number} */ fraction) => post({ type: 'progress', id, job, stage: 'fetch', fraction });
+        const fetching = fetchFiles(message.url, onProgress);
+        fetching.catch(() => {}); // reported when its turn comes
+        fetchedFiles.set(message, fetching);
       }
+      queue = queue.then(() => handleOne(message));
+      return queue;
     },
   };
 }

@@ -1,52 +1,124 @@
-// Messages between the page and the pipeline worker. Only plain objects and
-// typed arrays travel; the worker never posts a view of the WASM heap.
-//
-// page → worker
-//   {type: 'init', cancelFlag?: Int32Array over a SharedArrayBuffer}
-//   {type: 'open', job, files: [{name, bytes: ArrayBuffer}], dracoPath, options}
-//       decode the dropped files (web/src/io), then as 'load'
-//   {type: 'load', job, name, positions: Float64Array, indices: Uint32Array, options}
-//       repair (weld) the soup, build a Pipeline, run it with `options`
-//   {type: 'options', job, options}   set_options + run: only dirty stages re-run
-//   {type: 'fields', job}             per-vertex curvature/extremality, per-triangle regularity
-//   {type: 'export', job, request, format: 'obj'|'json'}   the CLI's text of the current lines
-// worker → page
-//   {type: 'ready'}
-//   {type: 'progress', job, stage, fraction}
-//   {type: 'loaded', job, name, vertices, triangles, notes, report, milliseconds (repair), readMs?}
-//   {type: 'result', job, ran: [stage], stats, lines, milliseconds, surface?}
-//       surface {positions: Float64Array, indices: Uint32Array} when pre-smoothing ran
-//   {type: 'fields', job, fields}
-//   {type: 'export', job, request, format, text}
-//   {type: 'cancelled', job}
-//   {type: 'error', job, request?, message, kind, named}   named: the message already names the file;
-//       request: the failed export's
-//
-// Cancel: the page sets cancelFlag[0] = 1; the worker's progress callback
-// sees it and the pipeline stops (staying valid up to its last finished
-// stage). Without cross-origin isolation there is no shared memory: the page
-// then terminates the worker and starts a new one.
+// @ts-check
+// The messages between the page (../client) and the one pipeline worker
+// (./worker.js). A worker serves many sessions (one per viewer), each named
+// by `id`; `job` numbers a session's jobs so the client drops stale replies.
+// Only plain objects and typed arrays travel; the worker never posts a view
+// of the WASM heap (it dies when memory grows and cannot be transferred).
+
+/**
+ * @typedef {{name: string, bytes: ArrayBuffer | Uint8Array}} NamedBytes
+ *   a file: the main mesh file or one of a .gltf's companions
+ * @typedef {Record<string, number | boolean | Float64Array | null | undefined>} PipelineOptions
+ *   Session.setOptions keys (camelCase, see wasm/session.h)
+ * @typedef {{positions: Float64Array, indices: Uint32Array}} Surface
+ * @typedef {{points: Float64Array, offsets: Uint32Array, types: Uint8Array,
+ *            strengths: Float64Array, lengths: Float64Array, closed: Uint8Array}} Lines
+ *   every line's points (xyz) flat; line l is points offsets[l]..offsets[l+1]-1;
+ *   types: 0 ridge, 1 valley
+ * @typedef {Record<string, number>} Stats  the CLI's --stats object
+ * @typedef {{kappaMax: Float64Array, kappaMin: Float64Array, eMax: Float64Array, eMin: Float64Array,
+ *            regularMax: Uint8Array, regularMin: Uint8Array}} Fields
+ */
+
+/**
+ * Page → worker.
+ * @typedef {{type: 'init', cancelFlag?: Int32Array | null}} InitMessage
+ *   cancelFlag (two Int32 over shared memory: cross-origin isolated pages,
+ *   node): the page stores the job to cancel in [1], then its session id in
+ *   [0]; the pipeline stops at its next progress report
+ * @typedef {{type: 'open', id: number, job: number, files?: NamedBytes[], url?: string,
+ *            dracoPath?: string, options: PipelineOptions}} OpenMessage
+ *   read files (or fetch `url` and a .gltf's buffers) with the C++ readers, then run
+ * @typedef {{type: 'load', id: number, job: number, name: string, positions: Float64Array | Float32Array,
+ *            indices: Uint32Array, options: PipelineOptions}} LoadMessage  a triangle soup, then run
+ * @typedef {{type: 'options', id: number, job: number, options: PipelineOptions}} OptionsMessage
+ *   set_options + run: only dirty stages re-run
+ * @typedef {{type: 'fields', id: number, job: number}} FieldsMessage
+ * @typedef {{type: 'export', id: number, request: number, format: 'obj' | 'json'}} ExportMessage
+ * @typedef {{type: 'dispose', id: number}} DisposeMessage
+ * @typedef {InitMessage | OpenMessage | LoadMessage | OptionsMessage | FieldsMessage | ExportMessage | DisposeMessage} Request
+ */
+
+/**
+ * Worker → page.
+ * @typedef {{type: 'ready'}} ReadyReply
+ * @typedef {{type: 'progress', id: number, job: number, stage: string, fraction: number}} ProgressReply
+ *   stages: 'fetch', 'read', then STAGES
+ * @typedef {{type: 'loaded', id: number, job: number, name: string, vertices: number, triangles: number,
+ *            notes: string[], report: Record<string, number>, milliseconds: number}} LoadedReply
+ *   milliseconds: reading + repair
+ * @typedef {{type: 'result', id: number, job: number, ran: string[], stats: Stats, lines: Lines,
+ *            milliseconds: number, surface?: Surface}} ResultReply
+ *   surface: after a load and whenever pre-smoothing ran
+ * @typedef {{type: 'fields', id: number, job: number, fields: Fields}} FieldsReply
+ * @typedef {{type: 'export', id: number, request: number, format: string, text: string}} ExportReply
+ * @typedef {{type: 'cancelled', id: number, job: number}} CancelledReply
+ * @typedef {{type: 'lost', id: number, job: number}} LostReply
+ *   the worker holds no mesh for this session (it was restarted): send it again
+ * @typedef {{type: 'error', id?: number, job?: number, request?: number, message: string, kind: string,
+ *            named: boolean, fatal: boolean}} ErrorReply
+ *   named: the message already names the file; fatal: the WASM module is
+ *   unusable or its heap full (trap, out of memory): the client restarts the worker
+ * @typedef {ReadyReply | ProgressReply | LoadedReply | ResultReply | FieldsReply | ExportReply |
+ *           CancelledReply | LostReply | ErrorReply} Reply
+ */
 
 /** Pipeline stages in order (core stage_name()). */
 export const STAGES = ['presmooth', 'curvature', 'extremality', 'regularity', 'smoothing', 'tracing', 'singular', 'polylines', 'fairing', 'filter'];
 
-/** UI parameter names → Session.setOptions keys (see wasm/session.h). */
+/** Session.setOptions keys the page may set (see wasm/session.h). */
 export const OPTION_KEYS = [
   'presmoothSteps',
+  'presmoothTimeStep',
   'smoothingSteps',
   'smoothingTimeStep',
   'hausdorffBound',
+  'fairingIterations',
   'threshold',
   'boundaryRings',
   'vertexWeights',
 ];
 
-/** Transferable buffers of a message payload (every typed array in it). */
+/**
+ * Transferable buffers of a message payload (every typed array in it).
+ * @param {unknown} value
+ * @param {ArrayBuffer[]} [out]
+ * @returns {ArrayBuffer[]}
+ */
 export function transferables(value, out = []) {
   if (ArrayBuffer.isView(value)) {
-    if (!out.includes(value.buffer)) out.push(value.buffer);
+    const buffer = /** @type {ArrayBuffer} */ (value.buffer);
+    if (!(buffer instanceof ArrayBuffer)) return out; // shared memory is not transferred
+    if (!out.includes(buffer)) out.push(buffer);
+  } else if (value instanceof ArrayBuffer) {
+    if (!out.includes(value)) out.push(value);
   } else if (value && typeof value === 'object') {
     for (const v of Object.values(value)) transferables(v, out);
   }
   return out;
 }
+
+/** The formats the C++ readers know, in the order a main file is picked among dropped files. */
+export const MESH_EXTENSIONS = ['gltf', 'glb', 'obj', 'ply', 'stl', 'off'];
+
+/** @param {string} name */
+const extensionOf = (name) => (/\.([^./\\]+)$/.exec(name)?.[1] ?? '').toLowerCase();
+
+/** @param {ArrayBuffer | Uint8Array} bytes */
+export const toUint8 = (bytes) => (bytes instanceof Uint8Array ? bytes : new Uint8Array(bytes));
+
+/**
+ * The file to read among those dropped together (the others are its
+ * companions): the first with a mesh extension, else a GLB by its magic,
+ * else the first (the readers then say why they cannot read it).
+ * @param {NamedBytes[]} files
+ */
+export function pickMainFile(files) {
+  for (const ext of MESH_EXTENSIONS) {
+    const file = files.find((f) => extensionOf(f.name) === ext);
+    if (file) return file;
+  }
+  const isGlb = (/** @type {NamedBytes} */ f) => f.bytes.byteLength >= 4 && new TextDecoder().decode(toUint8(f.bytes).subarray(0, 4)) === 'glTF';
+  return files.find(isGlb) ?? files[0];
+}
+

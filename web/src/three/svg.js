@@ -4,7 +4,7 @@
 // a line point is visible when it is not behind the nearest surface at its
 // pixel (with a tolerance, since the lines lie on that surface).
 import { Color, MeshDepthMaterial, NoBlending, RGBADepthPacking, Vector3, WebGLRenderTarget } from 'three';
-import { RIDGE, VALLEY } from '../viewer/line-layer.js';
+import { RIDGE, VALLEY } from './line-layer.js';
 import { sharedRenderer } from './renderer.js';
 
 const point = new Vector3();

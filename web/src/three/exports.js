@@ -1,7 +1,7 @@
 // What the element hands out besides SVG: the `lines` event's summary, PNG
 // renderings at a chosen size, and GLB with the surface and the lines.
 import { BufferAttribute, BufferGeometry, Group, LineBasicMaterial, LineSegments, Mesh } from 'three';
-import { RIDGE, VALLEY, segmentPositions } from '../viewer/line-layer.js';
+import { RIDGE, VALLEY, segmentPositions } from './line-layer.js';
 import { renderInto, sharedRenderer } from './renderer.js';
 
 /** {counts, lengths, stats} of a result: per type, the number and total length of the lines. */

@@ -1,10 +1,10 @@
-// One viewer's scene: camera, lights, the surface and line layers of
-// ../viewer, orbit controls on the element's own 2D canvas. Drawing goes
+// One <crestline-viewer>'s scene: camera, lights, the surface and line layers,
+// orbit controls on the element's own 2D canvas. Drawing goes
 // through the shared renderer (renderer.js).
 import { Color, DirectionalLight, HemisphereLight, PerspectiveCamera, Scene, Spherical } from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
-import { LineLayer } from '../viewer/line-layer.js';
-import { SurfaceLayer } from '../viewer/surface-layer.js';
+import { LineLayer } from './line-layer.js';
+import { SurfaceLayer } from './surface-layer.js';
 import { forget, requestDraw } from './renderer.js';
 
 const KEY_STEP = Math.PI / 18; // 10° per arrow key

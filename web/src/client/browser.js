@@ -1,0 +1,32 @@
+// @ts-check
+// The worker in a browser: the one place that starts it. Vite bundles
+// ../worker/worker.js (with crestline.wasm beside it) and gives its URL.
+import workerUrl from '../worker/worker.js?worker&url';
+import { Connection } from './client.js';
+
+/**
+ * Starts the pipeline worker. A script served from another origin (the
+ * widget on a CDN) cannot start a worker from its own URL: a blob module on
+ * the page's origin imports it instead.
+ * @returns {Worker}
+ */
+export function startBrowserWorker() {
+  const absolute = new URL(workerUrl, import.meta.url);
+  if (absolute.origin === globalThis.location?.origin) return new Worker(absolute, { type: 'module' });
+  const shim = URL.createObjectURL(new Blob([`import ${JSON.stringify(absolute.href)};`], { type: 'text/javascript' }));
+  const worker = new Worker(shim, { type: 'module' });
+  URL.revokeObjectURL(shim);
+  return worker;
+}
+
+/** @type {Connection | null} */
+let shared = null;
+
+/**
+ * The page's connection, shared by every viewer on it.
+ * @param {{dracoPath?: string}} [settings]
+ */
+export function sharedConnection(settings) {
+  shared ??= new Connection(startBrowserWorker, settings);
+  return shared;
+}

@@ -1,0 +1,357 @@
+// @ts-check
+// The page's side of the one worker protocol (../worker/protocol.js), used by
+// the app, <crestline-viewer> and computeFeatureLines. A Connection owns one
+// worker and serves many Sessions (one per viewer); a Session keeps a copy of
+// its mesh's source, so after a worker restart (a WASM trap, out of memory,
+// a cancel the worker could not see) its next run sends the mesh again.
+import { STAGES, pickMainFile, transferables } from '../worker/protocol.js';
+
+export { pickMainFile };
+
+/**
+ * @typedef {import('../worker/protocol.js').Reply} Reply
+ * @typedef {import('../worker/protocol.js').NamedBytes} NamedBytes
+ * @typedef {import('../worker/protocol.js').PipelineOptions} PipelineOptions
+ * @typedef {import('../worker/protocol.js').ResultReply} ResultReply
+ * @typedef {import('../worker/protocol.js').LoadedReply} LoadedReply
+ * @typedef {import('../worker/protocol.js').Fields} Fields
+ * @typedef {{postMessage: (message: any, transfer: Transferable[]) => void, terminate: () => void,
+ *            onmessage: ((event: MessageEvent) => any) | null,
+ *            onerror: ((event: any) => any) | null}} WorkerLike
+ *   a DOM Worker, or node's worker_threads wrapped alike
+ * @typedef {{kind: 'files', files: NamedBytes[]} | {kind: 'url', url: string, name: string} |
+ *           {kind: 'soup', name: string, positions: Float64Array | Float32Array, indices: Uint32Array}} Source
+ * @typedef {{onProgress?: (stage: string, fraction: number) => void, onLoaded?: (loaded: LoadedReply) => void,
+ *            onResult?: (result: ResultReply) => void, onFields?: (fields: Fields) => void,
+ *            onCancelled?: () => void, onError?: (error: {message: string, kind: string}) => void}} SessionHandlers
+ */
+
+/** How long a cancelled job may run on before the worker is restarted (ms). */
+export const CANCEL_GRACE_MS = 1500;
+
+/**
+ * A progress reply as a fraction of the whole job: fetching and reading take
+ * the first part, the pipeline's stages the rest.
+ * @param {string} stage
+ * @param {number} fraction
+ */
+export function overallFraction(stage, fraction) {
+  const readShare = 0.2;
+  if (stage === 'fetch') return (fraction * readShare) / 2;
+  if (stage === 'read') return readShare / 2;
+  return readShare + ((1 - readShare) * (Math.max(0, STAGES.indexOf(stage)) + fraction)) / STAGES.length;
+}
+
+/** Copies of the buffers of `files` (the originals are transferred). @param {NamedBytes[]} files */
+const copyFiles = (files) => files.map(({ name, bytes }) => ({ name, bytes: bytes.slice(0) }));
+
+export class Connection {
+  /**
+   * @param {() => WorkerLike} startWorker
+   * @param {{dracoPath?: string}} [settings] dracoPath: where three's Draco decoder files are served
+   */
+  constructor(startWorker, { dracoPath } = {}) {
+    this.startWorker = startWorker;
+    this.dracoPath = dracoPath;
+    /** @type {Map<number, Session>} */
+    this.sessions = new Map();
+    this.nextId = 1;
+    this.start();
+  }
+
+  start() {
+    /** @type {WorkerLike} */
+    this.worker = this.startWorker();
+    // Shared memory (cross-origin isolated pages, node) lets cancel reach the
+    // worker while it computes; elsewhere cancel restarts the worker.
+    this.cancelFlag = globalThis.crossOriginIsolated !== false && typeof SharedArrayBuffer === 'function' ? new Int32Array(new SharedArrayBuffer(8)) : null;
+    this.worker.onmessage = ({ data }) => this.receive(data);
+    this.worker.onerror = (event) => {
+      event?.preventDefault?.();
+      const message = `The Crestline worker failed (${event?.message || 'its script could not be loaded'}).`;
+      for (const session of this.sessions.values()) session.fail({ message, kind: 'internal' });
+    };
+    this.worker.postMessage({ type: 'init', cancelFlag: this.cancelFlag }, []);
+  }
+
+  /** @param {Reply} message */
+  receive(message) {
+    if (message.type === 'ready') return;
+    const session = message.id === undefined ? undefined : this.sessions.get(message.id);
+    if (message.type === 'error' && message.fatal) {
+      // Unusable module (trap) or a full heap that never shrinks: a fresh worker.
+      this.restart(session);
+    }
+    if (!session) {
+      if (message.type === 'error' && message.id === undefined) for (const s of this.sessions.values()) s.fail(message);
+      return;
+    }
+    session.receive(message);
+  }
+
+  /**
+   * Terminates the worker and starts a new one. Sessions lose their meshes
+   * (each sends its source again when it next runs); jobs of other sessions
+   * that were running start again.
+   * @param {Session} [cause] the session whose job led here: it gets the error, no rerun
+   */
+  restart(cause) {
+    /** @type {WorkerLike} */ (this.worker).terminate();
+    this.start();
+    for (const session of this.sessions.values()) session.workerRestarted(session !== cause);
+  }
+
+  /** @param {SessionHandlers} handlers */
+  session(handlers) {
+    const session = new Session(this, this.nextId++, handlers);
+    this.sessions.set(session.id, session);
+    return session;
+  }
+
+  /** @param {any} message */
+  post(message) {
+    /** @type {WorkerLike} */ (this.worker).postMessage(message, transferables(message));
+  }
+}
+
+export class Session {
+  /**
+   * @param {Connection} connection
+   * @param {number} id
+   * @param {SessionHandlers} handlers
+   */
+  constructor(connection, id, handlers) {
+    this.connection = connection;
+    this.id = id;
+    this.handlers = handlers;
+    this.job = 0;
+    /** the job running in the worker, or 0 */
+    this.running = 0;
+    /** @type {Source | null} what the worker holds or is reading */
+    this.source = null;
+    /** @type {{source: Source | null, hasMesh: boolean, name: string} | null} restored when a new file cannot be read */
+    this.previous = null;
+    this.hasMesh = false;
+    this.name = '';
+    /** @type {PipelineOptions} */
+    this.options = {};
+    /** @type {PipelineOptions | null} options that arrived while a job ran: the latest win */
+    this.pending = null;
+    /** @type {Map<number, {resolve: (value: any) => void, reject: (error: Error) => void}>} */
+    this.requests = new Map();
+    this.nextRequest = 1;
+  }
+
+  get busy() {
+    return this.running !== 0;
+  }
+
+  /** @param {any} message @returns {number} the job */
+  send(message) {
+    this.job += 1;
+    this.running = this.job;
+    this.connection.post({ ...message, id: this.id, job: this.job });
+    return this.job;
+  }
+
+  /** @param {Source} source @param {PipelineOptions} options */
+  sendSource(source, options) {
+    if (source.kind === 'files') return this.send({ type: 'open', files: copyFiles(source.files), dracoPath: this.connection.dracoPath, options });
+    if (source.kind === 'url') return this.send({ type: 'open', url: source.url, options });
+    return this.send({ type: 'load', name: source.name, positions: source.positions.slice(), indices: source.indices.slice(), options });
+  }
+
+  /** @param {Source} source @param {string} name @param {PipelineOptions} options */
+  startMesh(source, name, options) {
+    // A running job of the previous mesh stops soon (its replies are stale).
+    clearTimeout(this.cancelTimer);
+    if (this.busy) this.raiseCancelFlag(this.running);
+    this.previous = this.hasMesh ? { source: this.source, hasMesh: true, name: this.name } : null;
+    this.source = source;
+    this.name = name;
+    this.hasMesh = false;
+    this.pending = null;
+    this.options = { ...options };
+    this.sendSource(source, this.options);
+  }
+
+  /**
+   * Dropped or picked files, read by the C++ readers in the worker (a
+   * .gltf's buffers beside it). A copy is kept in case the worker restarts.
+   * @param {NamedBytes[]} files
+   * @param {PipelineOptions} [options]
+   */
+  open(files, options = this.options) {
+    this.startMesh({ kind: 'files', files: copyFiles(files) }, pickMainFile(files)?.name ?? '', options);
+  }
+
+  /** A mesh URL (absolute), fetched by the worker. @param {string} url @param {string} name @param {PipelineOptions} [options] */
+  openUrl(url, name, options = this.options) {
+    this.startMesh({ kind: 'url', url, name }, name, options);
+  }
+
+  /**
+   * A triangle soup (copied: the caller keeps its arrays).
+   * @param {{name: string, positions: Float64Array | Float32Array, indices: Uint32Array}} soup
+   * @param {PipelineOptions} [options]
+   */
+  load({ name, positions, indices }, options = this.options) {
+    this.startMesh({ kind: 'soup', name, positions: positions.slice(), indices: indices.slice() }, name, options);
+  }
+
+  /**
+   * New options: only the stages they change re-run. While a job runs, the
+   * latest options wait for it; without a mesh in the worker (after a
+   * restart) the source goes again.
+   * @param {PipelineOptions} options
+   */
+  setOptions(options) {
+    this.options = { ...options };
+    if (!this.source) return;
+    if (this.busy) {
+      this.pending = this.options;
+      return;
+    }
+    this.runPending(this.options);
+  }
+
+  /** @param {PipelineOptions} options */
+  runPending(options) {
+    this.pending = null;
+    if (this.hasMesh) this.send({ type: 'options', options });
+    else if (this.source) this.sendSource(this.source, options);
+  }
+
+  /** Asks for the curvature fields of the current mesh (handlers.onFields). */
+  requestFields() {
+    if (this.hasMesh) this.connection.post({ type: 'fields', id: this.id, job: this.job });
+  }
+
+  /**
+   * The CLI's text of the current lines.
+   * @param {'obj' | 'json'} format
+   * @returns {Promise<string>}
+   */
+  exportText(format) {
+    const request = this.nextRequest++;
+    return new Promise((resolve, reject) => {
+      this.requests.set(request, { resolve, reject });
+      this.connection.post({ type: 'export', id: this.id, request, format });
+    });
+  }
+
+  /**
+   * Stops the running job. The pipeline checks the shared flag while it
+   * runs; a job still running after `graceMs` (or a page without shared
+   * memory) gets the worker restarted.
+   */
+  cancel(graceMs = CANCEL_GRACE_MS) {
+    if (!this.busy) return;
+    const job = this.running;
+    this.pending = null;
+    const flag = this.raiseCancelFlag(job);
+    clearTimeout(this.cancelTimer);
+    this.cancelTimer = setTimeout(() => {
+      if (this.running !== job) return;
+      this.running = 0;
+      this.connection.restart(this);
+      this.handlers.onCancelled?.();
+    }, flag ? graceMs : 0);
+  }
+
+  /** Asks the worker to stop `job`; returns the flag, or null without shared memory. @param {number} job */
+  raiseCancelFlag(job) {
+    const flag = this.connection.cancelFlag;
+    if (flag) {
+      Atomics.store(flag, 1, job);
+      Atomics.store(flag, 0, this.id);
+    }
+    return flag;
+  }
+
+  /** Frees the worker's side of this session. */
+  dispose() {
+    clearTimeout(this.cancelTimer);
+    this.connection.post({ type: 'dispose', id: this.id });
+    this.connection.sessions.delete(this.id);
+    this.rejectRequests('The viewer was removed.');
+  }
+
+  /** @param {string} message */
+  rejectRequests(message) {
+    for (const { reject } of this.requests.values()) reject(new Error(message));
+    this.requests.clear();
+  }
+
+  /**
+   * The worker was replaced: its mesh is gone. A job that was running starts
+   * again (unless this session caused the restart).
+   * @param {boolean} rerun
+   */
+  workerRestarted(rerun) {
+    const wasRunning = this.busy;
+    this.hasMesh = false;
+    this.running = 0;
+    this.rejectRequests('The Crestline worker was restarted.');
+    if (rerun && wasRunning && this.source) this.runPending(this.pending ?? this.options);
+  }
+
+  /** @param {{message: string, kind: string}} error */
+  fail({ message, kind }) {
+    this.running = 0;
+    this.pending = null;
+    this.handlers.onError?.({ message, kind });
+  }
+
+  /** @param {Reply} message */
+  receive(message) {
+    if ('request' in message && message.request !== undefined && this.requests.has(message.request)) {
+      const pending = /** @type {{resolve: (value: any) => void, reject: (error: Error) => void}} */ (this.requests.get(message.request));
+      this.requests.delete(message.request);
+      if (message.type === 'export') pending.resolve(message.text);
+      else if (message.type === 'error') pending.reject(new Error(message.message));
+      return;
+    }
+    if (!('job' in message) || message.job !== this.job) return; // a stale reply
+    switch (message.type) {
+      case 'progress':
+        this.handlers.onProgress?.(message.stage, message.fraction);
+        break;
+      case 'loaded':
+        this.hasMesh = true;
+        this.previous = null;
+        this.name = message.name;
+        this.handlers.onLoaded?.(message);
+        break;
+      case 'result':
+        this.running = 0;
+        this.handlers.onResult?.(message);
+        if (this.pending) this.runPending(this.pending);
+        break;
+      case 'fields':
+        this.handlers.onFields?.(message.fields);
+        break;
+      case 'cancelled':
+        this.running = 0;
+        clearTimeout(this.cancelTimer);
+        this.handlers.onCancelled?.();
+        break;
+      case 'lost':
+        this.hasMesh = false;
+        this.running = 0;
+        this.runPending(this.pending ?? this.options);
+        break;
+      case 'error': {
+        // A file that could not be read never replaced the worker's mesh.
+        if (message.named && this.previous && !message.fatal) {
+          ({ source: this.source, hasMesh: this.hasMesh, name: this.name } = this.previous);
+        }
+        this.previous = null;
+        // Core messages are one sentence without the file name: prefix it.
+        const text = message.named || message.kind === 'internal' || !this.name ? message.message : `${this.name}: ${message.message}`;
+        this.fail({ message: text, kind: message.kind });
+        break;
+      }
+    }
+  }
+}
