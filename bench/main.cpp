@@ -17,6 +17,7 @@
 
 #include "crestline/error.h"
 #include "crestline/io/read_mesh.h"
+#include "crestline/io/write_lines.h"
 #include "crestline/mesh/repair.h"
 #include "crestline/numerics/parallel.h"
 #include "generate.h"
@@ -98,12 +99,12 @@ MeshResult measure(const MeshSpec& spec, const Args& args) {
   TriangleSoup soup;
   if (generated) soup = generate(spec, path);
 
-  std::vector<double> load, repair, topology, total, cpu, rethreshold, resmooth, stages[kStages];
+  std::vector<double> read, repair, topology, write, total, cpu, rethreshold, resmooth, stages[kStages];
   for (int run = 0; run < settings.runs; ++run) {
     if (!generated) {
       const double t = now();
       soup = io::read_mesh(path);
-      load.push_back(now() - t);
+      read.push_back(now() - t);
     }
     if (run == 0) {
       r.input_rss = current_rss();
@@ -129,6 +130,9 @@ MeshResult measure(const MeshSpec& spec, const Args& args) {
     for (int s = 0; s < kStages; ++s) stages[s].push_back(stats.seconds[s]), sum += stats.seconds[s];
     total.push_back(sum);
     cpu.push_back(cpu_seconds() - cpu_start);
+    t = now();
+    const std::string obj = io::write_lines_obj(pipeline.lines());
+    write.push_back(now() - t);
 
     // Interactive re-runs: a new threshold re-runs only the filter; new
     // smoothing re-runs from stage 6 (smoothing) on.
@@ -150,8 +154,9 @@ MeshResult measure(const MeshSpec& spec, const Args& args) {
     r.ridge_length = stats.ridge_length, r.valley_length = stats.valley_length;
   }
   r.runs = settings.runs;
-  r.load = generated ? NAN : median(load);
-  r.repair = median(repair), r.topology = median(topology), r.total = median(total), r.cpu = median(cpu);
+  r.read = generated ? NAN : median(read);
+  r.repair = median(repair), r.topology = median(topology), r.write = median(write), r.total = median(total),
+  r.cpu = median(cpu);
   for (int s = 0; s < kStages; ++s) r.stages[s] = median(stages[s]);
   r.rethreshold = median(rethreshold), r.resmooth = median(resmooth);
   return r;

@@ -38,8 +38,9 @@ double bytes_per_triangle(const MeshResult& r) {
 }  // namespace
 
 void print_table(const std::vector<MeshResult>& results) {
-  std::vector<std::string> header = {"mesh", "triangles", "load", "repair", "topology"};
+  std::vector<std::string> header = {"mesh", "triangles", "read", "repair", "topology"};
   for (int s = 0; s < kStages; ++s) header.push_back(stage_name(static_cast<Stage>(s)));
+  header.push_back("write");
   for (const char* h : {"total", "cpu", "re-thr", "re-smooth", "peak MB", "B/tri"}) header.push_back(h);
 
   std::vector<std::vector<std::string>> rows;
@@ -50,8 +51,9 @@ void print_table(const std::vector<MeshResult>& results) {
       rows.push_back(row);
       continue;
     }
-    for (double s : {r.load, r.repair, r.topology}) row.push_back(seconds_cell(s));
+    for (double s : {r.read, r.repair, r.topology}) row.push_back(seconds_cell(s));
     for (double s : r.stages) row.push_back(seconds_cell(s));
+    row.push_back(seconds_cell(r.write));
     for (double s : {r.total, r.cpu, r.rethreshold, r.resmooth}) row.push_back(seconds_cell(s));
     char buffer[32];
     std::snprintf(buffer, sizeof buffer, "%.0f", r.peak_rss / 1048576.0);
@@ -100,13 +102,14 @@ std::string to_json(const std::vector<MeshResult>& results, const BenchSettings&
       continue;
     }
     out << ", \"vertices\": " << r.vertices << ", \"triangles\": " << r.triangles << ", \"runs\": " << r.runs
-        << ",\n     \"seconds\": {\"load\": " << json_number(r.load) << ", \"repair\": " << json_number(r.repair)
+        << ",\n     \"seconds\": {\"read\": " << json_number(r.read) << ", \"repair\": " << json_number(r.repair)
         << ", \"topology\": " << json_number(r.topology);
     for (int s = 0; s < kStages; ++s)
       out << ", \"" << stage_name(static_cast<Stage>(s)) << "\": " << json_number(r.stages[s]);
-    out << ", \"total\": " << json_number(r.total) << ", \"total_cpu\": " << json_number(r.cpu)
-        << ", \"rethreshold\": " << json_number(r.rethreshold) << ", \"resmooth\": " << json_number(r.resmooth)
-        << "},\n     \"input_rss_bytes\": " << r.input_rss << ", \"peak_rss_bytes\": " << r.peak_rss
+    out << ", \"write\": " << json_number(r.write) << ", \"total\": " << json_number(r.total)
+        << ", \"total_cpu\": " << json_number(r.cpu) << ", \"rethreshold\": " << json_number(r.rethreshold)
+        << ", \"resmooth\": " << json_number(r.resmooth) << "},\n     \"input_rss_bytes\": " << r.input_rss
+        << ", \"peak_rss_bytes\": " << r.peak_rss
         << ", \"peak_bytes_per_triangle_above_input\": " << json_number(bytes_per_triangle(r))
         << ",\n     \"lines\": {\"ridges\": " << r.ridges << ", \"valleys\": " << r.valleys
         << ", \"ridge_length\": " << json_number(r.ridge_length)

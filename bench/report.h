@@ -18,8 +18,10 @@ struct MeshResult {
   char error[256] = {};
   size_t vertices = 0, triangles = 0;  // after repair
   int runs = 0;
-  // Medians over the runs, in seconds. load is NaN for generated meshes.
-  double load = 0, repair = 0, topology = 0, stages[kStages] = {}, total = 0;
+  // Medians over the runs, in seconds: the same split as the CLI's --stats.
+  // read is NaN for generated meshes; write renders the kept lines as OBJ
+  // text (no file).
+  double read = 0, repair = 0, topology = 0, stages[kStages] = {}, write = 0, total = 0;
   double rethreshold = 0, resmooth = 0;  // re-runs after changing only the threshold / the smoothing
   double cpu = 0;        // CPU seconds (user + system, all threads) of `total`: less sensitive to a busy machine
   size_t input_rss = 0;  // bytes resident with the reader's soup in memory

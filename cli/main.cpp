@@ -1,6 +1,7 @@
 // crestline INPUT -o OUT.{obj,json,svg}: read → repair → pipeline → write.
 // Exit codes: 0 success, 1 a problem with a file or the computation, 2 a
 // usage error, 130 interrupted. On failure no output file is left behind.
+#include <chrono>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -18,6 +19,20 @@
 
 namespace crestline::cli {
 namespace {
+
+// Seconds since the previous lap (or construction), for --stats.
+class Stopwatch {
+ public:
+  double lap() {
+    const auto now = std::chrono::steady_clock::now();
+    const double seconds = std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+    return seconds;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
 
 /// "crestline: FILE: problem". Messages that already start with the file
 /// (io::read_mesh names it by its full path or its base name) are not
@@ -86,9 +101,12 @@ int run(const CliOptions& options) {
       return 2;
     }
     Progress progress(!options.quiet);
+    Stopwatch clock;
     const TriangleSoup soup = io::read_mesh(options.input);
+    const double read_seconds = clock.lap();
     progress.phase("repairing");
     RepairResult repaired = repair_mesh(soup);
+    const double repair_seconds = clock.lap();
     if (!options.quiet) {
       for (const std::string& note : soup.notes) progress.print(message_for(options.input, note));
       for (const std::string& note : repaired.report.notes()) progress.print(message_for(options.input, note));
@@ -107,11 +125,16 @@ int run(const CliOptions& options) {
     pipeline.run([&progress](Stage stage, double fraction) { return progress(stage, fraction); });
 
     progress.phase("writing");
+    clock.lap();
     const std::string text = render(options, pipeline);
     file = options.output;
     write_file_atomically(options.output, text);
     progress.stop();
-    if (options.stats) std::cout << io::stats_json(pipeline.stats()) << std::endl;
+    if (options.stats) {
+      PipelineStats stats = pipeline.stats();
+      stats.read_seconds = read_seconds, stats.repair_seconds = repair_seconds, stats.write_seconds = clock.lap();
+      std::cout << io::stats_json(stats) << std::endl;
+    }
     return 0;
   } catch (const Cancelled&) {
     report_error(file, "interrupted; nothing was written.");

@@ -29,7 +29,10 @@ const char* stage_name(Stage stage) {
 }
 
 Pipeline::Pipeline(Mesh mesh) : input_(std::move(mesh)) {
-  topology_ = build_topology(input_);
+  {
+    StageTimer timer(topology_seconds_);
+    topology_ = build_topology(input_);
+  }
   mean_edge_ = mean_edge_length(input_);
   noise_level_ = surface_noise_level(input_, topology_);
 }
@@ -51,6 +54,15 @@ void Pipeline::set_options(const PipelineOptions& o) {
 }
 
 void Pipeline::run(const ProgressCallback& progress) {
+  // Progress inside a stage; cancelling there abandons the stage.
+  auto within = [&](Stage stage) {
+    std::function<void(double)> report;
+    if (progress)
+      report = [&progress, stage](double fraction) {
+        if (!progress(stage, fraction)) throw Cancelled();
+      };
+    return report;
+  };
   auto step = [&](Stage stage, auto&& work) {
     if (static_cast<int>(stage) < static_cast<int>(first_dirty_)) return;
     if (progress && !progress(stage, 0.0)) throw Cancelled();
@@ -83,10 +95,12 @@ void Pipeline::run(const ProgressCallback& progress) {
       for (size_t v = 0; v < distance.size(); ++v)
         if (distance[v] < static_cast<uint32_t>(rings)) smoothing.vertex_weights[v] = 0;
     }
-    extremality_ = smooth_extremality(surface_, topology_, curvature_, raw_extremality_, smoothing);
+    extremality_ =
+        smooth_extremality(surface_, topology_, curvature_, raw_extremality_, smoothing, within(Stage::Smoothing));
   });
   step(Stage::Tracing, [&] {
-    traced_ = trace_regular_triangles(surface_, topology_, curvature_, extremality_, regularity_, options_.trace);
+    traced_ = trace_regular_triangles(surface_, topology_, curvature_, extremality_, regularity_, options_.trace,
+                                      within(Stage::Tracing));
   });
   step(Stage::Singular, [&] { singular_ = connect_singular_triangles(surface_, topology_, regularity_, traced_); });
   step(Stage::Polylines, [&] {
@@ -136,6 +150,7 @@ PipelineStats Pipeline::stats() const {
   s.noise_level = noise_level_;
   s.presmooth_steps = presmooth_steps_;
   for (int i = 0; i < static_cast<int>(Stage::Count); ++i) s.seconds[i] = seconds_[i];
+  s.topology_seconds = topology_seconds_;
   return s;
 }
 

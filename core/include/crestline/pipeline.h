@@ -59,6 +59,9 @@ struct PipelineStats {
   int presmooth_steps = 0;  // used (the automatic choice resolved)
   double mean_edge_length = 0;
   double seconds[static_cast<int>(Stage::Count)] = {};  // last run time per stage
+  // Around the stages: the Pipeline constructor times topology; the caller
+  // fills in reading, repair and writing (0 where it did none).
+  double read_seconds = 0, repair_seconds = 0, topology_seconds = 0, write_seconds = 0;
 };
 
 class Pipeline {
@@ -111,6 +114,7 @@ class Pipeline {
   std::vector<Polyline> faired_;
   FilterResult filtered_;
   double seconds_[static_cast<int>(Stage::Count)] = {};
+  double topology_seconds_ = 0;
 };
 
 }  // namespace crestline

@@ -21,6 +21,8 @@ constexpr double kTolerance = 1e-6;
 // Lockstep CG iterations allowed on the first step before falling back to
 // SpdSolver, which then factorizes ill-conditioned systems (see sparse_solver.h).
 constexpr int kPairedBudget = 150;
+// Progress within a step: i iterations count as i / (i + this) of the step.
+constexpr double kTypicalIterations = 10;
 
 // Both fields' matrices M − t L_σ in one pattern (numerics/paired_cg.h); the
 // diagonal sums in edge order exactly as smooth_field's does.
@@ -57,14 +59,21 @@ SignedPairMatrix signed_pair_matrix(const Topology& topology, const CotanWeights
 
 // Both fields in lockstep on one thread; false if CG does not converge.
 bool smooth_fields_paired(const Topology& topology, const CotanWeights& cotan, const std::vector<double>& edge_strength,
-                          const Curvature& curvature, const Extremality& in, int steps, Extremality& out) {
+                          const Curvature& curvature, const Extremality& in, int steps,
+                          const std::function<void(double)>& progress, Extremality& out) {
   const size_t nv = cotan.vertex_mass.size();
-  const SignedPairMatrix a = signed_pair_matrix(topology, cotan, edge_strength, curvature);
+  const SignedPairSolver solver(signed_pair_matrix(topology, cotan, edge_strength, curvature));
   std::vector<double> x(2 * nv), b(2 * nv);
   for (size_t v = 0; v < nv; ++v) x[2 * v] = in.e_max[v], x[2 * v + 1] = in.e_min[v];
   for (int step = 0; step < steps; ++step) {
     for (size_t i = 0; i < 2 * nv; ++i) b[i] = cotan.vertex_mass[i / 2] * x[i];
-    if (!solve_signed_pair(a, b, x, kTolerance, step == 0 ? kPairedBudget : SpdSolver().max_iterations)) return false;
+    std::function<void(int)> on_iteration;
+    if (progress)
+      on_iteration = [&](int iteration) {
+        progress((step + double(iteration) / (iteration + kTypicalIterations)) / steps);
+      };
+    if (!solver.solve(b, x, kTolerance, step == 0 ? kPairedBudget : SpdSolver().max_iterations, on_iteration))
+      return false;
   }
   out.e_max.resize(nv);
   out.e_min.resize(nv);
@@ -106,7 +115,8 @@ Eigen::VectorXd smooth_field(const Topology& topology, const CotanWeights& cotan
 }  // namespace
 
 Extremality smooth_extremality(const Mesh& mesh, const Topology& topology, const Curvature& curvature,
-                               const Extremality& extremality, const ExtremalitySmoothingOptions& options) {
+                               const Extremality& extremality, const ExtremalitySmoothingOptions& options,
+                               const std::function<void(double)>& progress) {
   if (options.steps <= 0 || options.time_step <= 0) return extremality;
   const size_t nv = mesh.positions.size();
   const std::vector<double>& weights = options.vertex_weights;
@@ -133,7 +143,7 @@ Extremality smooth_extremality(const Mesh& mesh, const Topology& topology, const
   // and the same arithmetic as the single-threaded WASM build.
   Extremality out;
   if (nv <= SignedPairMatrix::kColumnMask &&
-      smooth_fields_paired(topology, cotan, edge_strength, curvature, extremality, options.steps, out))
+      smooth_fields_paired(topology, cotan, edge_strength, curvature, extremality, options.steps, progress, out))
     return out;
   // The two fields are independent systems: one thread each where there are two.
   const std::vector<Vec3>* directions[2] = {&curvature.dir_max, &curvature.dir_min};

@@ -130,10 +130,15 @@ std::string stats_json(const PipelineStats& stats) {
   for (const auto& [name, value] : measures) key(name), append_number(out, value);
   key("seconds");
   out += '{';
+  const std::pair<const char*, double> before[] = {
+      {"read", stats.read_seconds}, {"repair", stats.repair_seconds}, {"topology", stats.topology_seconds}};
+  for (const auto& [name, value] : before) key(name), append_number(out, value);
   for (int s = 0; s < static_cast<int>(Stage::Count); ++s) {
     key(stage_name(static_cast<Stage>(s)));
     append_number(out, stats.seconds[s]);
   }
+  key("write");
+  append_number(out, stats.write_seconds);
   out += "}}";
   return out;
 }

@@ -52,13 +52,17 @@ uint32_t crossing_node(FeatureGraph& graph, const Mesh& mesh, const Topology& to
   return node;
 }
 
+// Triangles between two progress reports.
+constexpr uint32_t kProgressStride = 1u << 15;
+
 void trace_field(const Mesh& mesh, const Topology& topology, const Field& field, const std::vector<uint8_t>& excluded,
-                 FeatureGraph& graph) {
+                 const std::function<void(double)>& progress, FeatureGraph& graph) {
   graph.type = field.type;
   graph.edge_node.assign(topology.edges.size(), kNone);
   const std::vector<Vec3>& x = mesh.positions;
   std::array<double, 3> s;
   for (uint32_t t = 0; t < mesh.triangles.size(); ++t) {
+    if (progress && t % kProgressStride == kProgressStride - 1) progress(double(t) / mesh.triangles.size());
     if (excluded[t] || !field.regular[t]) continue;
     const Triangle& f = mesh.triangles[t];
     consistent_signs(field.dir[f[0]], field.dir[f[1]], field.dir[f[2]], s);
@@ -112,7 +116,7 @@ void place_nodes_on(FeatureGraph& graph, const Mesh& mesh, const std::vector<std
 
 TraceResult trace_regular_triangles(const Mesh& mesh, const Topology& topology, const Curvature& curvature,
                                     const Extremality& extremality, const Regularity& regularity,
-                                    const TraceOptions& options) {
+                                    const TraceOptions& options, const std::function<void(double)>& progress) {
   TraceResult out;
   const uint32_t rings = options.boundary_rings > 0 ? static_cast<uint32_t>(options.boundary_rings) : 0;
   const std::vector<uint32_t> distance = boundary_ring_distance(mesh, topology, rings);
@@ -124,8 +128,11 @@ TraceResult trace_regular_triangles(const Mesh& mesh, const Topology& topology, 
                     curvature.kappa_max, curvature.kappa_min, regularity.regular_max};
   const Field valley{LineType::Valley,    extremality.e_min,   curvature.dir_min,
                      curvature.kappa_min, curvature.kappa_max, regularity.regular_min};
-  trace_field(mesh, topology, ridge, out.excluded, out.ridges);
-  trace_field(mesh, topology, valley, out.excluded, out.valleys);
+  std::function<void(double)> half[2];
+  if (progress)
+    for (int k = 0; k < 2; ++k) half[k] = [&progress, k](double fraction) { progress(0.5 * (k + fraction)); };
+  trace_field(mesh, topology, ridge, out.excluded, half[0], out.ridges);
+  trace_field(mesh, topology, valley, out.excluded, half[1], out.valleys);
   return out;
 }
 

@@ -35,11 +35,16 @@ void multiply(const SignedPairMatrix& a, const double* p, double* y, double py[2
 
 }  // namespace
 
-bool solve_signed_pair(const SignedPairMatrix& a, const std::vector<double>& b, std::vector<double>& x,
-                       double tolerance, int max_iterations) {
+SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix) : a_(std::move(matrix)), inverse_diagonal_(a_.rows()) {
+  for (size_t i = 0; i < a_.rows(); ++i) inverse_diagonal_[i] = 1.0 / a_.diagonal[i];
+}
+
+bool SignedPairSolver::solve(const std::vector<double>& b, std::vector<double>& x, double tolerance, int max_iterations,
+                             const std::function<void(int)>& on_iteration) const {
+  const SignedPairMatrix& a = a_;
+  const std::vector<double>& inverse_diagonal = inverse_diagonal_;
   const size_t n = a.rows();
-  std::vector<double> inverse_diagonal(n), r(2 * n), z(2 * n), p(2 * n), q(2 * n);
-  for (size_t i = 0; i < n; ++i) inverse_diagonal[i] = 1.0 / a.diagonal[i];
+  std::vector<double> r(2 * n), z(2 * n), p(2 * n), q(2 * n);
   double unused[2] = {0, 0};
   multiply(a, x.data(), q.data(), unused);
   double b2[2] = {0, 0}, rr[2] = {0, 0}, rz[2] = {0, 0};
@@ -85,6 +90,7 @@ bool solve_signed_pair(const SignedPairMatrix& a, const std::vector<double>& b, 
     const double keep[2] = {active[0] ? 1.0 : 0.0, active[1] ? 1.0 : 0.0};
     for (size_t i = 0; i < n; ++i)
       for (int k = 0; k < 2; ++k) p[2 * i + k] = keep[k] * (z[2 * i + k] + beta[k] * p[2 * i + k]);
+    if (on_iteration) on_iteration(it + 1);
   }
   for (double v : x)
     if (!std::isfinite(v)) return false;

@@ -112,6 +112,7 @@ TEST_CASE("JSON output parses back to the same lines and stats", "[io][writers]"
   stats.ridge_length = 0.1 + 0.2;
   stats.valley_length = 1.0 / 7;
   stats.seconds[static_cast<int>(crestline::Stage::Curvature)] = 0.125;
+  stats.read_seconds = 0.5, stats.repair_seconds = 0.25, stats.topology_seconds = 0.0625, stats.write_seconds = 2;
 
   const auto json = nlohmann::json::parse(crestline::io::write_lines_json(lines, stats));
   REQUIRE(json["ridges"].size() == 2);
@@ -142,8 +143,13 @@ TEST_CASE("JSON output parses back to the same lines and stats", "[io][writers]"
   CHECK(s["ridge_length"].get<double>() == 0.1 + 0.2);
   CHECK(s["valley_length"].get<double>() == 1.0 / 7);
   REQUIRE(s["seconds"].is_object());
-  CHECK(s["seconds"].size() == static_cast<size_t>(crestline::Stage::Count));
+  // Every stage plus read, repair, topology and write.
+  CHECK(s["seconds"].size() == static_cast<size_t>(crestline::Stage::Count) + 4);
   CHECK(s["seconds"][crestline::stage_name(crestline::Stage::Curvature)].get<double>() == 0.125);
+  CHECK(s["seconds"]["read"].get<double>() == 0.5);
+  CHECK(s["seconds"]["repair"].get<double>() == 0.25);
+  CHECK(s["seconds"]["topology"].get<double>() == 0.0625);
+  CHECK(s["seconds"]["write"].get<double>() == 2);
 }
 
 TEST_CASE("stats JSON is one object on one line", "[io][writers]") {

@@ -64,6 +64,49 @@ TEST_CASE("cancelling leaves the pipeline usable", "[pipeline]") {
   CHECK(!p.lines().empty());
 }
 
+TEST_CASE("progress moves inside smoothing and tracing, and a cancel there stops within one iteration", "[pipeline]") {
+  Pipeline p(repair_mesh(bumpy()).mesh);
+  PipelineOptions o;
+  o.smoothing.steps = 3;
+  p.set_options(o);
+  // Every solver iteration reports: the fractions of the smoothing stage rise
+  // strictly inside (0, 1).
+  std::vector<double> smoothing;
+  int tracing = 0;
+  p.run([&](Stage s, double fraction) {
+    if (s == Stage::Smoothing && fraction > 0) smoothing.push_back(fraction);
+    if (s == Stage::Tracing && fraction > 0) ++tracing;
+    return true;
+  });
+  REQUIRE(smoothing.size() > 3 * 5);  // ≥ 5 iterations per step on this noisy grid
+  CHECK(smoothing.front() > 0);
+  CHECK(smoothing.back() < 1);
+  for (size_t i = 1; i < smoothing.size(); ++i) CHECK(smoothing[i] > smoothing[i - 1]);
+  CHECK(tracing == 0);  // 5,000 triangles: fewer than one report's stride
+  const std::vector<Polyline> reference = p.lines();
+
+  // Cancel at the 4th iteration: no call after it, the stage is not kept,
+  // and the next run from there gives the same lines.
+  o.smoothing.time_step = 2;
+  p.set_options(o);
+  int calls = 0, after = 0;
+  CHECK_THROWS_AS(p.run([&](Stage s, double fraction) {
+    if (calls >= 4) ++after;
+    if (s == Stage::Smoothing && fraction > 0) ++calls;
+    return calls < 4;
+  }),
+                  Cancelled);
+  CHECK(calls == 4);
+  CHECK(after == 0);
+  CHECK(stages_run(p).front() == Stage::Smoothing);
+  o.smoothing.time_step = 1;
+  p.set_options(o);
+  p.run();
+  const std::vector<Polyline> again = p.lines();
+  REQUIRE(again.size() == reference.size());
+  for (size_t i = 0; i < again.size(); ++i) CHECK(again[i].points == reference[i].points);
+}
+
 TEST_CASE("parameters are unitless: a scaled, moved model gives the same lines scaled", "[pipeline][scale]") {
   const Pipeline reference = testing::run_pipeline(bumpy());
   const auto ref_lines = reference.lines();

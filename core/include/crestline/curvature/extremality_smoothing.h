@@ -2,6 +2,7 @@
 // Paper §5.1: smoothing extremalities with the sign-corrected cotan Laplacian
 // Δe(p) = Σ_q w_pq (σ_pq e(q) − e(p)), σ_pq = sign⟨κ⃗(p), κ⃗(q)⟩, integrated
 // implicitly: (M − t L_σ) e' = M e with the lumped mass matrix M.
+#include <functional>
 #include <vector>
 
 #include "crestline/curvature/extremality.h"
@@ -21,8 +22,10 @@ struct ExtremalitySmoothingOptions {
 
 /// Independent of the initial sign choice of the directions: flipping
 /// dir(p) and e(p) at any vertices before smoothing flips exactly those
-/// values after it.
+/// values after it. progress, if set, is called with the fraction done
+/// (0–1) after every solver iteration; it may throw to cancel.
 Extremality smooth_extremality(const Mesh& mesh, const Topology& topology, const Curvature& curvature,
-                               const Extremality& extremality, const ExtremalitySmoothingOptions& options);
+                               const Extremality& extremality, const ExtremalitySmoothingOptions& options,
+                               const std::function<void(double fraction)>& progress = {});
 
 }  // namespace crestline

@@ -1,5 +1,7 @@
 #pragma once
 // Paper §4.1: feature line segments in regular triangles.
+#include <functional>
+
 #include "crestline/curvature/extremality.h"
 #include "crestline/curvature/regularity.h"
 #include "crestline/lines/feature_graph.h"
@@ -22,6 +24,7 @@ struct TraceResult {
 
 TraceResult trace_regular_triangles(const Mesh& mesh, const Topology& topology, const Curvature& curvature,
                                     const Extremality& extremality, const Regularity& regularity,
-                                    const TraceOptions& options);
+                                    const TraceOptions& options,
+                                    const std::function<void(double fraction)>& progress = {});
 
 }  // namespace crestline
