@@ -83,7 +83,8 @@ for key in vertices triangles singular_max singular_min ridges valleys ridge_len
   grep -q "\"$key\":" "$work/stdout" || fail "--stats: no $key"
 done
 grep -q "\"vertices\":$vertices," "$work/stdout" || fail "--stats: vertices is not $vertices"
-grep -q '"seconds":{"presmooth":' "$work/stdout" || fail "--stats: seconds not keyed by stage"
+grep -q '"seconds":{"read":[0-9.e-]*,"repair":[0-9.e-]*,"topology":[0-9.e-]*,"presmooth":' "$work/stdout" || fail "--stats: seconds not read, repair, topology, then by stage"
+grep -q '"filter":[0-9.e-]*,"write":[0-9.e-]*}}' "$work/stdout" || fail "--stats: no write seconds after the stages"
 if command -v node > /dev/null; then
   node -e 'JSON.parse(require("fs").readFileSync(process.argv[1], "utf8"))' "$work/stdout" ||
     fail "--stats output does not parse as JSON"
