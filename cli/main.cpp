@@ -12,6 +12,7 @@
 #include "crestline/io/read_mesh.h"
 #include "crestline/io/write_lines.h"
 #include "crestline/mesh/repair.h"
+#include "crestline/numerics/parallel.h"
 #include "crestline/pipeline.h"
 #include "files.h"
 #include "options.h"
@@ -100,6 +101,7 @@ int run(const CliOptions& options) {
       report_error(options.output, "this is the input mesh; choose another output name.");
       return 2;
     }
+    if (options.threads > 0) set_max_threads(options.threads);
     Progress progress(!options.quiet);
     Stopwatch clock;
     const TriangleSoup soup = io::read_mesh(options.input);

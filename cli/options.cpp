@@ -96,6 +96,10 @@ int parse_options(int argc, char** argv, CliOptions& o) {
                "Also write the welded surface into the output, so it opens in any viewer (.obj and .glb only)");
   app.add_flag("--stats", o.stats, "Print one JSON object of statistics and per-stage seconds on stdout");
   app.add_flag("--repair-report", o.repair_report, "Print every count of the mesh repair on stderr, including zeros");
+  app.add_option("--threads", o.threads,
+                 "Threads for the stages that are linear in the mesh (0: every core); the lines are the same for any "
+                 "count")
+      ->check(CLI::NonNegativeNumber);
   app.add_flag("-q,--quiet", o.quiet, "No notes and no progress on stderr; errors only");
 
   try {

@@ -21,6 +21,7 @@ struct CliOptions {
   bool stats = false;
   bool quiet = false;
   bool repair_report = false;
+  int threads = 0;  // 0: every core
 };
 
 /// Parses argv. Returns -1 to go on, or the exit code to stop with (0 after

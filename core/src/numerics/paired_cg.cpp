@@ -1,32 +1,60 @@
 #include "crestline/numerics/paired_cg.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
+
+#include "crestline/numerics/parallel.h"
 
 namespace crestline {
 namespace {
 
-// w with its sign bit flipped when `flip` is 1: branch-free, because the
-// signs σ follow the direction fields and are not predictable.
-inline double flip_sign(double w, uint32_t flip) {
-  uint64_t bits;
-  std::memcpy(&bits, &w, sizeof bits);
-  bits ^= static_cast<uint64_t>(flip) << 63;
-  std::memcpy(&w, &bits, sizeof bits);
-  return w;
+// Rows per block of the reductions: each block sums its rows in order, then
+// the blocks are summed in order, so the dot products (and with them every
+// iterate) are the same for any number of threads.
+constexpr size_t kBlock = 1024;
+// Blocks a thread takes at least; smaller systems stay on one thread.
+constexpr size_t kMinBlocksPerThread = 4;
+
+// Up to two sums per field: sums[k] and sums[2 + k] for field k.
+using BlockSums = std::array<double, 4>;
+using Sums = std::vector<BlockSums>;
+
+// Calls body(begin, end, sums) for each block of rows, in parallel, and
+// returns the totals of what the blocks added to their sums.
+template <typename Body>
+BlockSums sum_blocks(size_t rows, Sums& partial, const Body& body) {
+  const size_t blocks = (rows + kBlock - 1) / kBlock;
+  partial.assign(blocks, BlockSums{});
+  parallel_for(
+      blocks,
+      [&](size_t first, size_t last) {
+        for (size_t block = first; block < last; ++block)
+          body(block * kBlock, std::min(rows, (block + 1) * kBlock), partial[block]);
+      },
+      kMinBlocksPerThread);
+  BlockSums total{};
+  for (const BlockSums& sums : partial)
+    for (size_t k = 0; k < total.size(); ++k) total[k] += sums[k];
+  return total;
 }
 
-// y = A_k p for both k, interleaved; adds ⟨p_k, y_k⟩ to py[k] in the same pass.
-void multiply(const SignedPairMatrix& a, const double* p, double* y, double py[2]) {
-  const size_t n = a.rows();
-  for (size_t i = 0; i < n; ++i) {
+// ±1 for both fields, by the entry's sign mask: multiplying by them is
+// exact, and the pair of products is one SIMD multiplication.
+alignas(16) constexpr double kSigns[4][2] = {{1, 1}, {-1, 1}, {1, -1}, {-1, -1}};
+
+// y = A_k p for both k over rows [begin, end), interleaved; adds ⟨p_k, y_k⟩ to py[k].
+void multiply(const SignedPairMatrix& a, const double* p, double* y, size_t begin, size_t end, BlockSums& py) {
+  for (size_t i = begin; i < end; ++i) {
     double y0 = a.diagonal[i] * p[2 * i], y1 = a.diagonal[i] * p[2 * i + 1];
     for (uint32_t e = a.offsets[i]; e < a.offsets[i + 1]; ++e) {
       const uint32_t c = a.columns[e];
-      const size_t j = c & SignedPairMatrix::kColumnMask;
+      const double* sign = kSigns[c >> 30];
+      const double* pj = p + 2 * size_t{c & SignedPairMatrix::kColumnMask};
       const double w = a.weights[e];
-      y0 += flip_sign(w, (c >> 30) & 1) * p[2 * j];
-      y1 += flip_sign(w, c >> 31) * p[2 * j + 1];
+      y0 += w * sign[0] * pj[0];
+      y1 += w * sign[1] * pj[1];
     }
     y[2 * i] = y0, y[2 * i + 1] = y1;
     py[0] += p[2 * i] * y0, py[1] += p[2 * i + 1] * y1;
@@ -44,18 +72,25 @@ bool SignedPairSolver::solve(const std::vector<double>& b, std::vector<double>& 
   const SignedPairMatrix& a = a_;
   const std::vector<double>& inverse_diagonal = inverse_diagonal_;
   const size_t n = a.rows();
-  std::vector<double> r(2 * n), z(2 * n), p(2 * n), q(2 * n);
-  double unused[2] = {0, 0};
-  multiply(a, x.data(), q.data(), unused);
-  double b2[2] = {0, 0}, rr[2] = {0, 0}, rz[2] = {0, 0};
-  for (size_t i = 0; i < n; ++i)
-    for (int k = 0; k < 2; ++k) {
-      const size_t j = 2 * i + k;
+  // The preconditioned residual z = D⁻¹ r is never stored: each pass that
+  // needs it recomputes it from r.
+  std::vector<double> r(2 * n), p(2 * n), q(2 * n);
+  Sums partial;
+  sum_blocks(n, partial,
+             [&](size_t begin, size_t end, BlockSums& sums) { multiply(a, x.data(), q.data(), begin, end, sums); });
+  const BlockSums b2 = sum_blocks(n, partial, [&](size_t begin, size_t end, BlockSums& sums) {
+    for (size_t j = 2 * begin; j < 2 * end; ++j) sums[j & 1] += b[j] * b[j];
+  });
+  // rr[k] = ⟨r_k, r_k⟩, rr[2 + k] = ⟨r_k, z_k⟩.
+  BlockSums rr = sum_blocks(n, partial, [&](size_t begin, size_t end, BlockSums& sums) {
+    for (size_t j = 2 * begin; j < 2 * end; ++j) {
       r[j] = b[j] - q[j];
-      z[j] = r[j] * inverse_diagonal[i];
-      p[j] = z[j];
-      b2[k] += b[j] * b[j], rr[k] += r[j] * r[j], rz[k] += r[j] * z[j];
+      p[j] = r[j] * inverse_diagonal[j / 2];
+      sums[j & 1] += r[j] * r[j];
+      sums[2 + (j & 1)] += r[j] * p[j];
     }
+  });
+  double rz[2] = {rr[2], rr[3]};
   bool active[2];
   for (int k = 0; k < 2; ++k) {
     // As Eigen: a zero right-hand side has the solution 0.
@@ -67,20 +102,25 @@ bool SignedPairSolver::solve(const std::vector<double>& b, std::vector<double>& 
     }
   }
   for (int it = 0; it < max_iterations && (active[0] || active[1]); ++it) {
-    double pq[2] = {0, 0};
-    multiply(a, p.data(), q.data(), pq);
+    const BlockSums pq = sum_blocks(n, partial, [&](size_t begin, size_t end, BlockSums& sums) {
+      multiply(a, p.data(), q.data(), begin, end, sums);
+    });
     double alpha[2];
     for (int k = 0; k < 2; ++k) alpha[k] = active[k] ? rz[k] / pq[k] : 0.0;
-    double rz_new[2] = {0, 0};
-    rr[0] = rr[1] = 0;
-    for (size_t i = 0; i < n; ++i)
-      for (int k = 0; k < 2; ++k) {
-        const size_t j = 2 * i + k;
-        x[j] += alpha[k] * p[j];
-        r[j] -= alpha[k] * q[j];
-        z[j] = r[j] * inverse_diagonal[i];
-        rr[k] += r[j] * r[j], rz_new[k] += r[j] * z[j];
+    // One pass for x, r and both sums; its blocks write only their own rows.
+    rr = sum_blocks(n, partial, [&](size_t begin, size_t end, BlockSums& sums) {
+      double r0 = 0, r1 = 0, z0 = 0, z1 = 0;  // locals: the loop stays in registers
+      for (size_t i = begin; i < end; ++i) {
+        const size_t j = 2 * i;
+        x[j] += alpha[0] * p[j], x[j + 1] += alpha[1] * p[j + 1];
+        r[j] -= alpha[0] * q[j], r[j + 1] -= alpha[1] * q[j + 1];
+        const double s0 = r[j] * r[j], s1 = r[j + 1] * r[j + 1];
+        r0 += s0, r1 += s1;
+        z0 += s0 * inverse_diagonal[i], z1 += s1 * inverse_diagonal[i];
       }
+      sums = {r0, r1, z0, z1};
+    });
+    const double rz_new[2] = {rr[2], rr[3]};
     double beta[2];
     for (int k = 0; k < 2; ++k) {
       if (active[k] && !(rr[k] > tolerance * tolerance * b2[k])) active[k] = false;
@@ -88,8 +128,14 @@ bool SignedPairSolver::solve(const std::vector<double>& b, std::vector<double>& 
       rz[k] = rz_new[k];
     }
     const double keep[2] = {active[0] ? 1.0 : 0.0, active[1] ? 1.0 : 0.0};
-    for (size_t i = 0; i < n; ++i)
-      for (int k = 0; k < 2; ++k) p[2 * i + k] = keep[k] * (z[2 * i + k] + beta[k] * p[2 * i + k]);
+    parallel_for(
+        n,
+        [&](size_t begin, size_t end) {
+          for (size_t i = begin; i < end; ++i)
+            for (size_t k = 0; k < 2; ++k)
+              p[2 * i + k] = keep[k] * (r[2 * i + k] * inverse_diagonal[i] + beta[k] * p[2 * i + k]);
+        },
+        kBlock * kMinBlocksPerThread);
     if (on_iteration) on_iteration(it + 1);
   }
   for (double v : x)

@@ -2,6 +2,7 @@
 #include <cmath>
 
 #include "analytic_meshes.h"
+#include "crestline/numerics/parallel.h"
 #include "run_pipeline.h"
 
 using namespace crestline;
@@ -105,6 +106,35 @@ TEST_CASE("progress moves inside smoothing and tracing, and a cancel there stops
   const std::vector<Polyline> again = p.lines();
   REQUIRE(again.size() == reference.size());
   for (size_t i = 0; i < again.size(); ++i) CHECK(again[i].points == reference[i].points);
+}
+
+TEST_CASE("the lines are identical for 1 and 2 threads", "[pipeline][threads]") {
+  // 10,201 vertices: enough rows for the solver's reductions to split.
+  testing::GridOptions grid;
+  grid.nu = grid.nv = 100;
+  grid.jitter = 0.2;
+  grid.random_diagonals = true;
+  const Mesh mesh = repair_mesh(testing::height_field(
+                                    [](double x, double y) {
+                                      return 0.1 * std::cos(5 * x) * std::cos(4 * y) + 0.05 * std::sin(9 * x + 3 * y);
+                                    },
+                                    2, 2, grid))
+                        .mesh;
+  const int before = max_threads();
+  auto run = [&](int threads) {
+    set_max_threads(threads);
+    Pipeline p(mesh);
+    p.run();
+    return std::make_pair(p.extremality(), p.lines());
+  };
+  const auto one = run(1);
+  const auto two = run(2);
+  set_max_threads(before);
+  CHECK(one.first.e_max == two.first.e_max);
+  CHECK(one.first.e_min == two.first.e_min);
+  REQUIRE(!one.second.empty());
+  REQUIRE(one.second.size() == two.second.size());
+  for (size_t i = 0; i < one.second.size(); ++i) CHECK(one.second[i].points == two.second[i].points);
 }
 
 TEST_CASE("parameters are unitless: a scaled, moved model gives the same lines scaled", "[pipeline][scale]") {
