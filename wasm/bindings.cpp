@@ -14,6 +14,7 @@ EMSCRIPTEN_BINDINGS(crestline) {
       .function("run", &Session::run)
       .function("surface", &Session::surface)
       .function("lines", &Session::lines)
+      .function("keptLines", &Session::keptLines)
       .function("fields", &Session::fields)
       .function("stats", &Session::stats)
       .function("linesObj", &Session::linesObj)

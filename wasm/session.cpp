@@ -274,6 +274,12 @@ val Session::lines(bool all) const {
   return out;
 }
 
+val Session::keptLines() const {
+  if (!pipeline_) return copy_out<uint32_t>(nullptr, 0);
+  const std::vector<uint32_t>& kept = pipeline_->filtered().kept;
+  return copy_out(kept.data(), kept.size());
+}
+
 val Session::fields() const {
   val out = val::object();
   if (!pipeline_) return out;

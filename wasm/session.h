@@ -49,6 +49,9 @@ class Session {
   /// strengths, lengths: Float64Array, closed: Uint8Array}. `all` selects
   /// every faired line instead of those passing the filter.
   val lines(bool all) const;
+  /// Uint32Array: the indices into lines(true) of the lines that pass the
+  /// filter, in order (a threshold change needs only these).
+  val keptLines() const;
   /// Per-vertex kappaMax, kappaMin, eMax, eMin (Float64Array, pointwise) and
   /// per-triangle regularMax, regularMin (Uint8Array).
   val fields() const;

@@ -81,10 +81,17 @@ test('GLB (feline): lines match the native CLI and are drawn', { skip: noMeshes 
 
 test('threshold change re-filters only, and changes the count', { skip: noMeshes }, async () => {
   const before = await page.evaluate(() => window.crestline.lastResult);
+  // The ridge geometry before: a threshold change must keep it and only hide lines.
+  await page.evaluate(() => (window.ridgeGeometry = window.crestline.viewer.lines.objects[0].geometry));
+  const pixelsBefore = await linePixels();
   const result = await nextResult(() =>
     page.evaluate((t) => window.crestline.update({ autoThreshold: false, threshold: t }), before.stats.threshold * 3));
   assert.deepEqual(result.ran, ['filter'], 'only the filter ran');
   assert.ok(result.lineCount < before.lineCount, `${result.lineCount} < ${before.lineCount} lines`);
+  assert.equal(result.linesChanged, false, 'no lines were sent');
+  assert.ok(await page.evaluate(() => window.crestline.viewer.lines.objects[0].geometry === window.ridgeGeometry), 'the geometry was not rebuilt');
+  const pixelsAfter = await linePixels();
+  assert.ok(pixelsAfter.ridges < pixelsBefore.ridges, `fewer ridge pixels: ${pixelsAfter.ridges} < ${pixelsBefore.ridges}`);
   console.log(`# re-threshold on ${before.stats.triangles} triangles: ${result.milliseconds.toFixed(1)} ms in the worker`);
   const smoothed = await nextResult(() => page.evaluate(() => window.crestline.update({ autoThreshold: true, smoothingSteps: 4 })));
   assert.equal(smoothed.ran[0], 'smoothing', 'a smoothing change re-runs from smoothing on');
@@ -242,9 +249,11 @@ test('871k triangles (large/dragon.glb): lines, then an instant re-threshold', {
   await checkAgainstNative('large/dragon.glb', result);
   const filtered = await nextResult(() => page.evaluate(() => window.crestline.update({ autoThreshold: false, threshold: 3 })));
   assert.deepEqual(filtered.ran, ['filter']);
+  assert.equal(filtered.linesChanged, false, 'a threshold change sends no lines');
+  assert.ok(filtered.drawMs <= 16, `showing the re-thresholded lines took ${filtered.drawMs} ms on the page`);
   assert.ok(filtered.milliseconds < 200, `re-threshold took ${filtered.milliseconds} ms in the worker`);
   assert.ok(filtered.lineCount < result.lineCount);
-  console.log(`# dragon.glb: re-threshold ${filtered.milliseconds.toFixed(1)} ms in the worker`);
+  console.log(`# dragon.glb: re-threshold ${filtered.milliseconds.toFixed(1)} ms in the worker, ${filtered.drawMs.toFixed(1)} ms on the page`);
 });
 
 test('no uncaught errors in the page', () => {

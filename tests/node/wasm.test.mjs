@@ -4,11 +4,18 @@ import assert from 'node:assert/strict';
 import { test } from 'node:test';
 import { loadCrestline } from '../../wasm/node.mjs';
 import { defaultParams, pipelineOptions } from '../../web/src/app/gui.js';
+import { selectLines } from '../../web/src/client/client.js';
 import { Engine } from '../../web/src/worker/engine.js';
 import { maxNearestDistance, sineHeightField } from './helpers.mjs';
 
 const module = await loadCrestline();
 const heap = () => module.HEAPU8.buffer;
+
+/** engine.run with the kept lines as `lines` (as the page shows them). */
+function run(engine, options, progress) {
+  const result = engine.run(options, progress, true);
+  return result.cancelled ? result : { ...result, lines: selectLines(result.lines, result.kept) };
+}
 
 function lineList(lines) {
   const out = [];
@@ -25,7 +32,7 @@ test('sine height field: ridges on the crests x = k·L, valleys in the troughs x
   const mesh = sineHeightField();
   const loaded = engine.load(mesh);
   assert.equal(loaded.triangles, mesh.indices.length / 3);
-  const result = engine.run({ threshold: 0 });
+  const result = run(engine, { threshold: 0 });
   const lines = lineList(result.lines);
   const ridges = lines.filter((l) => l.type === 0);
   const valleys = lines.filter((l) => l.type === 1);
@@ -46,15 +53,15 @@ test('sine height field: ridges on the crests x = k·L, valleys in the troughs x
 test('threshold change re-runs only the filter; smoothing change re-runs from smoothing on', () => {
   const engine = new Engine(module);
   engine.load(sineHeightField({ n: 40 }));
-  const first = engine.run({ threshold: -1 });
+  const first = run(engine, { threshold: -1 });
   assert.equal(first.ran[0], 'presmooth');
-  const all = engine.run({ threshold: 0 });
+  const all = run(engine, { threshold: 0 });
   assert.deepEqual(all.ran, ['filter']);
-  const strict = engine.run({ threshold: 1e9 });
+  const strict = run(engine, { threshold: 1e9 });
   assert.deepEqual(strict.ran, ['filter']);
   assert.equal(strict.lines.types.length, 0);
   assert.ok(all.lines.types.length >= first.lines.types.length);
-  const smoothed = engine.run({ smoothingSteps: 5 });
+  const smoothed = run(engine, { smoothingSteps: 5 });
   assert.equal(smoothed.ran[0], 'smoothing');
   assert.ok(!smoothed.ran.includes('curvature'));
   engine.dispose();
@@ -63,14 +70,14 @@ test('threshold change re-runs only the filter; smoothing change re-runs from sm
 test('results are copies that survive heap growth and can be transferred', () => {
   const engine = new Engine(module);
   engine.load(sineHeightField({ n: 30 }));
-  const { lines } = engine.run({ threshold: 0 });
+  const { lines } = run(engine, { threshold: 0 });
   const surface = engine.surface();
   for (const array of [lines.points, lines.offsets, surface.positions, surface.indices]) assert.notEqual(array.buffer, heap());
   const before = Array.from(lines.points.slice(0, 6));
   const bytes = heap().byteLength;
   const big = new Engine(module);
   big.load(sineHeightField({ n: 400 })); // 320k triangles: the heap grows
-  big.run({});
+  run(big, {});
   assert.ok(heap().byteLength > bytes, 'the heap grew');
   assert.deepEqual(Array.from(lines.points.slice(0, 6)), before);
   structuredClone(lines, { transfer: [lines.points.buffer] });
@@ -82,10 +89,10 @@ test('cancel from the progress callback, then resume', () => {
   const engine = new Engine(module);
   engine.load(sineHeightField({ n: 30 }));
   const stages = [];
-  const cancelled = engine.run({}, (stage) => (stages.push(stage), stage !== 'smoothing'));
+  const cancelled = run(engine, {}, (stage) => (stages.push(stage), stage !== 'smoothing'));
   assert.deepEqual(cancelled, { cancelled: true });
   assert.ok(stages.includes('curvature'));
-  const resumed = engine.run({});
+  const resumed = run(engine, {});
   assert.ok(!resumed.ran.includes('curvature'), `resumed ran ${resumed.ran}`);
   assert.ok(resumed.lines.types.length > 0);
   engine.dispose();
@@ -114,10 +121,10 @@ test('a scaled mesh gives the same lines, scaled (unitless parameters)', () => {
   // would decide a tie differently at each scale.
   const mesh = sineHeightField({ n: 43 });
   engine.load(mesh);
-  const a = engine.run({});
+  const a = run(engine, {});
   const scaled = { ...mesh, positions: mesh.positions.map((x) => x * 1000) };
   engine.load(scaled);
-  const b = engine.run({});
+  const b = run(engine, {});
   assert.equal(b.lines.types.length, a.lines.types.length);
   assert.equal(b.lines.points.length, a.lines.points.length);
   // Lines may come out in another order or direction: compare point sets.

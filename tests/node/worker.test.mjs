@@ -36,8 +36,10 @@ test('init, load, re-threshold, re-smooth, fields, exports: the stages each repl
   assert.deepEqual([result.type, result.id, result.job], ['result', 1, 1]);
   assert.ok(result.surface.positions instanceof Float64Array, 'the first result carries the surface');
   assert.ok(result.lines.types.length > 0);
+  assert.ok(result.kept.length > 0 && result.kept.length <= result.lines.types.length);
   const filtered = (await send({ type: 'options', id: 1, job: 2, options: { threshold: 0 } })).at(-1);
   assert.deepEqual(filtered.ran, ['filter']);
+  assert.equal(filtered.kept.length, result.lines.types.length, 'threshold 0 keeps every line');
   assert.equal(filtered.surface, undefined, 'no surface when it did not change');
   const smoothed = (await send({ type: 'options', id: 1, job: 3, options: { smoothingSteps: 1 } })).at(-1);
   assert.equal(smoothed.ran[0], 'smoothing');
@@ -190,7 +192,7 @@ test('client: a WASM trap restarts the worker once, says so once, and the next r
     Session: class {
       constructor() {
         this.inner = new real.Session();
-        for (const name of ['load', 'loadFile', 'setOptions', 'options', 'surface', 'lines', 'fields', 'linesObj', 'linesJson'])
+        for (const name of ['load', 'loadFile', 'setOptions', 'options', 'surface', 'lines', 'keptLines', 'fields', 'linesObj', 'linesJson', 'statsJson'])
           this[name] = (...args) => this.inner[name](...args);
       }
       run(progress) {
@@ -241,4 +243,40 @@ test('client: cancel stops the job through the shared flag, without a restart', 
   const again = next('result');
   session.setOptions({ smoothingSteps: 1 });
   assert.equal((await again).stats.triangles, 800);
+});
+
+/** Bytes a message costs across the worker boundary: its typed arrays' bytes plus the JSON of the rest. */
+function bytesPosted(message) {
+  let arrays = 0;
+  const json = JSON.stringify(message, (_key, value) => {
+    if (ArrayBuffer.isView(value)) {
+      arrays += value.byteLength;
+      return undefined;
+    }
+    return value;
+  });
+  return arrays + json.length;
+}
+
+test('a threshold change on a large mesh posts only the kept line ids (no coordinates)', async () => {
+  const { send } = session();
+  const mesh = sineHeightField({ n: 300, size: 12, wavelength: 1 }); // 180,000 triangles
+  const loaded = (await send({ type: 'load', id: 1, job: 1, ...mesh, options: { threshold: 0 } })).at(-1);
+  assert.equal(loaded.stats.triangles, 180000);
+  const all = loaded.lines.types.length;
+  assert.ok(all > 20 && loaded.lines.points.length > 3000, `${all} lines`);
+  assert.equal(loaded.kept.length, all, 'threshold 0 keeps every line');
+  const strengths = [...loaded.lines.strengths].sort((a, b) => a - b);
+  const threshold = strengths[Math.floor(all / 2)];
+  const filtered = (await send({ type: 'options', id: 1, job: 2, options: { threshold } })).at(-1);
+  assert.deepEqual(filtered.ran, ['filter']);
+  assert.equal(filtered.lines, undefined, 'no lines travel');
+  const expected = [...loaded.lines.strengths.keys()].filter((l) => loaded.lines.strengths[l] >= threshold);
+  assert.deepEqual([...filtered.kept], expected, 'the kept ids are the lines at or above the threshold');
+  const bytes = bytesPosted(filtered);
+  assert.ok(bytes < 4 * all + 2000, `${bytes} bytes posted for ${all} lines`);
+  assert.ok(bytesPosted(loaded) > 20 * bytes, 'a load posts the lines themselves');
+  // A smoothing change sends the new lines again.
+  const smoothed = (await send({ type: 'options', id: 1, job: 3, options: { smoothingSteps: 1 } })).at(-1);
+  assert.ok(smoothed.lines && smoothed.kept.length <= smoothed.lines.types.length);
 });

@@ -1,7 +1,7 @@
 // Wires the page: files → the client (../client) → the worker (C++ readers,
 // repair, Pipeline) → viewer; the panel re-runs only what a changed parameter needs.
 import { sharedConnection } from '../client/browser.js';
-import { overallFraction, pickMainFile } from '../client/client.js';
+import { overallFraction, pickMainFile, selectLines } from '../client/client.js';
 import { sampleMesh } from './sample.js';
 import { WeightBrush } from '../three/brush.js';
 import { Viewer } from '../three/viewer.js';
@@ -40,9 +40,15 @@ const client = sharedConnection({ dracoPath }).session({
       app.surfaceShown = true;
       brush.reset(result.surface.positions.length / 3);
     }
-    viewer.setLines(result.lines);
-    app.shown = { name: app.mesh?.name, lines: result.lines }; // what the exports save
-    app.lastResult = { name: app.mesh?.name, ran: result.ran, stats: result.stats, lineCount: result.lines.types.length, milliseconds: result.milliseconds };
+    const started = performance.now();
+    if (result.linesChanged) viewer.setLines(result.lines, result.kept);
+    else viewer.setKept(result.kept);
+    const drawMs = performance.now() - started; // main-thread work to show the result's lines
+    const { lines, kept } = result;
+    let selected = null;
+    // What the exports save: the lines shown, selected on first use.
+    app.shown = { name: app.mesh?.name, get lines() { return (selected ??= selectLines(lines, kept)); } };
+    app.lastResult = { name: app.mesh?.name, ran: result.ran, stats: result.stats, lineCount: kept.length, linesChanged: result.linesChanged, drawMs, milliseconds: result.milliseconds };
     app.results.push(app.lastResult);
     gui.showThreshold(result.stats.threshold, rescaleThreshold);
     rescaleThreshold = false;

@@ -21,8 +21,13 @@ export { pickMainFile };
  *   a DOM Worker, or node's worker_threads wrapped alike
  * @typedef {{kind: 'files', files: NamedBytes[]} | {kind: 'url', url: string, name: string} |
  *           {kind: 'soup', name: string, positions: Float64Array | Float32Array, indices: Uint32Array}} Source
+ * @typedef {import('../worker/protocol.js').Lines} Lines
+ * @typedef {{ran: string[], stats: import('../worker/protocol.js').Stats, lines: Lines, kept: Uint32Array,
+ *            linesChanged: boolean, milliseconds: number, surface?: import('../worker/protocol.js').Surface}} Result
+ *   lines: every faired line of the mesh (kept or not); kept: those that pass
+ *   the filter; linesChanged: `lines` are new (false after a threshold change)
  * @typedef {{onProgress?: (stage: string, fraction: number) => void, onLoaded?: (loaded: LoadedReply) => void,
- *            onResult?: (result: ResultReply) => void, onFields?: (fields: Fields) => void,
+ *            onResult?: (result: Result) => void, onFields?: (fields: Fields) => void,
  *            onCancelled?: () => void, onError?: (error: {message: string, kind: string}) => void}} SessionHandlers
  */
 
@@ -40,6 +45,35 @@ export function overallFraction(stage, fraction) {
   if (stage === 'fetch') return (fraction * readShare) / 2;
   if (stage === 'read') return readShare / 2;
   return readShare + ((1 - readShare) * (Math.max(0, STAGES.indexOf(stage)) + fraction)) / STAGES.length;
+}
+
+/**
+ * The lines `kept` selects, as a Lines object of their own (for exports).
+ * @param {Lines} lines
+ * @param {Uint32Array} kept
+ * @returns {Lines}
+ */
+export function selectLines(lines, kept) {
+  let pointCount = 0;
+  for (const l of kept) pointCount += lines.offsets[l + 1] - lines.offsets[l];
+  const out = {
+    points: new Float64Array(3 * pointCount),
+    offsets: new Uint32Array(kept.length + 1),
+    types: new Uint8Array(kept.length),
+    strengths: new Float64Array(kept.length),
+    lengths: new Float64Array(kept.length),
+    closed: new Uint8Array(kept.length),
+  };
+  kept.forEach((l, k) => {
+    const [first, end] = [lines.offsets[l], lines.offsets[l + 1]];
+    out.points.set(lines.points.subarray(3 * first, 3 * end), 3 * out.offsets[k]);
+    out.offsets[k + 1] = out.offsets[k] + end - first;
+    out.types[k] = lines.types[l];
+    out.strengths[k] = lines.strengths[l];
+    out.lengths[k] = lines.lengths[l];
+    out.closed[k] = lines.closed[l];
+  });
+  return out;
 }
 
 /** Copies of the buffers of `files` (the originals are transferred). @param {NamedBytes[]} files */
@@ -133,6 +167,8 @@ export class Session {
     this.previous = null;
     this.hasMesh = false;
     this.name = '';
+    /** @type {Lines | null} every faired line of the mesh the worker holds */
+    this.lines = null;
     /** @type {PipelineOptions} */
     this.options = {};
     /** @type {PipelineOptions | null} options that arrived while a job ran: the latest win */
@@ -228,8 +264,8 @@ export class Session {
   }
 
   /**
-   * The CLI's text of the current lines.
-   * @param {'obj' | 'json'} format
+   * The CLI's text of the current lines: OBJ, JSON, or its --stats object ('stats').
+   * @param {'obj' | 'json' | 'stats'} format
    * @returns {Promise<string>}
    */
   exportText(format) {
@@ -323,11 +359,15 @@ export class Session {
         this.name = message.name;
         this.handlers.onLoaded?.(message);
         break;
-      case 'result':
+      case 'result': {
         this.running = 0;
-        this.handlers.onResult?.(message);
+        const linesChanged = Boolean(message.lines);
+        if (message.lines) this.lines = message.lines;
+        const { ran, stats, kept, milliseconds, surface } = message;
+        if (this.lines) this.handlers.onResult?.({ ran, stats, lines: this.lines, kept, linesChanged, milliseconds, surface });
         if (this.pending) this.runPending(this.pending);
         break;
+      }
       case 'fields':
         this.handlers.onFields?.(message.fields);
         break;

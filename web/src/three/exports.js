@@ -4,11 +4,11 @@ import { BufferAttribute, BufferGeometry, Group, LineBasicMaterial, LineSegments
 import { RIDGE, VALLEY, segmentPositions } from './line-layer.js';
 import { renderInto, sharedRenderer } from './renderer.js';
 
-/** {counts, lengths, stats} of a result: per type, the number and total length of the lines. */
-export function linesSummary(lines, stats) {
+/** {counts, lengths, stats} of a result: per type, the number and total length of the kept lines. */
+export function linesSummary(lines, kept, stats) {
   const counts = { ridges: 0, valleys: 0 };
   const lengths = { ridges: 0, valleys: 0 };
-  for (let l = 0; l < lines.types.length; l++) {
+  for (const l of kept) {
     const key = lines.types[l] === RIDGE ? 'ridges' : lines.types[l] === VALLEY ? 'valleys' : null;
     if (!key) continue;
     counts[key] += 1;

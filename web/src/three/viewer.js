@@ -68,8 +68,15 @@ export class Viewer {
     else this.render();
   }
 
-  setLines(lines) {
-    this.lines.setLines(lines, this.origin);
+  /** Every faired line; `kept` (line indices) are shown. */
+  setLines(lines, kept) {
+    this.lines.setLines(lines, this.origin, kept);
+    this.render();
+  }
+
+  /** A threshold change: other lines shown, no geometry rebuilt. */
+  setKept(kept) {
+    this.lines.setKept(kept);
     this.render();
   }
 

@@ -51,8 +51,15 @@ export class WidgetView {
     this.applyOrbit();
   }
 
-  setLines(lines) {
-    this.lines.setLines(lines, this.origin);
+  /** Every faired line; `kept` (line indices) are shown. */
+  setLines(lines, kept) {
+    this.lines.setLines(lines, this.origin, kept);
+    this.draw();
+  }
+
+  /** A threshold change: other lines shown, no geometry rebuilt. */
+  setKept(kept) {
+    this.lines.setKept(kept);
     this.draw();
   }
 

@@ -1,7 +1,7 @@
 // <crestline-viewer>: a mesh and its ridges and valleys, computed client-side
 // in the page's one worker (../client) and drawn by its one WebGL context.
 import { sharedConnection } from '../client/browser.js';
-import { overallFraction } from '../client/client.js';
+import { overallFraction, selectLines } from '../client/client.js';
 import { ATTRIBUTES, parseOrbit, reflectAttributes, upgradeProperties } from './attributes.js';
 import { exportGlb, linesSummary, renderPng } from '../three/exports.js';
 import { viewToSvg } from '../three/svg.js';
@@ -29,7 +29,8 @@ export class CrestlineViewer extends HTMLElement {
     this.view = new WidgetView(this.parts.canvas);
     this.session = null;
     this.loadedSrc = null; // the src whose mesh the worker holds (or is loading)
-    this.lines = null;
+    this.result = null; // {lines: every faired line, kept}
+    this.selected = null; // the kept lines as Lines, made on first use
     this.stats = null;
     this.near = false; // within the lazy-loading margin of the viewport
     this.changes = new Set();
@@ -142,7 +143,8 @@ export class CrestlineViewer extends HTMLElement {
   /** Sends the mesh's URL to the worker, which fetches and reads it and runs the pipeline. */
   load(src) {
     this.loadedSrc = src;
-    this.lines = null;
+    this.result = null;
+    this.selected = null;
     this.shownLoad = false;
     this.showError('');
     this.parts.poster.hidden = false;
@@ -177,19 +179,29 @@ export class CrestlineViewer extends HTMLElement {
     this.session?.cancel();
   }
 
-  showResult({ surface, lines, stats }) {
+  /** The lines shown (those passing the filter), as Lines; null before the first result. */
+  get lines() {
+    if (!this.result) return null;
+    this.selected ??= selectLines(this.result.lines, this.result.kept);
+    return this.selected;
+  }
+
+  showResult({ surface, lines, kept, linesChanged, stats }) {
     if (surface) this.view.setSurface(surface);
-    this.lines = lines;
+    this.result = { lines, kept };
+    this.selected = null;
     this.stats = stats;
     this.applyDisplay();
-    this.view.setLines(lines);
+    // A threshold change shows other lines of the same geometry.
+    if (linesChanged || surface) this.view.setLines(lines, kept);
+    else this.view.setKept(kept);
     this.progress(null);
     if (!this.shownLoad) {
       this.shownLoad = true;
       this.parts.poster.hidden = true;
       this.dispatchEvent(new CustomEvent('load', { detail: { src: this.loadedSrc } }));
     }
-    this.dispatchEvent(new CustomEvent('lines', { detail: linesSummary(lines, stats) }));
+    this.dispatchEvent(new CustomEvent('lines', { detail: linesSummary(lines, kept, stats) }));
   }
 
   progress(stage, fraction) {
@@ -217,13 +229,14 @@ export class CrestlineViewer extends HTMLElement {
     this.session?.dispose();
     this.session = null;
     this.loadedSrc = null;
-    this.lines = null;
+    this.result = null;
+    this.selected = null;
     this.view.dispose();
     this.view = new WidgetView(this.parts.canvas);
   }
 
   requireLines() {
-    if (!this.lines) throw new Error('crestline-viewer: no lines yet (wait for the "lines" event).');
+    if (!this.result) throw new Error('crestline-viewer: no lines yet (wait for the "lines" event).');
   }
 
   /**

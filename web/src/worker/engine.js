@@ -11,7 +11,7 @@ import { OPTION_KEYS, pickMainFile, toUint8 } from './protocol.js';
  * @typedef {import('./protocol.js').PipelineOptions} PipelineOptions
  * @typedef {{error?: string, kind?: string, cancelled?: boolean, [key: string]: any}} SessionResult
  * @typedef {{load: Function, loadFile: Function, setOptions: Function, options: Function, run: Function,
- *            surface: Function, lines: Function, fields: Function, linesObj: Function, linesJson: Function,
+ *            surface: Function, lines: Function, keptLines: Function, fields: Function, linesObj: Function, linesJson: Function, statsJson: Function,
  *            delete: Function}} WasmSession
  * @typedef {{Session: new () => WasmSession}} CrestlineModule
  * @typedef {{name: string, vertices: number, triangles: number, notes: string[],
@@ -149,12 +149,16 @@ export class Engine {
 
   /**
    * set_options + run. `onProgress(stage, fraction)` returns false to cancel.
+   * Returns every faired line (`lines`) when a stage before the filter ran
+   * or `withLines` asks for them, and always which of them pass the filter
+   * (`kept`): a threshold change returns no lines.
    * @param {PipelineOptions} options
    * @param {(stage: string, fraction: number) => boolean} [onProgress]
+   * @param {boolean} [withLines]
    * @returns {{cancelled: true} | {cancelled?: undefined, ran: string[], stats: Record<string, number>,
-   *            lines: import('./protocol.js').Lines, milliseconds: number}}
+   *            lines?: import('./protocol.js').Lines, kept: Uint32Array, milliseconds: number}}
    */
-  run(options, onProgress) {
+  run(options, onProgress, withLines = false) {
     const session = this.current();
     check(session.setOptions(pickOptions(options)));
     const start = performance.now();
@@ -163,7 +167,9 @@ export class Engine {
     if (result.kind === 'too large') this.dispose();
     check(result);
     if (result.cancelled) return { cancelled: true };
-    return { ran: result.ran, stats: result.stats, lines: session.lines(false), milliseconds: performance.now() - start };
+    const linesChanged = withLines || result.ran.some((/** @type {string} */ stage) => stage !== 'filter');
+    const lines = linesChanged ? session.lines(true) : undefined;
+    return { ran: result.ran, stats: result.stats, lines, kept: session.keptLines(), milliseconds: performance.now() - start };
   }
 
   /** @returns {import('./protocol.js').Surface} */
@@ -176,9 +182,10 @@ export class Engine {
     return this.current().fields();
   }
 
-  /** The CLI's text of the lines: 'obj' (polylines) or 'json' (lines and stats). @param {string} format */
+  /** The CLI's text: 'obj' (polylines), 'json' (lines and stats) or 'stats' (its --stats object). @param {string} format */
   exportText(format) {
     const session = this.current();
+    if (format === 'stats') return session.statsJson();
     return format === 'json' ? session.linesJson() : session.linesObj();
   }
 

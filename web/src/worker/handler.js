@@ -73,11 +73,13 @@ export function createHandler({ startModule, post, canDecodeDraco = false }) {
    */
   function run(engine, { id, job, options }, sendSurface) {
     const progress = progressReporter(id, job);
-    const result = engine.run(options, progress);
+    // After a load (sendSurface) the page has no lines of this mesh yet.
+    const result = engine.run(options, progress, sendSurface);
     if (result.cancelled) return post({ type: 'cancelled', id, job });
     // The surface changes only after a load or when pre-smoothing ran.
     const surface = sendSurface || result.ran.includes('presmooth') ? engine.surface() : undefined;
-    post({ type: 'result', id, job, ran: result.ran, stats: result.stats, lines: result.lines, milliseconds: result.milliseconds, surface });
+    const { ran, stats, lines, kept, milliseconds } = result;
+    post({ type: 'result', id, job, ran, stats, lines, kept, milliseconds, surface });
   }
 
   /** @param {import('./engine.js').Loaded} loaded @param {number} id @param {number} job */

@@ -34,7 +34,8 @@
  * @typedef {{type: 'options', id: number, job: number, options: PipelineOptions}} OptionsMessage
  *   set_options + run: only dirty stages re-run
  * @typedef {{type: 'fields', id: number, job: number}} FieldsMessage
- * @typedef {{type: 'export', id: number, request: number, format: 'obj' | 'json'}} ExportMessage
+ * @typedef {{type: 'export', id: number, request: number, format: 'obj' | 'json' | 'stats'}} ExportMessage
+ *   the CLI's text: OBJ polylines, JSON lines and stats, or the --stats object
  * @typedef {{type: 'dispose', id: number}} DisposeMessage
  * @typedef {InitMessage | OpenMessage | LoadMessage | OptionsMessage | FieldsMessage | ExportMessage | DisposeMessage} Request
  */
@@ -47,9 +48,12 @@
  * @typedef {{type: 'loaded', id: number, job: number, name: string, vertices: number, triangles: number,
  *            notes: string[], report: Record<string, number>, milliseconds: number}} LoadedReply
  *   milliseconds: reading + repair
- * @typedef {{type: 'result', id: number, job: number, ran: string[], stats: Stats, lines: Lines,
- *            milliseconds: number, surface?: Surface}} ResultReply
- *   surface: after a load and whenever pre-smoothing ran
+ * @typedef {{type: 'result', id: number, job: number, ran: string[], stats: Stats, lines?: Lines,
+ *            kept: Uint32Array, milliseconds: number, surface?: Surface}} ResultReply
+ *   lines: every faired line, after a load and whenever a stage before the
+ *   filter ran (a threshold change sends none); kept: the indices of the
+ *   lines that pass the filter; surface: after a load and whenever
+ *   pre-smoothing ran
  * @typedef {{type: 'fields', id: number, job: number, fields: Fields}} FieldsReply
  * @typedef {{type: 'export', id: number, request: number, format: string, text: string}} ExportReply
  * @typedef {{type: 'cancelled', id: number, job: number}} CancelledReply
