@@ -1,7 +1,11 @@
 #!/usr/bin/env bash
-# JavaScript checks: the type check of the worker protocol and the client
-# (JSDoc types, files marked // @ts-check; web/tsconfig.json).
+# JavaScript checks: ESLint's recommended rules over web/, wasm/, tests/,
+# bench/ and scripts/ (eslint.config.js), and the type check of the worker
+# protocol, the client and the package's .d.ts (JSDoc types in files marked
+# // @ts-check; web/tsconfig.json).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+npx --no-install eslint --max-warnings 0 .
+echo "lint: eslint passed"
 npx --no-install tsc -p web
 echo "lint: tsc -p web passed"

@@ -64,7 +64,7 @@ export async function fetchFiles(href, onProgress) {
   const bytes = await fetchBytes(url, name, onProgress);
   const files = [{ name, bytes }];
   if (/\.gltf$/i.test(name)) {
-    let json = null;
+    let json;
     try {
       json = JSON.parse(new TextDecoder().decode(bytes));
     } catch {
