@@ -213,10 +213,14 @@ test('cancel stops a long computation and the page stays usable', { skip: noMesh
   }));
   assert.ok(longestFrame < 250, `longest frame while computing: ${longestFrame} ms`);
   const started = Date.now();
+  await page.evaluate(() => (window.workerBeforeCancel = window.crestline.client.connection.worker));
   await page.click('#cancel');
   await page.waitForFunction(() => document.body.dataset.state === 'ready', null, { timeout: 10000 });
   console.log(`# cancel during smoothing took effect after ${Date.now() - started} ms`);
   assert.match(await page.textContent('#notes'), /Cancelled/);
+  // The pipeline saw the shared flag inside the stage: no worker restart (which
+  // would follow after CANCEL_GRACE_MS), the worker keeps its module.
+  assert.ok(await page.evaluate(() => window.crestline.client.connection.worker === window.workerBeforeCancel), 'the worker was not restarted');
   const result = await nextResult(() => drop(['classic/mannequin.obj']));
   assert.equal(result.name, 'mannequin.obj');
 });
