@@ -127,15 +127,16 @@ Extremality smooth_extremality(const Mesh& mesh, const Topology& topology, const
     if (!(w >= 0) || !std::isfinite(w))
       throw Error(ErrorKind::InvalidInput, "smoothing weights must be finite and not negative.");
 
-  const CotanWeights cotan = cotan_weights(mesh.positions, mesh, topology);
+  CotanWeights cotan = cotan_weights(mesh.positions, mesh, topology);
   const double h = mean_edge_length(mesh);
   const double t = options.time_step * h * h;
   // An edge is smoothed as strongly as its weaker end, so a region with
-  // weight 0 is frozen and exchanges nothing with its surroundings.
-  std::vector<double> edge_strength(topology.edges.size());
+  // weight 0 is frozen and exchanges nothing with its surroundings. Scaled
+  // in place: the cotan weights are not needed apart from it.
+  std::vector<double> edge_strength = std::move(cotan.edge_weight);
   for (size_t e = 0; e < topology.edges.size(); ++e) {
     const double s = weights.empty() ? 1.0 : std::min(weights[topology.edges[e][0]], weights[topology.edges[e][1]]);
-    edge_strength[e] = t * s * cotan.edge_weight[e];
+    edge_strength[e] = t * s * edge_strength[e];
   }
 
   // Both fields in lockstep on one thread wherever it converges: as fast as

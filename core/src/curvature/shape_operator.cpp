@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "crestline/mesh/cotan.h"
+#include "crestline/numerics/parallel.h"
 
 namespace crestline {
 
@@ -55,29 +56,33 @@ Curvature compute_curvature(const Mesh& mesh, const Topology& topology) {
   c.kappa_min.resize(nv);
   c.dir_max.resize(nv);
   c.dir_min.resize(nv);
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
-  for (size_t v = 0; v < nv; ++v) {
-    eigen.compute(shape[v]);
-    const Eigen::Vector3d lambda = eigen.eigenvalues();  // ascending
-    const Eigen::Matrix3d vectors = eigen.eigenvectors();
-    // The paper keeps the two eigenvalues of largest magnitude; the third
-    // belongs (up to noise) to the normal. On a flat patch all three vanish
-    // and "largest" is noise, so we drop the eigenvector closest to the
-    // vertex normal instead: the same choice on curved surfaces, and the
-    // directions stay tangent on flat ones.
-    int drop = 0;
-    double best = -1;
-    for (int i = 0; i < 3; ++i) {
-      const double along = std::abs(vectors.col(i).dot(c.vertex_normals[v]));
-      if (along > best) best = along, drop = i;
+  // One eigen-decomposition per vertex, each writing only its own vertex:
+  // the same results on any number of threads.
+  parallel_for(nv, [&](size_t begin, size_t end) {
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
+    for (size_t v = begin; v < end; ++v) {
+      eigen.compute(shape[v]);
+      const Eigen::Vector3d lambda = eigen.eigenvalues();  // ascending
+      const Eigen::Matrix3d vectors = eigen.eigenvectors();
+      // The paper keeps the two eigenvalues of largest magnitude; the third
+      // belongs (up to noise) to the normal. On a flat patch all three vanish
+      // and "largest" is noise, so we drop the eigenvector closest to the
+      // vertex normal instead: the same choice on curved surfaces, and the
+      // directions stay tangent on flat ones.
+      int drop = 0;
+      double best = -1;
+      for (int i = 0; i < 3; ++i) {
+        const double along = std::abs(vectors.col(i).dot(c.vertex_normals[v]));
+        if (along > best) best = along, drop = i;
+      }
+      const int i_min = drop == 0 ? 1 : 0, i_max = drop == 2 ? 1 : 2;
+      const double scale = c.star_area[v] > 0 ? 3.0 / c.star_area[v] : 0.0;
+      c.kappa_max[v] = scale * lambda[i_max];
+      c.kappa_min[v] = scale * lambda[i_min];
+      c.dir_max[v] = vectors.col(i_max);
+      c.dir_min[v] = vectors.col(i_min);
     }
-    const int i_min = drop == 0 ? 1 : 0, i_max = drop == 2 ? 1 : 2;
-    const double scale = c.star_area[v] > 0 ? 3.0 / c.star_area[v] : 0.0;
-    c.kappa_max[v] = scale * lambda[i_max];
-    c.kappa_min[v] = scale * lambda[i_min];
-    c.dir_max[v] = vectors.col(i_max);
-    c.dir_min[v] = vectors.col(i_min);
-  }
+  });
   return c;
 }
 

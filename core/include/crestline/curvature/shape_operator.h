@@ -27,9 +27,12 @@ struct Curvature {
 };
 
 /// S(e) = H_e (ē×N_e)(ē×N_e)^T with H_e = 2|e|cos(θ_e/2) (signed: + on convex
-/// edges), S(p) = ½ Σ_{e∋p} ⟨N_p,N_e⟩ S(e). Principal curvatures are the two
-/// eigenvalues of largest magnitude, rescaled to pointwise values. Boundary
-/// edges contribute nothing (they have no dihedral angle).
+/// edges), S(p) = ½ Σ_{e∋p} ⟨N_p,N_e⟩ S(e). Principal curvatures are the
+/// eigenvalues of the two eigenvectors farthest from the vertex normal (the
+/// paper's two of largest magnitude on curved surfaces, and tangent on flat
+/// ones), rescaled to pointwise values. Boundary edges contribute nothing
+/// (they have no dihedral angle). The eigen-decompositions run on
+/// max_threads() threads.
 Curvature compute_curvature(const Mesh& mesh, const Topology& topology);
 
 }  // namespace crestline
