@@ -57,12 +57,14 @@ SignedPairMatrix signed_pair_matrix(const Topology& topology, const CotanWeights
   return a;
 }
 
-// Both fields in lockstep on one thread; false if CG does not converge.
-bool smooth_fields_paired(const Topology& topology, const CotanWeights& cotan, const std::vector<double>& edge_strength,
+// Both fields in lockstep; false if CG does not converge. Releases
+// edge_strength once the matrix holds it (the solve's peak memory).
+bool smooth_fields_paired(const Topology& topology, const CotanWeights& cotan, std::vector<double>& edge_strength,
                           const Curvature& curvature, const Extremality& in, int steps,
                           const std::function<void(double)>& progress, Extremality& out) {
   const size_t nv = cotan.vertex_mass.size();
   const SignedPairSolver solver(signed_pair_matrix(topology, cotan, edge_strength, curvature));
+  std::vector<double>().swap(edge_strength);
   std::vector<double> x(2 * nv), b(2 * nv);
   for (size_t v = 0; v < nv; ++v) x[2 * v] = in.e_max[v], x[2 * v + 1] = in.e_min[v];
   for (int step = 0; step < steps; ++step) {
@@ -133,19 +135,23 @@ Extremality smooth_extremality(const Mesh& mesh, const Topology& topology, const
   // An edge is smoothed as strongly as its weaker end, so a region with
   // weight 0 is frozen and exchanges nothing with its surroundings. Scaled
   // in place: the cotan weights are not needed apart from it.
-  std::vector<double> edge_strength = std::move(cotan.edge_weight);
-  for (size_t e = 0; e < topology.edges.size(); ++e) {
-    const double s = weights.empty() ? 1.0 : std::min(weights[topology.edges[e][0]], weights[topology.edges[e][1]]);
-    edge_strength[e] = t * s * edge_strength[e];
-  }
+  auto strengths = [&](std::vector<double> cotan_weight) {
+    for (size_t e = 0; e < topology.edges.size(); ++e) {
+      const double s = weights.empty() ? 1.0 : std::min(weights[topology.edges[e][0]], weights[topology.edges[e][1]]);
+      cotan_weight[e] = t * s * cotan_weight[e];
+    }
+    return cotan_weight;
+  };
+  std::vector<double> edge_strength = strengths(std::move(cotan.edge_weight));
 
-  // Both fields in lockstep on one thread wherever it converges: as fast as
-  // one thread per field (the products are memory-bound), half the memory,
-  // and the same arithmetic as the single-threaded WASM build.
+  // Both fields in lockstep wherever it converges: each matrix entry is read
+  // once for both, the rows are split over the threads, and the arithmetic
+  // is the same as the single-threaded WASM build's.
   Extremality out;
   if (nv <= SignedPairMatrix::kColumnMask &&
       smooth_fields_paired(topology, cotan, edge_strength, curvature, extremality, options.steps, progress, out))
     return out;
+  if (edge_strength.empty()) edge_strength = strengths(cotan_weights(mesh.positions, mesh, topology).edge_weight);
   // The two fields are independent systems: one thread each where there are two.
   const std::vector<Vec3>* directions[2] = {&curvature.dir_max, &curvature.dir_min};
   const std::vector<double>* values[2] = {&extremality.e_max, &extremality.e_min};

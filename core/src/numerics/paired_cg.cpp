@@ -67,14 +67,15 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix) : a_(std::move(matri
   for (size_t i = 0; i < a_.rows(); ++i) inverse_diagonal_[i] = 1.0 / a_.diagonal[i];
 }
 
-bool SignedPairSolver::solve(const std::vector<double>& b, std::vector<double>& x, double tolerance, int max_iterations,
+bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, double tolerance, int max_iterations,
                              const std::function<void(int)>& on_iteration) const {
   const SignedPairMatrix& a = a_;
   const std::vector<double>& inverse_diagonal = inverse_diagonal_;
   const size_t n = a.rows();
   // The preconditioned residual z = D⁻¹ r is never stored: each pass that
   // needs it recomputes it from r.
-  std::vector<double> r(2 * n), p(2 * n), q(2 * n);
+  std::vector<double>& r = b;  // b is read once, then holds the residual
+  std::vector<double> p(2 * n), q(2 * n);
   Sums partial;
   sum_blocks(n, partial,
              [&](size_t begin, size_t end, BlockSums& sums) { multiply(a, x.data(), q.data(), begin, end, sums); });

@@ -44,13 +44,14 @@ class SignedPairSolver {
  public:
   explicit SignedPairSolver(SignedPairMatrix matrix);
 
-  /// x (2 values per row, interleaved: x[2i+k]) holds the guess on entry.
+  /// x (2 values per row, interleaved: x[2i+k]) holds the guess on entry;
+  /// b is overwritten (it holds the residual on return: one vector less).
   /// Each system stops at relative residual `tolerance` (‖b − Ax‖ ≤
   /// tolerance·‖b‖, as Eigen's CG). Returns false if either has not converged
   /// within max_iterations; x then holds the last iterates. on_iteration, if
   /// set, is called after every iteration with its number (from 1) and may
   /// throw to abandon the solve.
-  bool solve(const std::vector<double>& b, std::vector<double>& x, double tolerance, int max_iterations,
+  bool solve(std::vector<double>& b, std::vector<double>& x, double tolerance, int max_iterations,
              const std::function<void(int iteration)>& on_iteration = {}) const;
 
   const SignedPairMatrix& matrix() const { return a_; }
