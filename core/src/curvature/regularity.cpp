@@ -1,5 +1,9 @@
 #include "crestline/curvature/regularity.h"
 
+#include <atomic>
+
+#include "crestline/numerics/parallel.h"
+
 namespace crestline {
 
 bool consistent_signs(const Vec3& d0, const Vec3& d1, const Vec3& d2, std::array<double, 3>& signs) {
@@ -15,16 +19,26 @@ Regularity classify_triangles(const Mesh& mesh, const Curvature& curvature) {
   const size_t nt = mesh.triangles.size();
   r.regular_max.resize(nt);
   r.regular_min.resize(nt);
-  std::array<double, 3> signs;
-  for (size_t t = 0; t < nt; ++t) {
-    const Triangle& f = mesh.triangles[t];
-    r.regular_max[t] =
-        consistent_signs(curvature.dir_max[f[0]], curvature.dir_max[f[1]], curvature.dir_max[f[2]], signs);
-    r.regular_min[t] =
-        consistent_signs(curvature.dir_min[f[0]], curvature.dir_min[f[1]], curvature.dir_min[f[2]], signs);
-    r.singular_max += !r.regular_max[t];
-    r.singular_min += !r.regular_min[t];
-  }
+  // Each triangle writes only its own flags; the counts are integers, exact
+  // in any order.
+  std::atomic<size_t> singular_max{0}, singular_min{0};
+  parallel_for(nt, [&](size_t begin, size_t end) {
+    std::array<double, 3> signs;
+    size_t count_max = 0, count_min = 0;
+    for (size_t t = begin; t < end; ++t) {
+      const Triangle& f = mesh.triangles[t];
+      r.regular_max[t] =
+          consistent_signs(curvature.dir_max[f[0]], curvature.dir_max[f[1]], curvature.dir_max[f[2]], signs);
+      r.regular_min[t] =
+          consistent_signs(curvature.dir_min[f[0]], curvature.dir_min[f[1]], curvature.dir_min[f[2]], signs);
+      count_max += !r.regular_max[t];
+      count_min += !r.regular_min[t];
+    }
+    singular_max += count_max;
+    singular_min += count_min;
+  });
+  r.singular_max = singular_max;
+  r.singular_min = singular_min;
   return r;
 }
 

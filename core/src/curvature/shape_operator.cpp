@@ -16,17 +16,25 @@ Curvature compute_curvature(const Mesh& mesh, const Topology& topology) {
   triangle_areas_normals(x, mesh.triangles, areas, normals);
 
   Curvature c;
-  c.vertex_normals.assign(nv, Vec3::Zero());
-  c.star_area.assign(nv, 0.0);
-  for (size_t t = 0; t < mesh.triangles.size(); ++t)
-    for (uint32_t v : mesh.triangles[t]) {
-      c.vertex_normals[v] += areas[t] * normals[t];
-      c.star_area[v] += areas[t];
+  c.vertex_normals.resize(nv);
+  c.star_area.resize(nv);
+  // Gathered over each vertex's triangles, which the topology lists in
+  // ascending order: the sums of a scatter over the triangles, bit for bit,
+  // on any number of threads.
+  parallel_for(nv, [&](size_t begin, size_t end) {
+    for (size_t v = begin; v < end; ++v) {
+      Vec3 n = Vec3::Zero();
+      double star = 0;
+      for (uint32_t i = topology.vertex_offsets[v]; i < topology.vertex_offsets[v + 1]; ++i) {
+        const uint32_t t = topology.vertex_triangles[i];
+        n += areas[t] * normals[t];
+        star += areas[t];
+      }
+      const double len = n.norm();
+      c.vertex_normals[v] = len > 0 ? Vec3(n / len) : Vec3::UnitZ();
+      c.star_area[v] = star;
     }
-  for (Vec3& n : c.vertex_normals) {
-    const double len = n.norm();
-    n = len > 0 ? Vec3(n / len) : Vec3::UnitZ();
-  }
+  });
 
   // S(p) = ½ Σ_{e∋p} ⟨N_p, N_e⟩ S(e), S(e) = H_e (ē×N_e)(ē×N_e)^T.
   std::vector<Eigen::Matrix3d> shape(nv, Eigen::Matrix3d::Zero());
