@@ -5,8 +5,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <map>
+#include <sstream>
 #include <tuple>
 
 #include "crestline/error.h"
@@ -31,9 +33,29 @@ void write_file_atomically(const std::string& path, const std::string& text) {
   if (std::rename(temporary.c_str(), path.c_str()) != 0) fail("the file cannot be replaced");
 }
 
+uint64_t max_weights_bytes(size_t vertices) { return 100 * uint64_t(vertices) + (uint64_t(1) << 20); }
+
 std::vector<double> read_vertex_weights(const std::string& path, const TriangleSoup& soup, const Mesh& mesh) {
-  std::ifstream in(path);
-  if (!in) throw Error(ErrorKind::Io, "the weights file cannot be opened.");
+  // A regular file only (/dev/zero or a pipe would never end), and never
+  // more than max_weights_bytes: a number per line needs far fewer.
+  std::error_code error;
+  const auto status = std::filesystem::status(path, error);
+  if (error || !std::filesystem::exists(status)) throw Error(ErrorKind::Io, "the weights file cannot be opened.");
+  if (!std::filesystem::is_regular_file(status))
+    throw Error(ErrorKind::Io, "the weights file is not a regular file (a folder, device or pipe).");
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw Error(ErrorKind::Io, "the weights file cannot be opened.");
+  const uint64_t limit = max_weights_bytes(soup.vertex_count());
+  std::string text;
+  char chunk[1 << 16];
+  while (file.read(chunk, sizeof chunk) || file.gcount() > 0) {
+    text.append(chunk, size_t(file.gcount()));
+    if (text.size() > limit)
+      throw Error(ErrorKind::TooLarge, "the weights file is longer than " + std::to_string(limit) +
+                                           " bytes, the most read for a mesh of " +
+                                           std::to_string(soup.vertex_count()) + " vertices.");
+  }
+  std::istringstream in(text);
   std::vector<double> weights;
   std::string line;
   for (size_t number = 1; std::getline(in, line); ++number) {

@@ -1,5 +1,6 @@
 #pragma once
 // The CLI's only contact with the filesystem besides io::read_mesh.
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -12,10 +13,15 @@ namespace crestline::cli {
 /// Error(Io) without a file name (the caller knows it).
 void write_file_atomically(const std::string& path, const std::string& text);
 
+/// The most bytes read from a weights file for a mesh of `vertices` input
+/// vertices: 100 per vertex plus 1 MiB for comments.
+uint64_t max_weights_bytes(size_t vertices);
+
 /// Reads one number per line (blank lines and lines starting with # are
 /// skipped) and matches them to the repaired mesh's vertices: either one per
 /// repaired vertex, or one per vertex of the input file, carried over by
-/// position (repair welds and drops vertices). Throws Error(InvalidInput).
+/// position (repair welds and drops vertices). Only a regular file is read,
+/// and at most max_weights_bytes of it. Throws Error(InvalidInput), Io, TooLarge.
 std::vector<double> read_vertex_weights(const std::string& path, const TriangleSoup& soup, const Mesh& mesh);
 
 }  // namespace crestline::cli

@@ -10,6 +10,7 @@ add_library(crestline_readers
   src/io/read_ply.cpp
   src/io/read_stl.cpp
   src/io/read_off.cpp
+  src/io/triangulate_polygon.cpp
 )
 target_link_libraries(crestline_readers PUBLIC crestline_core)
 target_compile_options(crestline_readers PRIVATE $<$<CXX_COMPILER_ID:GNU,Clang>:-Wall -Wextra>)

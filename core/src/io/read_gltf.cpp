@@ -43,6 +43,9 @@ struct Files {
   const uint8_t* glb_bin = nullptr;
   size_t glb_bin_size = 0;
   std::vector<std::string> missing;
+  /// Declared byteLength of each external buffer, by its URI as tinygltf
+  /// passes it (URL-decoded): never more is read.
+  std::map<std::string, uint64_t> byte_length;
 };
 
 bool file_exists(const std::string&, void*) { return true; }  // ReadWholeFile decides
@@ -59,7 +62,9 @@ bool read_companion(std::vector<unsigned char>* out, std::string*, const std::st
     out->assign(1, 0);
     return true;
   }
-  if (find_companion(*files.in, uri, *out)) return true;
+  const auto declared = files.byte_length.find(uri);
+  const uint64_t limit = declared == files.byte_length.end() ? kMaxGltfInteger : declared->second;
+  if (find_companion(*files.in, uri, limit, *out)) return true;
   files.missing.push_back(uri);
   return false;
 }
@@ -93,6 +98,132 @@ std::string split_glb(const Input& in, Files& files) {
   return std::string(reinterpret_cast<const char*>(in.data + 20), json_length);
 }
 
+// Brackets nested deeper than kMaxJsonDepth are refused before any parser
+// sees them: tinygltf converts the JSON recursively.
+void check_depth(const Input& in, const std::string& text) {
+  int depth = 0;
+  bool in_string = false;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (c == '\\')
+        ++i;
+      else if (c == '"')
+        in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxJsonDepth) {
+        fail(ErrorKind::InvalidInput, in,
+             "the glTF JSON nests deeper than " + std::to_string(kMaxJsonDepth) + " levels (at byte " +
+                 std::to_string(i) + ").");
+      }
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+}
+
+void check_version(const Input& in, const Json& json) {
+  const auto asset = json.find("asset");
+  if (asset == json.end()) return;  // tinygltf refuses it
+  const auto version = asset->is_object() ? asset->find("version") : asset->end();
+  if (!asset->is_object() || version == asset->end() || !version->is_string()) {
+    fail(ErrorKind::InvalidInput, in, "the glTF asset has no version.");
+  }
+  const std::string text = version->get<std::string>();
+  if (text.rfind("2.", 0) != 0) {
+    fail(ErrorKind::Unsupported, in, "the glTF asset version is " + quote(text) + "; Crestline reads glTF 2.0.");
+  }
+}
+
+// A JSON value as a message shows it: integers exactly, other numbers as %g
+// does (never 309 digits), other types by name.
+std::string describe(const Json& value) {
+  if (value.is_number_unsigned()) return std::to_string(value.get<uint64_t>());
+  if (value.is_number_integer()) return std::to_string(value.get<int64_t>());
+  if (value.is_number()) return number_text(value.get<double>());
+  if (value.is_string()) return "the string " + quote(value.get<std::string>());
+  return std::string("a ") + value.type_name();
+}
+
+// Walks `pattern` ("accessors/*/sparse/count"; * is every element of an
+// array or object) and checks every value found.
+void check_path(const Input& in, const Json& node, const std::vector<std::string>& parts, size_t k,
+                const std::string& where) {
+  if (k == parts.size()) {
+    const bool ok =
+        (node.is_number_unsigned() && node.get<uint64_t>() <= kMaxGltfInteger) ||
+        (node.is_number_integer() && node.get<int64_t>() >= 0 && uint64_t(node.get<int64_t>()) <= kMaxGltfInteger);
+    if (!ok) {
+      fail(ErrorKind::InvalidInput, in,
+           "the glTF property " + where + " is " + describe(node) + "; it must be an integer from 0 to " +
+               std::to_string(kMaxGltfInteger) + ".");
+    }
+    return;
+  }
+  if (parts[k] == "*") {
+    if (node.is_array()) {
+      for (size_t i = 0; i < node.size(); ++i)
+        check_path(in, node[i], parts, k + 1, where + "[" + std::to_string(i) + "]");
+    } else if (node.is_object()) {
+      for (auto it = node.begin(); it != node.end(); ++it)
+        check_path(in, it.value(), parts, k + 1, where + "." + it.key());
+    }
+    return;
+  }
+  if (!node.is_object()) return;  // tinygltf reports the wrong type
+  const auto child = node.find(parts[k]);
+  if (child != node.end()) check_path(in, *child, parts, k + 1, where.empty() ? parts[k] : where + "." + parts[k]);
+}
+
+// Every index, count, offset and size the reader uses is a non-negative
+// integer below 2^31, checked here in 64 bits: tinygltf narrows them to int
+// or size_t (32 bits in WASM), so 2^63 became 0 and -7 "no indices".
+void check_integers(const Input& in, const Json& json) {
+  static const char* const patterns[] = {
+      "scene",
+      "scenes/*/nodes/*",
+      "nodes/*/mesh",
+      "nodes/*/children/*",
+      "nodes/*/extensions/EXT_mesh_gpu_instancing/attributes/*",
+      "meshes/*/primitives/*/indices",
+      "meshes/*/primitives/*/mode",
+      "meshes/*/primitives/*/attributes/*",
+      "meshes/*/primitives/*/extensions/KHR_draco_mesh_compression/bufferView",
+      "meshes/*/primitives/*/extensions/KHR_draco_mesh_compression/attributes/*",
+      "accessors/*/bufferView",
+      "accessors/*/byteOffset",
+      "accessors/*/componentType",
+      "accessors/*/count",
+      "accessors/*/sparse/count",
+      "accessors/*/sparse/indices/bufferView",
+      "accessors/*/sparse/indices/byteOffset",
+      "accessors/*/sparse/indices/componentType",
+      "accessors/*/sparse/values/bufferView",
+      "accessors/*/sparse/values/byteOffset",
+      "bufferViews/*/buffer",
+      "bufferViews/*/byteOffset",
+      "bufferViews/*/byteLength",
+      "bufferViews/*/byteStride",
+      "bufferViews/*/extensions/EXT_meshopt_compression/buffer",
+      "bufferViews/*/extensions/EXT_meshopt_compression/byteOffset",
+      "bufferViews/*/extensions/EXT_meshopt_compression/byteLength",
+      "bufferViews/*/extensions/EXT_meshopt_compression/byteStride",
+      "bufferViews/*/extensions/EXT_meshopt_compression/count",
+      "buffers/*/byteLength",
+  };
+  for (const char* pattern : patterns) {
+    std::vector<std::string> parts;
+    for (const char* p = pattern; *p;) {
+      const char* slash = std::strchr(p, '/');
+      parts.emplace_back(p, slash ? size_t(slash - p) : std::strlen(p));
+      p = slash ? slash + 1 : p + std::strlen(p);
+    }
+    check_path(in, json, parts, 0, "");
+  }
+}
+
 // Rewrites what tinygltf 2.7 cannot load as is: the GLB BIN chunk becomes a
 // named file we serve (cut to the buffer's byteLength: the chunk is padded),
 // EXT_meshopt_compression fallback buffers (no data by design) become
@@ -101,8 +232,11 @@ std::string split_glb(const Input& in, Files& files) {
 // Everything but geometry goes too, so a broken texture or animation cannot
 // stop a mesh from loading and embedded images are never decoded.
 std::string prepare_json(const Input& in, const std::string& text, bool binary, Files& files) {
+  check_depth(in, text);
   Json json = Json::parse(text, nullptr, false);
   if (json.is_discarded() || !json.is_object()) fail(ErrorKind::InvalidInput, in, "the glTF JSON cannot be parsed.");
+  check_version(in, json);
+  check_integers(in, json);
   for (const char* unused : {"images", "textures", "samplers", "materials", "animations", "skins", "cameras"}) {
     json.erase(unused);
   }
@@ -126,6 +260,12 @@ std::string prepare_json(const Input& in, const std::string& text, bool binary, 
           files.glb_bin_size = std::min<size_t>(files.glb_bin_size, length.get<size_t>());
       }
     }
+    for (const Json& buffer : *buffers) {
+      if (!buffer.is_object() || !buffer.contains("uri") || !buffer["uri"].is_string()) continue;
+      const Json& length = buffer.contains("byteLength") ? buffer["byteLength"] : Json();
+      files.byte_length[tinygltf::dlib::urldecode(buffer["uri"].get<std::string>())] =
+          length.is_number_unsigned() ? length.get<uint64_t>() : 0;
+    }
   }
   auto meshes = json.find("meshes");
   if (meshes != json.end() && meshes->is_array()) {
@@ -145,6 +285,13 @@ std::string prepare_json(const Input& in, const std::string& text, bool binary, 
 // tinygltf's first message as a clause: one line, no full stops.
 std::string first_line(const std::string& text) {
   std::string line = text.substr(0, text.find('\n'));
+  // Our internal buffer names mean nothing to the user.
+  for (const auto& [internal, shown] : {std::pair<std::string, std::string>{kGlbBin, "GLB BIN chunk"},
+                                        std::pair<std::string, std::string>{kFallback, "meshopt fallback buffer"}}) {
+    for (size_t at = line.find(internal); at != std::string::npos; at = line.find(internal, at))
+      line.replace(at, internal.size(), shown);
+  }
+
   while (!line.empty() && (line.back() == '.' || line.back() == ' ' || line.back() == '\r')) line.pop_back();
   for (size_t stop = line.find(". "); stop != std::string::npos; stop = line.find(". ", stop)) line[stop] = ';';
   return line;
@@ -193,7 +340,9 @@ class GltfReader {
         if (!is_child[n]) roots.push_back(int(n));
       }
     }
-    traverse(roots);
+    traverse(roots, true);  // counts what the instances expand to, refuses past the limit
+    check_expansion();
+    traverse(roots, false);
     if (skipped_primitives_ > 0) {
       soup_.notes.push_back(std::to_string(skipped_primitives_) + " point or line primitives were ignored.");
     }
@@ -203,7 +352,10 @@ class GltfReader {
  private:
   [[noreturn]] void invalid(const std::string& problem) const { fail(ErrorKind::InvalidInput, in_, problem); }
 
-  void traverse(const std::vector<int>& roots) {
+  // Walks the node tree from `roots`. Counting, it only adds up how often
+  // each mesh is placed (GPU instances by their accessor's count, nothing
+  // read); otherwise it places every instance in the soup.
+  void traverse(const std::vector<int>& roots, bool counting) {
     struct Frame {
       int node;
       Eigen::Matrix4d parent;
@@ -229,7 +381,12 @@ class GltfReader {
       on_path[n] = visited[n] = 1;
       const tinygltf::Node& node = model_.nodes[n];
       const Eigen::Matrix4d world = frame.parent * local_transform(node);
-      if (node.mesh >= 0) {
+      if (node.mesh >= 0 && counting) {
+        auto gpu = node.extensions.find("EXT_mesh_gpu_instancing");
+        const uint64_t copies = gpu == node.extensions.end() ? 1 : gpu_instance_count(gpu->second);
+        uint64_t& placed = placements_[node.mesh];
+        placed = std::min<uint64_t>(placed + copies, UINT64_MAX / 2);
+      } else if (node.mesh >= 0) {
         auto gpu = node.extensions.find("EXT_mesh_gpu_instancing");
         if (gpu == node.extensions.end()) {
           add_instance(node.mesh, world);
@@ -266,6 +423,64 @@ class GltfReader {
     return m;
   }
 
+  /// How many instances EXT_mesh_gpu_instancing declares (the longest of
+  /// its attribute accessors; gpu_instances checks they agree).
+  uint64_t gpu_instance_count(const tinygltf::Value& extension) const {
+    const tinygltf::Value none;
+    const tinygltf::Value& attributes = extension.Has("attributes") ? extension.Get("attributes") : none;
+    uint64_t count = 0;
+    for (const char* name : {"TRANSLATION", "ROTATION", "SCALE"}) {
+      const int accessor = value_int(attributes, name, -1);
+      if (accessor >= 0 && size_t(accessor) < model_.accessors.size())
+        count = std::max<uint64_t>(count, model_.accessors[size_t(accessor)].count);
+    }
+    return count;
+  }
+
+  /// Refuses a scene whose instances expand past the limits, before any is
+  /// expanded: each placed mesh is decoded once to count its triangles and
+  /// vertices, which are then multiplied by how often it is placed (10^6
+  /// GPU instances of a small mesh took 4 GB and 18 s, then gave a soup).
+  void check_expansion() {
+    uint64_t triangles = 0, vertices = 0, placed = 0;
+    auto add = [](uint64_t& total, uint64_t each, uint64_t copies) {
+      const uint64_t cap = UINT64_MAX / 4;
+      total = each > 0 && copies > (cap - total) / each ? cap : total + each * copies;
+    };
+    for (const auto& [mesh, copies] : placements_) {
+      check_mesh_index(mesh);
+      uint64_t mesh_triangles = 0, mesh_vertices = 0;
+      for (const Primitive& primitive : decoded(mesh)) {
+        mesh_triangles += primitive.triangles.size() / 3;
+        mesh_vertices += primitive.positions.size() / 3;
+      }
+      add(triangles, mesh_triangles, copies);
+      add(vertices, mesh_vertices, copies);
+      placed = std::min<uint64_t>(placed + copies, UINT64_MAX / 4);
+    }
+    if (triangles > options_.max_triangles || vertices > 3 * uint64_t(options_.max_triangles) + 3) {
+      const bool by_triangles = triangles > options_.max_triangles;
+      fail(ErrorKind::TooLarge, in_,
+           "the scene places its meshes " + std::to_string(placed) + " times, which expands to " +
+               std::to_string(by_triangles ? triangles : vertices) + (by_triangles ? " triangles" : " vertices") +
+               ", more than the limit of " +
+               std::to_string(by_triangles ? options_.max_triangles : 3 * options_.max_triangles + 3) + ".");
+    }
+  }
+
+  void check_mesh_index(int mesh_index) const {
+    if (mesh_index < 0 || size_t(mesh_index) >= model_.meshes.size()) {
+      invalid("a node refers to mesh " + std::to_string(mesh_index) + " but the file has " +
+              std::to_string(model_.meshes.size()) + " meshes.");
+    }
+  }
+
+  const std::vector<Primitive>& decoded(int mesh_index) {
+    auto cached = decoded_.find(mesh_index);
+    if (cached == decoded_.end()) cached = decoded_.emplace(mesh_index, decode_mesh(mesh_index)).first;
+    return cached->second;
+  }
+
   /// The per-instance transforms of EXT_mesh_gpu_instancing.
   std::vector<Eigen::Matrix4d> gpu_instances(const tinygltf::Value& extension, size_t node) const {
     const std::string where = "node " + std::to_string(node) + " (EXT_mesh_gpu_instancing)";
@@ -293,13 +508,8 @@ class GltfReader {
   }
 
   void add_instance(int mesh_index, const Eigen::Matrix4d& world) {
-    if (size_t(mesh_index) >= model_.meshes.size()) {
-      invalid("a node refers to mesh " + std::to_string(mesh_index) + " but the file has " +
-              std::to_string(model_.meshes.size()) + " meshes.");
-    }
-    auto cached = decoded_.find(mesh_index);
-    if (cached == decoded_.end()) cached = decoded_.emplace(mesh_index, decode_mesh(mesh_index)).first;
-    for (const Primitive& primitive : cached->second) {
+    check_mesh_index(mesh_index);
+    for (const Primitive& primitive : decoded(mesh_index)) {
       if (soup_.triangle_count() + primitive.triangles.size() / 3 > options_.max_triangles) {
         fail(ErrorKind::TooLarge, in_,
              "the scene has more than " + std::to_string(options_.max_triangles) + " triangles.");
@@ -335,7 +545,10 @@ class GltfReader {
         auto position = source.attributes.find("POSITION");
         if (position == source.attributes.end()) invalid(where + " has no POSITION attribute.");
         read_accessor(position->second, TINYGLTF_TYPE_VEC3, where + " POSITION", primitive.positions);
-        if (indexed) read_accessor(source.indices, TINYGLTF_TYPE_SCALAR, where + " indices", indices);
+        if (indexed) {
+          check_index_type(source.indices, where);
+          read_accessor(source.indices, TINYGLTF_TYPE_SCALAR, where + " indices", indices);
+        }
       }
       const size_t vertices = primitive.positions.size() / 3;
       const size_t count = indexed ? indices.size() : vertices;
@@ -365,6 +578,19 @@ class GltfReader {
       primitives.push_back(std::move(primitive));
     }
     return primitives;
+  }
+
+  // Indices are unsigned integers (glTF 2.0, 3.7.2.1); FLOAT ones would be
+  // truncated into triangles that look merely degenerate.
+  void check_index_type(int index, const std::string& where) const {
+    if (index < 0 || size_t(index) >= model_.accessors.size()) return;  // read_accessor says so
+    const int type = model_.accessors[size_t(index)].componentType;
+    if (type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+        type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
+      invalid(where + " has indices of component type " + std::to_string(type) +
+              (type == TINYGLTF_COMPONENT_TYPE_FLOAT ? " (FLOAT)" : "") +
+              "; indices must be unsigned bytes, shorts or ints.");
+    }
   }
 
   // The bytes of a bufferView: meshopt-decoded, or a checked range of its buffer.
@@ -593,6 +819,7 @@ class GltfReader {
   TriangleSoup soup_;
   std::map<int, std::vector<uint8_t>> meshopt_views_;
   std::map<int, std::vector<Primitive>> decoded_;
+  std::map<int, uint64_t> placements_;  // how often each mesh is placed
   size_t skipped_primitives_ = 0;
 };
 
@@ -611,7 +838,7 @@ TriangleSoup read_gltf(const Input& in, const ReadOptions& options) {
   std::string error, warning;
   if (!loader.LoadASCIIFromString(&model, &error, &warning, json.data(), unsigned(json.size()), "")) {
     if (!files.missing.empty()) {
-      fail(ErrorKind::Io, in, "the buffer file '" + files.missing.front() + "' it refers to was not found.");
+      fail(ErrorKind::Io, in, "the buffer file " + quote(files.missing.front()) + " it refers to was not found.");
     }
     // "File size mismatch : <uri>, requestedBytes <n>, but got <m>"
     const size_t mismatch = error.find("File size mismatch : ");
@@ -620,14 +847,16 @@ TriangleSoup read_gltf(const Input& in, const ReadOptions& options) {
       const size_t comma = detail.find(", requestedBytes ");
       const size_t got = detail.find(", but got ");
       if (comma != std::string::npos && got != std::string::npos) {
-        std::string uri = detail.substr(0, comma);
-        if (uri == kGlbBin) uri = "GLB BIN chunk";
+        const std::string uri = detail.substr(0, comma);
         fail(ErrorKind::InvalidInput, in,
-             "the buffer '" + uri + "' has " + detail.substr(got + 10) + " bytes but the glTF declares " +
-                 detail.substr(comma + 17, got - comma - 17) + ".");
+             "the " + (uri == "GLB BIN chunk" ? uri : "buffer " + quote(uri)) + " has " + detail.substr(got + 10) +
+                 " bytes but the glTF declares " + detail.substr(comma + 17, got - comma - 17) + ".");
       }
     }
-    fail(ErrorKind::InvalidInput, in, "the glTF data is invalid (" + first_line(error) + ").");
+    // tinygltf echoes a broken data URI whole (kilobytes): keep its start.
+    std::string clause = first_line(error);
+    if (clause.size() > 2 * kMaxQuoted) clause = clause.substr(0, 2 * kMaxQuoted - 3) + "...";
+    fail(ErrorKind::InvalidInput, in, "the glTF data is invalid (" + clause + ").");
   }
   TriangleSoup soup = GltfReader(in, options, model).read();
   finish_soup(soup, in);

@@ -1,13 +1,18 @@
 // io::read_mesh: format detection, dispatch to one reader per format, and
-// the helpers every reader shares (messages, header-claim checks, polygon
-// triangulation, the final soup checks).
+// the helpers every reader shares (messages, header-claim checks, files,
+// the final soup checks).
 #include "crestline/io/read_mesh.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstring>
-#include <fstream>
+#include <filesystem>
 #include <limits>
 #include <new>
 
@@ -42,134 +47,120 @@ static std::string directory_of(const std::string& path) {
   return slash == std::string::npos ? std::string(".") : path.substr(0, slash);
 }
 
-std::vector<uint8_t> read_file(const std::string& path, const std::string& display_name) {
-  std::ifstream file(path, std::ios::binary | std::ios::ate);
-  if (!file) throw Error(ErrorKind::Io, display_name + ": the file cannot be opened.");
-  const std::streamoff size = file.tellg();
-  if (size < 0) throw Error(ErrorKind::Io, display_name + ": the file cannot be read.");
-  std::vector<uint8_t> bytes(static_cast<size_t>(size));
-  file.seekg(0);
-  if (size > 0 && !file.read(reinterpret_cast<char*>(bytes.data()), size)) {
-    throw Error(ErrorKind::Io, display_name + ": the file cannot be read.");
+std::string quote(std::string_view text) {
+  if (text.size() <= kMaxQuoted) return "'" + std::string(text) + "'";
+  return "'" + std::string(text.substr(0, kMaxQuoted - 3)) + "...'";
+}
+
+namespace {
+
+// Closes a file descriptor on every way out.
+struct FileDescriptor {
+  int fd;
+  ~FileDescriptor() {
+    if (fd >= 0) ::close(fd);
   }
+};
+
+}  // namespace
+
+std::vector<uint8_t> read_file(const std::string& path, const std::string& display_name, uint64_t max_bytes) {
+  // O_NONBLOCK: opening a named pipe would otherwise wait for a writer.
+  const FileDescriptor file{::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC)};
+  if (file.fd < 0) {
+    throw Error(ErrorKind::Io, display_name + ": the file cannot be opened (" + std::strerror(errno) + ").");
+  }
+  struct stat status {};
+  if (::fstat(file.fd, &status) != 0) {
+    throw Error(ErrorKind::Io, display_name + ": the file cannot be read (" + std::strerror(errno) + ").");
+  }
+  if (S_ISDIR(status.st_mode)) throw Error(ErrorKind::Io, display_name + ": this is a folder, not a file.");
+  if (!S_ISREG(status.st_mode)) {
+    throw Error(ErrorKind::Io, display_name + ": this is a device, pipe or socket, not a regular file.");
+  }
+  const uint64_t size = std::min<uint64_t>(uint64_t(std::max<off_t>(status.st_size, 0)), max_bytes);
+  if (size > std::numeric_limits<size_t>::max() / 2) {
+    throw Error(ErrorKind::TooLarge,
+                display_name + ": the file is too large to read (" + std::to_string(size) + " bytes).");
+  }
+  std::vector<uint8_t> bytes;
+  try {
+    bytes.resize(size_t(size));
+  } catch (const std::bad_alloc&) {
+    throw Error(ErrorKind::TooLarge,
+                display_name + ": there is not enough memory to read the file (" + std::to_string(size) + " bytes).");
+  }
+  size_t done = 0;
+  while (done < bytes.size()) {  // the size from fstat bounds the read even if the file grows
+    const ssize_t n = ::read(file.fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      throw Error(ErrorKind::Io, display_name + ": the file cannot be read (" + std::strerror(errno) + ").");
+    }
+    if (n == 0) break;  // shrank meanwhile
+    done += size_t(n);
+  }
+  bytes.resize(done);
   return bytes;
 }
 
-bool find_companion(const Input& in, const std::string& uri, std::vector<uint8_t>& out) {
+namespace {
+
+// True when `path` (canonical) is `folder` (canonical) or lies inside it.
+bool is_inside(const std::filesystem::path& path, const std::filesystem::path& folder) {
+  auto p = path.begin();
+  for (auto f = folder.begin(); f != folder.end(); ++f, ++p) {
+    if (f->empty()) continue;  // a trailing separator
+    if (p == path.end() || *p != *f) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+bool find_companion(const Input& in, const std::string& uri, uint64_t max_bytes, std::vector<uint8_t>& out) {
   if (in.companions) {
     for (const auto& pass : {uri, basename_of(uri)}) {
       for (const NamedBuffer& buffer : *in.companions) {
         if (buffer.name == pass || basename_of(buffer.name) == pass) {
-          out = buffer.bytes;
+          out.assign(buffer.bytes.begin(),
+                     buffer.bytes.begin() + ptrdiff_t(std::min<uint64_t>(buffer.bytes.size(), max_bytes)));
           return true;
         }
       }
     }
   }
   if (in.directory.empty() || uri.empty()) return false;
-  std::ifstream file(in.directory + "/" + uri, std::ios::binary);
-  if (!file) return false;
-  out.assign(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
+  // Only files in the model's folder or below: a URI is relative, has no
+  // ".." and no scheme ("file:", "http:"), and no link may lead out.
+  namespace fs = std::filesystem;
+  const fs::path relative(uri);
+  const bool has_scheme = uri.find(':') != std::string::npos;
+  if (relative.is_absolute() || relative.has_root_name() || uri[0] == '/' || uri[0] == '\\' || has_scheme) {
+    fail(ErrorKind::InvalidInput, in,
+         "the buffer URI " + quote(uri) + " is not a relative path; only files in the model's folder are read.");
+  }
+  for (const fs::path& part : relative) {
+    if (part == "..") {
+      fail(ErrorKind::InvalidInput, in,
+           "the buffer URI " + quote(uri) + " leads out of the model's folder; only files in it are read.");
+    }
+  }
+  std::error_code error;
+  const fs::path folder = fs::canonical(in.directory, error);
+  if (error) return false;
+  const fs::path target = fs::canonical(folder / relative, error);
+  if (error) return false;  // absent (or a dangling link)
+  if (!is_inside(target, folder)) {
+    fail(ErrorKind::InvalidInput, in,
+         "the buffer file " + quote(uri) +
+             " is a link that leads out of the model's folder; only files in it are read.");
+  }
+  if (!fs::is_regular_file(target, error)) {
+    fail(ErrorKind::InvalidInput, in, "the buffer file " + quote(uri) + " is not a regular file.");
+  }
+  out = read_file(target.string(), in.name + ": the buffer file " + quote(uri), max_bytes);
   return true;
-}
-
-// --- polygon triangulation -------------------------------------------------
-
-namespace {
-
-double cross2(const double* o, const double* a, const double* b) {
-  return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
-}
-
-// Inclusive point-in-triangle test for a counter-clockwise triangle.
-bool inside(const double* p, const double* a, const double* b, const double* c) {
-  return cross2(a, b, p) >= 0 && cross2(b, c, p) >= 0 && cross2(c, a, p) >= 0;
-}
-
-bool same_point(const double* p, const double* q) { return p[0] == q[0] && p[1] == q[1]; }
-
-void add_fan(TriangleSoup& soup, const uint32_t* poly, size_t n) {
-  for (size_t i = 1; i + 1 < n; ++i) {
-    soup.indices.insert(soup.indices.end(), {poly[0], poly[i], poly[i + 1]});
-  }
-}
-
-}  // namespace
-
-void add_polygon(TriangleSoup& soup, const uint32_t* poly, size_t n) {
-  if (n < 3) return;
-  if (n == 3) {
-    soup.indices.insert(soup.indices.end(), {poly[0], poly[1], poly[2]});
-    return;
-  }
-  auto point = [&](size_t i) { return Vec3(soup.positions.data() + 3 * size_t(poly[i])); };
-  Vec3 centroid = Vec3::Zero();
-  for (size_t i = 0; i < n; ++i) centroid += point(i);
-  centroid /= double(n);
-  // Newell's normal: the polygon is counter-clockwise around it.
-  Vec3 normal = Vec3::Zero();
-  for (size_t i = 0; i < n; ++i) normal += (point(i) - centroid).cross(point((i + 1) % n) - centroid);
-  const double length = normal.norm();
-  if (!(length > 0) || !std::isfinite(length)) {
-    add_fan(soup, poly, n);
-    return;
-  }
-  normal /= length;
-  const Vec3 u = normal.unitOrthogonal();
-  const Vec3 v = normal.cross(u);
-  std::vector<double> xy(2 * n);
-  for (size_t i = 0; i < n; ++i) {
-    const Vec3 d = point(i) - centroid;
-    xy[2 * i] = d.dot(u);
-    xy[2 * i + 1] = d.dot(v);
-  }
-  // Ear clipping on a circular doubly linked list. When no ear exists (a
-  // self-intersecting or degenerate outline) the rest is fanned, so the
-  // result always has n - 2 triangles.
-  std::vector<size_t> prev(n), next(n);
-  for (size_t i = 0; i < n; ++i) {
-    prev[i] = (i + n - 1) % n;
-    next[i] = (i + 1) % n;
-  }
-  auto is_ear = [&](size_t i) {
-    const double* a = &xy[2 * prev[i]];
-    const double* b = &xy[2 * i];
-    const double* c = &xy[2 * next[i]];
-    if (!(cross2(a, b, c) > 0)) return false;
-    for (size_t j = next[next[i]]; j != prev[i]; j = next[j]) {
-      const double* p = &xy[2 * j];
-      if (same_point(p, a) || same_point(p, b) || same_point(p, c)) continue;
-      if (inside(p, a, b, c)) return false;
-    }
-    return true;
-  };
-  size_t remaining = n;
-  size_t i = 0;
-  size_t misses = 0;
-  while (remaining > 3) {
-    if (misses > remaining) {
-      // A whole turn without an ear: the rest is self-intersecting or
-      // degenerate (repeated corners). Fan it, in linear time; clipping one
-      // forced corner per turn costs a whole turn of ear tests per corner
-      // (a 2,000-corner face found by the fuzzer took 1.6 s, not 3 ms).
-      for (size_t j = next[i]; next[j] != i; j = next[j]) {
-        soup.indices.insert(soup.indices.end(), {poly[i], poly[j], poly[next[j]]});
-      }
-      return;
-    }
-    if (is_ear(i)) {
-      soup.indices.insert(soup.indices.end(), {poly[prev[i]], poly[i], poly[next[i]]});
-      next[prev[i]] = next[i];
-      prev[next[i]] = prev[i];
-      i = prev[i];
-      --remaining;
-      misses = 0;
-    } else {
-      i = next[i];
-      ++misses;
-    }
-  }
-  soup.indices.insert(soup.indices.end(), {poly[prev[i]], poly[i], poly[next[i]]});
 }
 
 void finish_soup(TriangleSoup& soup, const Input& in) {

@@ -7,7 +7,9 @@
 #define TINYOBJLOADER_USE_DOUBLE
 #include <tiny_obj_loader.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <streambuf>
 
@@ -122,6 +124,67 @@ void restore_non_finite(const std::string_view text, std::vector<double>& positi
   }
 }
 
+// The text tinyobjloader is given: without a UTF-8 byte-order mark (which
+// hid the first keyword) and with `\` line continuations joined (backslash
+// and line break become spaces, so every byte keeps its offset).
+std::string_view prepare_text(std::string_view text, std::string& storage) {
+  if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
+  if (text.find("\\\n") == std::string_view::npos && text.find("\\\r\n") == std::string_view::npos) return text;
+  storage.assign(text);
+  for (size_t i = 0; i + 1 < storage.size(); ++i) {
+    if (storage[i] != '\\') continue;
+    if (storage[i + 1] == '\n') {
+      storage[i] = storage[i + 1] = ' ';
+    } else if (storage[i + 1] == '\r' && i + 2 < storage.size() && storage[i + 2] == '\n') {
+      storage[i] = storage[i + 1] = storage[i + 2] = ' ';
+    }
+  }
+  return storage;
+}
+
+bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
+
+// tinyobjloader reads indices with atoi, which wraps ("4294967299" became
+// 3, a 20-digit index anything), and takes a hexadecimal coordinate for 0.
+// Both are refused here, on the text it is given; `line_of` turns a byte
+// offset into the line number of the file.
+template <typename LineOf>
+void check_numbers(const Input& in, std::string_view text, const LineOf& line_of) {
+  for (size_t pos = 0; pos < text.size();) {
+    size_t end = text.find('\n', pos);
+    if (end == std::string_view::npos) end = text.size();
+    size_t i = pos;
+    while (i < end && is_blank(text[i])) ++i;
+    const bool face = i + 1 < end && text[i] == 'f' && is_blank(text[i + 1]);
+    const bool vertex = i + 1 < end && text[i] == 'v' && is_blank(text[i + 1]);
+    for (i += 1; (face || vertex) && i < end;) {
+      while (i < end && is_blank(text[i])) ++i;
+      const size_t start = i;
+      while (i < end && !is_blank(text[i])) ++i;
+      const std::string_view word = text.substr(start, i - start);
+      if (word.empty() || word[0] == '#') break;
+      const size_t sign = word[0] == '-' || word[0] == '+' ? 1 : 0;
+      if (vertex && word.size() > sign + 1 && word[sign] == '0' && (word[sign + 1] | 0x20) == 'x') {
+        fail(ErrorKind::InvalidInput, in,
+             "the vertex on line " + std::to_string(line_of(start)) + " has the hexadecimal number " + quote(word) +
+                 ", which OBJ does not allow.");
+      }
+      if (!face) continue;
+      const std::string_view index = word.substr(0, word.find('/'));
+      uint64_t value = 0;
+      for (size_t k = sign; k < index.size() && index[k] >= '0' && index[k] <= '9' && value <= kMaxGltfInteger; ++k) {
+        value = value * 10 + uint64_t(index[k] - '0');
+      }
+      if (value > uint64_t(INT32_MAX)) {
+        fail(ErrorKind::InvalidInput, in,
+             "the face on line " + std::to_string(line_of(start)) + " uses vertex index " + quote(index) +
+                 ", which is out of range (at most " + std::to_string(INT32_MAX) + ").");
+      }
+    }
+    pos = end + 1;
+  }
+}
+
 bool mentions_non_finite(std::string_view text) {
   for (size_t i = 0; i + 2 < text.size(); ++i) {
     const char a = char(text[i] | 0x20), b = char(text[i + 1] | 0x20), c = char(text[i + 2] | 0x20);
@@ -135,8 +198,14 @@ bool mentions_non_finite(std::string_view text) {
 TriangleSoup read_obj(const Input& in, const ReadOptions& options) {
   std::string decoded;
   const bool utf16 = decode_utf16(in, decoded);
-  const std::string_view text =
+  const std::string_view file =
       utf16 ? std::string_view(decoded) : std::string_view(reinterpret_cast<const char*>(in.data), in.size);
+  std::string joined;
+  const std::string_view text = prepare_text(file, joined);
+  const size_t skipped = file.size() - text.size();  // the byte-order mark
+  check_numbers(in, text, [&](size_t offset) {
+    return 1 + size_t(std::count(file.begin(), file.begin() + ptrdiff_t(offset + skipped), '\n'));
+  });
 
   ObjState state;
   state.in = &in;

@@ -1,6 +1,7 @@
 #pragma once
 // Private to the readers: one parse function per format and the helpers they
-// share (error messages, header-claim checks, polygon triangulation).
+// share (error messages, header-claim checks, files; polygons are
+// triangulated by add_polygon, triangulate_polygon.h).
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -13,6 +14,7 @@
 
 #include "crestline/error.h"
 #include "crestline/io/read_mesh.h"
+#include "triangulate_polygon.h"
 
 namespace crestline::io::detail {
 
@@ -28,6 +30,21 @@ struct Input {
   std::string directory;
 };
 
+/// Limits every reader applies before it allocates or recurses (README,
+/// "Limits"); the triangle limit is ReadOptions::max_triangles.
+/// Brackets nested deeper than this in glTF JSON (real files nest about 8
+/// deep; tinygltf converts the JSON recursively, so 20,000 levels overflowed
+/// the stack).
+constexpr int kMaxJsonDepth = 64;
+/// Bytes read from one external glTF buffer file, besides its declared
+/// byteLength; also the largest integer a glTF index, count or size may have.
+constexpr uint64_t kMaxGltfInteger = 2147483647;  // 2^31 - 1
+/// Text taken from a file into a message (a URI, a number as written).
+constexpr size_t kMaxQuoted = 60;
+
+/// `text` in single quotes, cut to kMaxQuoted characters with "...".
+std::string quote(std::string_view text);
+
 /// Throws Error(kind, "<name>: <problem>"); `problem` is a sentence fragment
 /// ending with a full stop.
 [[noreturn]] void fail(ErrorKind kind, const Input& in, const std::string& problem);
@@ -37,13 +54,6 @@ struct Input {
 /// is too short to hold `count` items of at least `min_bytes_each` bytes.
 void check_claim(const Input& in, const ReadOptions& options, uint64_t count, uint64_t min_bytes_each,
                  size_t bytes_left, const char* what);
-
-/// Appends the triangulation of polygon `poly` (n vertex indices into
-/// soup.positions, all valid) to soup.indices: n - 2 triangles with the
-/// polygon's orientation. Polygons with n > 3 are ear-clipped in their
-/// best-fit (Newell) plane, so concave ones stay inside their outline;
-/// polygons without a plane (all vertices collinear) fall back to a fan.
-void add_polygon(TriangleSoup& soup, const uint32_t* poly, size_t n);
 
 /// The checks every reader ends with: at least one triangle (InvalidInput
 /// "contains no triangles" otherwise), every index in range, and not every
@@ -59,12 +69,18 @@ inline std::string number_text(double value) {
   return text;
 }
 
-/// Reads a whole file; throws Error(Io) naming `display_name` on failure.
-std::vector<uint8_t> read_file(const std::string& path, const std::string& display_name);
+/// Reads at most `max_bytes` of a regular file (not a folder, device or
+/// pipe: /dev/zero would never end); throws Error naming `display_name`:
+/// Io when it cannot be opened or is not a regular file, TooLarge when it
+/// does not fit in memory.
+std::vector<uint8_t> read_file(const std::string& path, const std::string& display_name,
+                               uint64_t max_bytes = UINT64_MAX);
 
-/// Finds a companion file (glTF buffer) by URI: first in in.companions,
-/// then on disk next to the file. Returns false when absent.
-bool find_companion(const Input& in, const std::string& uri, std::vector<uint8_t>& out);
+/// Finds a companion file (glTF buffer) by URI, at most `max_bytes` of it:
+/// first in in.companions, then on disk inside the folder of the file and
+/// nowhere else (absolute paths, `..` and links leading out are refused
+/// with InvalidInput). Returns false when absent.
+bool find_companion(const Input& in, const std::string& uri, uint64_t max_bytes, std::vector<uint8_t>& out);
 
 /// The last path component ("a/b/c.gltf" -> "c.gltf").
 std::string basename_of(const std::string& path);

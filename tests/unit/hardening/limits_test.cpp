@@ -136,6 +136,48 @@ TEST_CASE("headers claiming gigabytes are refused before allocating", "[hardenin
   CHECK(refusal("huge.glb", glb) == ErrorKind::InvalidInput);
 }
 
+// A mesh of 10^4 zero-area triangles (a POSITION accessor without a
+// bufferView: zeros) placed `placements` times, by nodes or by one node's
+// EXT_mesh_gpu_instancing (a TRANSLATION accessor of zeros); padded so the
+// accessors' counts stay below one element per byte of the file.
+std::string amplifying_gltf(size_t placements, bool gpu) {
+  std::string nodes;
+  if (gpu) {
+    nodes = R"({"mesh":0,"extensions":{"EXT_mesh_gpu_instancing":{"attributes":{"TRANSLATION":1}}}})";
+  } else {
+    for (size_t i = 0; i < placements; ++i) nodes += std::string(i ? "," : "") + R"({"mesh":0})";
+  }
+  const std::string text = R"({"asset":{"version":"2.0"},"extensionsUsed":["EXT_mesh_gpu_instancing"],
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+    "accessors":[{"componentType":5126,"count":30000,"type":"VEC3"},
+                 {"componentType":5126,"count":)" +
+                           std::to_string(placements) + R"(,"type":"VEC3"}],
+    "nodes":[)" + nodes + "]";
+  return text + R"(,"extras":")" + std::string(std::max<size_t>(placements, 30000), ' ') + "\"}";
+}
+
+TEST_CASE("instances are counted before they are expanded", "[hardening][limits]") {
+  // 6000 placements of 10^4 triangles: 6·10^7, past the limit of 5·10^7.
+  // Expanding first took 4 GB before the limit was reached.
+  for (const bool gpu : {false, true}) {
+    INFO((gpu ? "EXT_mesh_gpu_instancing" : "nodes"));
+    CHECK(refusal("forest.gltf", bytes_of(amplifying_gltf(6000, gpu))) == ErrorKind::TooLarge);
+    try {
+      io::read_mesh_bytes("forest.gltf", bytes_of(amplifying_gltf(6000, gpu)));
+    } catch (const Error& e) {
+      CHECK(std::string(e.what()) ==
+            "forest.gltf: the scene places its meshes 6000 times, which expands to 60000000 triangles, more than "
+            "the limit of 50000000.");
+    }
+    // Within the limit the same file is read, every instance expanded.
+    io::ReadOptions small;
+    small.max_triangles = 50'000;
+    CHECK(refusal("grove.gltf", bytes_of(amplifying_gltf(6, gpu)), small) == ErrorKind::TooLarge);
+    small.max_triangles = 60'000;
+    CHECK(io::read_mesh_bytes("grove.gltf", bytes_of(amplifying_gltf(6, gpu)), {}, small).triangle_count() == 60'000);
+  }
+}
+
 TEST_CASE("configured size limits refuse with one sentence", "[hardening][limits]") {
   testing::GridOptions grid;
   grid.nu = grid.nv = 10;  // 200 triangles
