@@ -24,7 +24,11 @@ struct ReadOptions {
 /// triangles, every vertex NaN/infinite, truncated data), Unsupported for a
 /// format or variant we do not read (and, in the WASM build, Draco/meshopt
 /// compressed glTF, which the browser decodes), TooLarge for claims beyond
-/// `max_triangles` or beyond memory, Io when the file or a .bin is missing.
+/// `max_triangles` or beyond memory, Io when the file or a .bin is missing
+/// or not a regular file. External glTF buffers are read only from inside
+/// the folder of `path` and never past their byteLength; glTF instances are
+/// counted against `max_triangles` before they are expanded (README,
+/// "Limits").
 ///
 /// The soup is as stored: OBJ/PLY/OFF vertices in file order, one vertex per
 /// STL facet corner, glTF vertices per primitive instance (world space).
