@@ -2,7 +2,8 @@
 # The benchmark in one command: native (build-bench/) then the WASM build in
 # node on the same meshes. Results: build-bench/bench/{native,wasm}.json.
 #   bash bench/run.sh            all meshes, 5 runs native, 3 in WASM, 1 thread;
-#                                then the 1.1M mesh again on 2 threads
+#                                then the bunny and the 1.1M mesh again on 2
+#                                threads, and on every core where there are more
 #   bash bench/run.sh --smoke    the bunny once each (< 20 s once built); for CI
 # Extra arguments go to crestline_bench (e.g. --only bunny,feline --runs 3).
 # Timings are wall-clock: run it on an otherwise idle machine.
@@ -30,6 +31,11 @@ trap 'rm -rf "$soups"' EXIT
 if [[ $smoke == 0 ]]; then
   echo
   "$out/crestline_bench" --threads 2 --only bunny,bunny-sub2 --json "$out/native-2threads.json"
+  cores=$(nproc)
+  if ((cores > 2)); then
+    echo
+    "$out/crestline_bench" --threads "$cores" --only bunny,bunny-sub2 --json "$out/native-allthreads.json"
+  fi
 fi
 
 dist=${CRESTLINE_BENCH_WASM_DIST:-wasm/dist}
