@@ -119,33 +119,37 @@ bool is_inside(const std::filesystem::path& path, const std::filesystem::path& f
 }  // namespace
 
 bool find_companion(const Input& in, const std::string& uri, uint64_t max_bytes, std::vector<uint8_t>& out) {
-  if (in.companions) {
-    for (const auto& pass : {uri, basename_of(uri)}) {
-      for (const NamedBuffer& buffer : *in.companions) {
-        if (buffer.name == pass || basename_of(buffer.name) == pass) {
-          out.assign(buffer.bytes.begin(),
-                     buffer.bytes.begin() + ptrdiff_t(std::min<uint64_t>(buffer.bytes.size(), max_bytes)));
-          return true;
-        }
-      }
-    }
-  }
-  if (in.directory.empty() || uri.empty()) return false;
   // Only files in the model's folder or below: a URI is relative, has no
-  // ".." and no scheme ("file:", "http:"), and no link may lead out.
+  // ".." and no scheme ("file:", "http:"), and no link may lead out. The
+  // same rule holds for in-memory companions, so a file gives one outcome
+  // natively, in the WASM CLI and in the page.
   namespace fs = std::filesystem;
   const fs::path relative(uri);
   const bool has_scheme = uri.find(':') != std::string::npos;
-  if (relative.is_absolute() || relative.has_root_name() || uri[0] == '/' || uri[0] == '\\' || has_scheme) {
+  if (relative.is_absolute() || relative.has_root_name() || (!uri.empty() && (uri[0] == '/' || uri[0] == '\\')) ||
+      has_scheme) {
     fail(ErrorKind::InvalidInput, in,
          "the buffer URI " + quote(uri) + " is not a relative path; only files in the model's folder are read.");
   }
   for (const fs::path& part : relative) {
     if (part == "..") {
       fail(ErrorKind::InvalidInput, in,
-           "the buffer URI " + quote(uri) + " leads out of the model's folder; only files in it are read.");
+           "the buffer URI " + quote(uri) +
+               " leads out of the model's folder; only files in the model's folder are read.");
     }
   }
+  if (in.companions) {
+    for (const auto& pass : {uri, basename_of(uri)}) {
+      for (const NamedBuffer& buffer : *in.companions) {
+        if (buffer.name == pass || basename_of(buffer.name) == pass) {
+          const size_t size = size_t(std::min<uint64_t>(buffer.bytes.size(), max_bytes));
+          out.assign(buffer.bytes.begin(), buffer.bytes.begin() + ptrdiff_t(size));
+          return true;
+        }
+      }
+    }
+  }
+  if (in.directory.empty() || uri.empty()) return false;
   std::error_code error;
   const fs::path folder = fs::canonical(in.directory, error);
   if (error) return false;
@@ -154,7 +158,7 @@ bool find_companion(const Input& in, const std::string& uri, uint64_t max_bytes,
   if (!is_inside(target, folder)) {
     fail(ErrorKind::InvalidInput, in,
          "the buffer file " + quote(uri) +
-             " is a link that leads out of the model's folder; only files in it are read.");
+             " is a link that leads out of the model's folder; only files in the model's folder are read.");
   }
   if (!fs::is_regular_file(target, error)) {
     fail(ErrorKind::InvalidInput, in, "the buffer file " + quote(uri) + " is not a regular file.");

@@ -124,6 +124,19 @@ TEST_CASE("buffer URIs resolve only to regular files inside the model's folder",
   CHECK(contains(scratch.refusal("encoded-up.gltf", "%2E%2E/secret.bin"), "leads out"));
   CHECK(contains(scratch.refusal("abs.gltf", "/dev/zero"), "'/dev/zero' is not a relative path"));
   CHECK(contains(scratch.refusal("scheme.gltf", "file:///dev/zero"), "is not a relative path"));
+  // In memory (the page, the WASM CLI) the same URIs are refused, whatever
+  // companions come with the file, so one file gives one outcome.
+  for (const char* uri : {"../secret.bin", "/dev/zero"}) {
+    INFO(uri);
+    try {
+      io::read_mesh_bytes(
+          "memory.gltf", bytes_of(triangle_gltf(R"({"byteLength":36,"uri":")" + std::string(uri) + "\"}")),
+          {io::NamedBuffer{"secret.bin", triangle_buffer()}, io::NamedBuffer{"zero", triangle_buffer()}});
+      FAIL("read without an error");
+    } catch (const Error& e) {
+      CHECK(contains(e, "only files in the model's folder are read"));
+    }
+  }
   // A link inside the folder that leads out of it.
   fs::create_symlink(scratch.root / "secret.bin", scratch.root / "model" / "link.bin");
   CHECK(

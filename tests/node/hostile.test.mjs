@@ -1,0 +1,100 @@
+// Issue 18, the readers in both builds: hostile files generated here go
+// through build/cli/crestline and node wasm/cli.mjs. Both refuse with the
+// same first sentence, or both read the file. The WASM build differs where
+// it matters: its size_t is 32 bits (a byteOffset of 2^63 became 0 and gave
+// lines), and its stack is small (JSON nested 10^4 deep ended in "Maximum
+// call stack size exceeded" without a file name). Skips visibly without the
+// native CLI.
+import assert from 'node:assert/strict';
+import { execFile } from 'node:child_process';
+import { existsSync, mkdirSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { after, describe, it } from 'node:test';
+import { NATIVE_CLI, ROOT, haveNativeCli } from './helpers.mjs';
+
+const dir = mkdtempSync(join(tmpdir(), 'crestline-hostile-'));
+after(() => rmSync(dir, { recursive: true, force: true }));
+
+/** Runs one CLI on `input`; resolves to {code, written, message}. */
+function outcome(command, args, input, output) {
+  return new Promise((resolve) => {
+    execFile(command, [...args, input, '-o', output, '-q'], { timeout: 120_000 }, (error, _stdout, stderr) => {
+      const message = stderr.trim().split('\n').filter(Boolean).at(-1) ?? '';
+      resolve({ code: error ? (error.code ?? error.signal) : 0, written: existsSync(output), message });
+    });
+  });
+}
+
+const firstSentence = (message) => message.replace(/^crestline: /, '').split(/(?<=\.)\s/)[0];
+
+const triangle = Buffer.from(new Float32Array([0, 0, 0, 1, 0, 0, 0, 1, 0]).buffer);
+
+/** A one-triangle glTF; `edit` changes its JSON object. */
+function gltf(edit = () => {}, uri = `data:application/octet-stream;base64,${triangle.toString('base64')}`) {
+  const json = {
+    asset: { version: '2.0' },
+    buffers: [{ byteLength: 36, uri }],
+    bufferViews: [{ buffer: 0, byteLength: 36 }],
+    accessors: [{ bufferView: 0, componentType: 5126, count: 3, type: 'VEC3' }],
+    meshes: [{ primitives: [{ attributes: { POSITION: 0 } }] }],
+    nodes: [{ mesh: 0 }],
+  };
+  edit(json);
+  return JSON.stringify(json);
+}
+
+const square = 'v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n';
+mkdirSync(join(dir, 'model'));
+writeFileSync(join(dir, 'secret.bin'), triangle);
+
+// name → [file text, expected part of the native sentence (null: read)]
+const cases = {
+  'deep.gltf': [gltf().replace('"nodes"', `"extras":${'['.repeat(20000)}${']'.repeat(20000)},"nodes"`), 'nests deeper than 64 levels'],
+  'wrap.obj': [`${square}f 1 2 4294967299\n`, "uses vertex index '4294967299', which is out of range"],
+  'digits.obj': [`${square}f 1 2 12345678901234567890\n`, 'which is out of range'],
+  // JSON.stringify cannot write 2^63 exactly: spliced in as text.
+  'offset.gltf': [gltf().replace('"buffer":0,', '"buffer":0,"byteOffset":9223372036854775808,'), 'bufferViews[0].byteOffset is 9223372036854775808'],
+  'indices.gltf': [gltf((j) => { j.meshes[0].primitives[0].indices = -7; }), 'indices is -7'],
+  'version.gltf': [gltf((j) => { j.asset.version = '1.0'; }), "asset version is '1.0'"],
+  'float.gltf': [gltf((j) => {
+    j.accessors.push({ bufferView: 0, componentType: 5126, count: 3, type: 'SCALAR' });
+    j.meshes[0].primitives[0].indices = 1;
+  }), 'component type 5126 (FLOAT)'],
+  'hex.obj': [`${square}v 0x1p0 0 0\nf 1 2 3\n`, "hexadecimal number '0x1p0'"],
+  'datauri.gltf': [gltf(() => {}, `data:application/octet-stream;base64,${'!'.repeat(20000)}`), 'the glTF data is invalid'],
+  'model/up.gltf': [gltf(() => {}, '../secret.bin'), "'../secret.bin' leads out of the model's folder"],
+  'forest.gltf': [gltf((j) => {
+    j.accessors[0] = { componentType: 5126, count: 30000, type: 'VEC3' }; // zeros: 10^4 triangles
+    j.nodes = Array.from({ length: 6000 }, () => ({ mesh: 0 }));
+    j.extras = ' '.repeat(30000);
+  }), 'expands to 60000000 triangles, more than the limit of 50000000'],
+  'bom.obj': [`\uFEFF${square}f 1 2 3 4\n`, null],
+  'continued.obj': [`${square}f 1 2 \\\n 3 4\n`, null],
+};
+
+describe('hostile files: one outcome natively and in WASM', { skip: !haveNativeCli && `SKIPPED: ${NATIVE_CLI} is not built` }, () => {
+  for (const [name, [text, expected]] of Object.entries(cases)) {
+    it(name, async () => {
+      const input = join(dir, name);
+      writeFileSync(input, text);
+      const stem = join(dir, name.replace(/\W/g, '_'));
+      const [native, wasm] = await Promise.all([
+        outcome(NATIVE_CLI, [], input, `${stem}.native.obj`),
+        outcome(process.execPath, [join(ROOT, 'wasm/cli.mjs')], input, `${stem}.wasm.obj`),
+      ]);
+      const both = `${name}\n  native: ${native.code} ${native.message}\n  wasm:   ${wasm.code} ${wasm.message}`;
+      if (expected === null) {
+        assert.equal(native.code, 0, both);
+        assert.equal(wasm.code, 0, both);
+        return;
+      }
+      assert.equal(native.code, 1, both);
+      assert.notEqual(wasm.code, 0, both);
+      assert.ok(!native.written && !wasm.written, `${both}\n  a failed run left an output file`);
+      assert.ok(native.message.includes(expected), `${both}\n  expected "${expected}"`);
+      assert.ok(native.message.length < 300, `${both}\n  message too long`);
+      assert.equal(firstSentence(wasm.message), firstSentence(native.message), both);
+    });
+  }
+});
