@@ -11,4 +11,5 @@ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCRESTLINE_SA
 cmake --build "$build" -j "$(nproc)"
 export ASAN_OPTIONS=halt_on_error=1:abort_on_error=1:detect_leaks=1:detect_stack_use_after_return=1:strict_string_checks=1
 export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
-ctest --test-dir "$build" --output-on-failure -j "$(nproc)" "$@"
+# Tests labelled slow (the full invariance matrix) run in tests/run-native.sh only.
+ctest --test-dir "$build" --output-on-failure -j "$(nproc)" -LE slow "$@"

@@ -311,6 +311,7 @@ val Session::stats() const {
   out.set("meanEdgeLength", s.mean_edge_length);
   out.set("noiseLevel", s.noise_level);
   out.set("presmoothStepsUsed", s.presmooth_steps);
+  out.set("components", s.components);
   val seconds = val::object();
   for (int i = 0; i < kStages; ++i) seconds.set(stage_name(static_cast<Stage>(i)), s.seconds[i]);
   out.set("seconds", seconds);

@@ -8,4 +8,11 @@ target_sources(crestline_tests PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/lines/fairing_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/pipeline/pipeline_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/pipeline/real_meshes_test.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/pipeline/invariance_test.cpp
 )
+# The invariance tests build the quality harness's analytic surfaces.
+target_link_libraries(crestline_tests PRIVATE crestline_quality)
+# The full invariance matrix (every mesh, every transform, minutes): its own
+# CTest test, labelled slow so that the sanitizer run can leave it out.
+add_test(NAME invariance_full COMMAND crestline_tests "[invariance-full]")
+set_tests_properties(invariance_full PROPERTIES LABELS slow TIMEOUT 1500)

@@ -5,6 +5,17 @@
 //   tracing ─► singular ─► polylines ─► fairing ─► filter
 // (Fairing runs on every line before filtering so that re-thresholding is a
 // pure selection: instant.)
+//
+// Every stage computes in the working frame of mesh/frame.h: each connected
+// component centred on its bounding box and measured in its own mean edge
+// length. So the lines do not depend on where the model sits or on its unit
+// (translation and uniform scale change only round-off), and a second object
+// in the file changes neither the first one's noise level, pre-smoothing,
+// smoothing, joining nor automatic threshold. What the user sees is mapped
+// back: lines(), all_lines(), surface() and the lengths in stats() are in the
+// input's coordinates; the per-stage fields (curvature(), extremality(),
+// traced(), …) stay in the working frame (lengths in mean edges of their
+// component, curvatures in 1 / mean edge).
 #include <functional>
 #include <string>
 #include <vector>
@@ -13,6 +24,7 @@
 #include "crestline/lines/fairing.h"
 #include "crestline/lines/filter.h"
 #include "crestline/lines/singular.h"
+#include "crestline/mesh/frame.h"
 #include "crestline/mesh/presmooth.h"
 
 namespace crestline {
@@ -54,10 +66,12 @@ struct PipelineStats {
   size_t singular_max = 0, singular_min = 0;
   size_t ridges = 0, valleys = 0;  // kept lines
   double ridge_length = 0, valley_length = 0;
-  double threshold = 0;     // used by the filter
-  double noise_level = 0;   // surface_noise_level of the input
-  int presmooth_steps = 0;  // used (the automatic choice resolved)
-  double mean_edge_length = 0;
+  size_t components = 0;  // connected components, each processed on its own
+  // Per component, reported for the largest one (most triangles):
+  double threshold = 0;                                 // used by the filter
+  double noise_level = 0;                               // surface_noise_level of the input
+  int presmooth_steps = 0;                              // used (the automatic choice resolved)
+  double mean_edge_length = 0;                          // over the whole input, in its units
   double seconds[static_cast<int>(Stage::Count)] = {};  // last run time per stage
   // Around the stages: the Pipeline constructor times topology; the caller
   // fills in reading, repair and writing (0 where it did none).
@@ -78,15 +92,19 @@ class Pipeline {
   void run(const ProgressCallback& progress = {});
 
   const Mesh& input_mesh() const { return input_; }
-  /// The mesh after optional pre-smoothing: all curvature lives on it.
+  /// The mesh after optional pre-smoothing, in the input's coordinates.
   const Mesh& surface() const { return surface_; }
+  /// The same in the working frame: all curvature lives on it, and traced()
+  /// lies on its edges.
+  const Mesh& working_surface() const { return working_surface_; }
+  const ComponentFrames& frames() const { return frames_; }
   const Topology& topology() const { return topology_; }
   const Curvature& curvature() const { return curvature_; }
   const Extremality& raw_extremality() const { return raw_extremality_; }
   const Extremality& extremality() const { return extremality_; }  // after smoothing
   const Regularity& regularity() const { return regularity_; }
   const SingularResult& traced() const { return singular_; }
-  /// Every joined, faired line, before the threshold filter.
+  /// Every joined, faired line, before the threshold filter (input's coordinates).
   const std::vector<Polyline>& all_lines() const { return faired_; }
   const FilterResult& filtered() const { return filtered_; }
   /// The lines that pass the filter, ridges first then valleys.
@@ -99,19 +117,25 @@ class Pipeline {
   PipelineOptions options_;
   Stage first_dirty_ = Stage::Presmooth;
   Mesh input_;
+  ComponentFrames frames_;
+  Mesh local_input_;  // input_ in the working frame
+  Mesh working_surface_;
   Mesh surface_;
   Topology topology_;
   double mean_edge_ = 0;
-  double noise_level_ = 0;
-  int presmooth_steps_ = 0;
+  std::vector<double> noise_levels_;  // per component
+  std::vector<int> presmooth_steps_;  // per component
+  bool presmoothed_ = false;
   Curvature curvature_;
   Extremality raw_extremality_;
   Extremality extremality_;
   Regularity regularity_;
   TraceResult traced_;
   SingularResult singular_;
-  std::vector<Polyline> joined_;
-  std::vector<Polyline> faired_;
+  std::vector<Polyline> joined_;          // working frame
+  std::vector<uint32_t> line_component_;  // of each joined line
+  std::vector<Polyline> faired_local_;
+  std::vector<Polyline> faired_;  // input's coordinates
   FilterResult filtered_;
   double seconds_[static_cast<int>(Stage::Count)] = {};
   double topology_seconds_ = 0;

@@ -113,6 +113,7 @@ std::string stats_json(const PipelineStats& stats) {
                                                    {"singular_min", stats.singular_min},
                                                    {"ridges", stats.ridges},
                                                    {"valleys", stats.valleys},
+                                                   {"components", stats.components},
                                                    {"presmooth_steps", static_cast<size_t>(stats.presmooth_steps)}};
   const std::pair<const char*, double> measures[] = {{"ridge_length", stats.ridge_length},
                                                      {"valley_length", stats.valley_length},

@@ -8,7 +8,8 @@
 
 namespace crestline {
 
-double surface_noise_level(const Mesh& mesh, const Topology& topology) {
+std::vector<double> surface_noise_levels(const Mesh& mesh, const Topology& topology,
+                                         const std::vector<uint32_t>& vertex_component, size_t components) {
   // Signed offset of each vertex from its neighbours' centroid along its
   // normal: curvature makes it vary smoothly, noise makes it jump. The jump,
   // offset minus its neighbours' mean offset, measures the noise alone.
@@ -39,15 +40,32 @@ double surface_noise_level(const Mesh& mesh, const Topology& topology) {
       offset_sum[e[0]] += offset[e[1]], ++valid_count[e[0]];
       offset_sum[e[1]] += offset[e[0]], ++valid_count[e[1]];
     }
-  std::vector<double> jumps;
-  jumps.reserve(nv);
+  // Each component's jumps, in units of its own mean edge length (as
+  // mean_edge_length measures it: over the triangles' sides).
+  std::vector<double> edge_sum(components, 0.0);
+  std::vector<size_t> edge_count(components, 0);
+  for (const Triangle& t : mesh.triangles) {
+    const uint32_t c = vertex_component[t[0]];
+    for (int k = 0; k < 3; ++k) edge_sum[c] += (mesh.positions[t[(k + 1) % 3]] - mesh.positions[t[k]]).norm();
+    edge_count[c] += 3;
+  }
+  std::vector<std::vector<double>> jumps(components);
   for (size_t v = 0; v < nv; ++v)
-    if (valid[v] && valid_count[v] > 0) jumps.push_back(std::abs(offset[v] - offset_sum[v] / valid_count[v]));
-  const double h = mean_edge_length(mesh);
-  if (jumps.empty() || !(h > 0)) return 0;
-  auto middle = jumps.begin() + jumps.size() / 2;
-  std::nth_element(jumps.begin(), middle, jumps.end());
-  return *middle / h;
+    if (valid[v] && valid_count[v] > 0)
+      jumps[vertex_component[v]].push_back(std::abs(offset[v] - offset_sum[v] / valid_count[v]));
+  std::vector<double> level(components, 0.0);
+  for (size_t c = 0; c < components; ++c) {
+    const double h = edge_count[c] ? edge_sum[c] / edge_count[c] : 0;
+    if (jumps[c].empty() || !(h > 0)) continue;
+    auto middle = jumps[c].begin() + jumps[c].size() / 2;
+    std::nth_element(jumps[c].begin(), middle, jumps[c].end());
+    level[c] = *middle / h;
+  }
+  return level;
+}
+
+double surface_noise_level(const Mesh& mesh, const Topology& topology) {
+  return surface_noise_levels(mesh, topology, std::vector<uint32_t>(mesh.positions.size(), 0), 1)[0];
 }
 
 int automatic_presmooth_steps(double noise_level) { return noise_level > kNoisySurface ? kNoisySurfaceSteps : 0; }
@@ -88,7 +106,8 @@ static std::vector<std::vector<uint32_t>> boundary_neighbours(const Topology& to
 // held, so corners do not round off and pull their sides inwards. See
 // presmooth_surface for why.
 static void smooth_boundary_curves(std::vector<Vec3>& x, const Mesh& mesh,
-                                   const std::vector<std::vector<uint32_t>>& along, double t, double h) {
+                                   const std::vector<std::vector<uint32_t>>& along, const std::vector<uint8_t>& moving,
+                                   double t, double h) {
   const size_t nv = x.size();
   // A corner is where the triangles' angles at a boundary vertex sum to less
   // than 135° (the boundary turns by more than 45° within the surface); the
@@ -111,7 +130,7 @@ static void smooth_boundary_curves(std::vector<Vec3>& x, const Mesh& mesh,
   for (uint32_t v = 0; v < nv; ++v) {
     const bool has_length =
         along[v].size() == 2 && (x[v] - x[along[v][0]]).norm() > shortest && (x[v] - x[along[v][1]]).norm() > shortest;
-    if (has_length && angle_sum[v] >= kCornerAngleSum)
+    if (has_length && moving[v] && angle_sum[v] >= kCornerAngleSum)
       row[v] = static_cast<uint32_t>(free_vertices.size()), free_vertices.push_back(v);
   }
   if (free_vertices.empty()) return;
@@ -141,17 +160,28 @@ static void smooth_boundary_curves(std::vector<Vec3>& x, const Mesh& mesh,
 }
 
 std::vector<Vec3> presmooth_surface(const Mesh& mesh, const Topology& topology, const PresmoothOptions& options) {
-  std::vector<Vec3> x = mesh.positions;
   const int steps = options.steps < 0 ? automatic_presmooth_steps(surface_noise_level(mesh, topology)) : options.steps;
-  if (steps <= 0 || options.time_step <= 0) return x;
+  return presmooth_surface(mesh, topology, options.time_step, std::vector<int>(mesh.positions.size(), steps));
+}
+
+std::vector<Vec3> presmooth_surface(const Mesh& mesh, const Topology& topology, double time_step,
+                                    const std::vector<int>& vertex_steps) {
+  std::vector<Vec3> x = mesh.positions;
+  const int steps = vertex_steps.empty() ? 0 : *std::max_element(vertex_steps.begin(), vertex_steps.end());
+  if (steps <= 0 || time_step <= 0) return x;
   const size_t nv = x.size();
   const double h = mean_edge_length(mesh);
-  const double t = options.time_step * h * h;
-  const std::vector<uint8_t>& fixed = topology.boundary_vertex;
+  const double t = time_step * h * h;
   const std::vector<std::vector<uint32_t>> along = boundary_neighbours(topology, nv);
+  std::vector<uint8_t> fixed(nv), moving(nv);
 
   for (int step = 0; step < steps; ++step) {
-    if (!along.empty()) smooth_boundary_curves(x, mesh, along, t, h);
+    // Vertices whose steps are done are held like boundary ones.
+    for (size_t v = 0; v < nv; ++v) {
+      moving[v] = vertex_steps[v] > step;
+      fixed[v] = topology.boundary_vertex[v] || !moving[v];
+    }
+    if (!along.empty()) smooth_boundary_curves(x, mesh, along, moving, t, h);
     // Weights from the current surface: mean-curvature flow, linearised per step.
     const CotanWeights cotan = cotan_weights(x, mesh, topology);
     // (M + tL) x' = M x on interior vertices; boundary ones (just smoothed

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
 #include <string>
 
@@ -10,6 +11,14 @@
 
 namespace crestline {
 namespace {
+
+constexpr double kMinDiagonal = 1e-140, kMaxDiagonal = 1e140;
+
+std::string short_number(double x) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.3g", x);
+  return buffer;
+}
 
 std::string count_text(size_t n, const char* singular, const char* plural) {
   return std::to_string(n) + " " + (n == 1 ? singular : plural);
@@ -185,10 +194,17 @@ Orientation orient(std::vector<Triangle>& tris, const std::vector<Vec3>& points,
     for (uint32_t t : members)
       for (uint32_t k = 0; k < 3; ++k) closed = closed && partner[3 * t + k] != kNone && !out.cut[3 * t + k];
     if (closed) {
+      // Signed volume about the first corner of the component, in units of
+      // its first edge: the same sign at any position and scale.
+      const Vec3 origin = points[tris[members[0]][0]];
+      const double unit = (points[tris[members[0]][1]] - origin).norm();
+      const double inv_unit = unit > 0 ? 1 / unit : 1;
       double volume = 0;
       for (uint32_t t : members) {
         const Triangle& f = tris[t];
-        const double v = points[f[0]].dot(points[f[1]].cross(points[f[2]]));
+        const Vec3 a = (points[f[0]] - origin) * inv_unit, b = (points[f[1]] - origin) * inv_unit,
+                   c = (points[f[2]] - origin) * inv_unit;
+        const double v = a.dot(b.cross(c));
         volume += (flipped[t] != invert) ? -v : v;
       }
       invert = invert != (volume < 0);
@@ -273,11 +289,19 @@ RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options)
   std::vector<uint8_t> weldable(nv, 0);
   for (uint32_t v : soup.indices)
     if (finite[v]) lo = lo.cwiseMin(points[v]), hi = hi.cwiseMax(points[v]), weldable[v] = 1;
-  const double diagonal = (hi - lo).norm();
+  // The diagonal measured without squaring raw coordinates (no underflow).
+  const double extent = (hi - lo).cwiseAbs().maxCoeff();
+  const double diagonal = extent > 0 && std::isfinite(extent) ? extent * ((hi - lo) / extent).norm() : extent;
   if (!std::isfinite(diagonal)) {
     if (!lo.allFinite()) throw Error(ErrorKind::InvalidInput, "no vertex of any triangle has finite coordinates.");
     throw Error(ErrorKind::InvalidInput, "the coordinates are too large to compute with (the bounding box overflows).");
   }
+  // Beyond this range products of two coordinate differences (areas, squared
+  // lengths) leave double precision; inside it every stage works (the
+  // pipeline computes in a frame scaled to the mesh, see mesh/frame.h).
+  if (diagonal > 0 && (diagonal < kMinDiagonal || diagonal > kMaxDiagonal))
+    throw Error(ErrorKind::InvalidInput, "the coordinates are out of range: the model measures " +
+                                             short_number(diagonal) + " units across, outside 1e-140 to 1e140.");
 
   const std::vector<uint32_t> rep =
       weld(points, weldable, lo, options.weld_tolerance * diagonal, report.welded_vertices);
@@ -285,7 +309,11 @@ RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options)
   // Triangles on welded vertices; drop non-finite, degenerate and duplicates.
   std::vector<Triangle> tris;
   tris.reserve(soup.triangle_count());
-  const double min_double_area = 1e-14 * diagonal * diagonal;
+  // Twice the area relative to the squared diagonal: sides are divided by the
+  // diagonal first, so the test means the same at every scale (at 1e-100 the
+  // squared cross product of raw coordinates would underflow to zero).
+  constexpr double kMinRelativeDoubleArea = 1e-14;
+  const double inv_diagonal = diagonal > 0 ? 1 / diagonal : 0;
   for (size_t t = 0; t < soup.triangle_count(); ++t) {
     Triangle f{rep[soup.indices[3 * t]], rep[soup.indices[3 * t + 1]], rep[soup.indices[3 * t + 2]]};
     if (!finite[f[0]] || !finite[f[1]] || !finite[f[2]]) {
@@ -293,7 +321,8 @@ RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options)
       continue;
     }
     if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2] ||
-        (points[f[1]] - points[f[0]]).cross(points[f[2]] - points[f[0]]).norm() <= min_double_area) {
+        !(((points[f[1]] - points[f[0]]) * inv_diagonal).cross((points[f[2]] - points[f[0]]) * inv_diagonal).norm() >
+          kMinRelativeDoubleArea)) {
       ++report.degenerate_triangles;
       continue;
     }

@@ -21,6 +21,10 @@ struct PresmoothOptions {
 /// mean edge length. Clean meshes measure 0.002–0.04 (CAD, analytic,
 /// scans like the feline), normal noise of σ = 0.1 edge about 0.075.
 double surface_noise_level(const Mesh& mesh, const Topology& topology);
+/// The same per component (vertex_component numbers them 0 … components−1),
+/// each in units of its own mean edge length.
+std::vector<double> surface_noise_levels(const Mesh& mesh, const Topology& topology,
+                                         const std::vector<uint32_t>& vertex_component, size_t components);
 
 /// Above this noise level the automatic choice pre-smooths.
 constexpr double kNoisySurface = 0.06;
@@ -41,6 +45,19 @@ int automatic_presmooth_steps(double noise_level);
 /// Laplacian, same time step), so open meshes do not shrink inwards, yet a
 /// noisy boundary does not pin its noise into a band along it (the lines of
 /// tests/quality broke 4–6 edges from the boundary when it was held fixed).
+///
+/// Expects coordinates like the Pipeline's working frame (mesh/frame.h):
+/// centred, mean edge about 1. Each step's solve stops at a residual relative
+/// to its right-hand side M·x (sparse_solver.h); far from the origin M·x is
+/// dominated by the translation, and on a tiny mesh by the held boundary rows
+/// (coefficient 1 against masses of order h²), so the solve stopped before it
+/// had smoothed anything: translated by 4.3e6 units or scaled by 1e-6 a noisy
+/// field got hundreds of spurious lines (issue 13).
 std::vector<Vec3> presmooth_surface(const Mesh& mesh, const Topology& topology, const PresmoothOptions& options);
+/// The same with a step count per vertex (the Pipeline's automatic choice,
+/// made per component): vertex v moves in the first vertex_steps[v] steps
+/// and is held afterwards. time_step as in PresmoothOptions.
+std::vector<Vec3> presmooth_surface(const Mesh& mesh, const Topology& topology, double time_step,
+                                    const std::vector<int>& vertex_steps);
 
 }  // namespace crestline

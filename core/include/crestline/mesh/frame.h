@@ -1,0 +1,49 @@
+#pragma once
+// The working frame: where every stage after repair computes.
+//
+// Each connected component is moved to its bounding-box centre and divided by
+// its own mean edge length, so that a stage sees the same numbers whether the
+// user's model is in millimetres or kilometres, sits at the origin or 10⁷
+// diagonals away, and whatever else is in the file:
+//
+//   user = centre[c] + scale[c] · local,   c = the vertex's component.
+//
+// In local coordinates every component's mean edge length is 1 and its
+// bounding box is centred on the origin (components overlap there; no stage
+// relates positions of different components). Lengths measured in local
+// coordinates are in mean edges, pointwise curvatures in 1 / mean edge, and
+// unitless quantities (line strength ∫|κ| ds, angles) are the same in both
+// frames. The Pipeline maps what the user sees (lines, the pre-smoothed
+// surface, the mean edge length) back with this frame.
+#include <cstdint>
+#include <vector>
+
+#include "crestline/mesh/mesh.h"
+
+namespace crestline {
+
+struct ComponentFrames {
+  /// Component of each vertex (vertex-connected through triangles), numbered
+  /// in order of first appearance among the triangles.
+  std::vector<uint32_t> vertex_component;
+  std::vector<Vec3> centre;            // per component, user coordinates
+  std::vector<double> scale;           // per component: its mean edge length, user units
+  std::vector<size_t> triangle_count;  // per component
+
+  size_t count() const { return centre.size(); }
+  /// The component with the most triangles (the first of equals): the one
+  /// single-valued statistics describe.
+  uint32_t largest() const;
+  Vec3 to_user(const Vec3& local, uint32_t component) const { return centre[component] + scale[component] * local; }
+};
+
+/// Splits a repaired mesh into components and measures each one's frame.
+/// Never overflows or underflows for finite coordinates whose bounding box is
+/// finite: the mean edge is measured on coordinates first divided by the
+/// component's extent.
+ComponentFrames component_frames(const Mesh& mesh);
+
+/// The mesh in local coordinates (same connectivity).
+Mesh to_local(const Mesh& mesh, const ComponentFrames& frames);
+
+}  // namespace crestline
