@@ -172,8 +172,15 @@ void check_numbers(const Input& in, std::string_view text, const LineOf& line_of
       if (!face) continue;
       const std::string_view index = word.substr(0, word.find('/'));
       uint64_t value = 0;
-      for (size_t k = sign; k < index.size() && index[k] >= '0' && index[k] <= '9' && value <= kMaxGltfInteger; ++k) {
+      size_t k = sign;
+      for (; k < index.size() && index[k] >= '0' && index[k] <= '9' && value <= kMaxGltfInteger; ++k) {
         value = value * 10 + uint64_t(index[k] - '0');
+      }
+      // atoi would read "1e300" or "2.5" as a smaller index without a word.
+      if (k == sign || (k < index.size() && value <= uint64_t(INT32_MAX))) {
+        fail(ErrorKind::InvalidInput, in,
+             "the face on line " + std::to_string(line_of(start)) + " has the vertex index " + quote(index) +
+                 ", which is not a whole number.");
       }
       if (value > uint64_t(INT32_MAX)) {
         fail(ErrorKind::InvalidInput, in,

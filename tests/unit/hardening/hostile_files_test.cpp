@@ -182,6 +182,10 @@ TEST_CASE("integers read from files are range-checked in 64 bits", "[hardening][
         "wrap.obj: the face on line 5 uses vertex index '4294967299', which is out of range (at most 2147483647).");
   CHECK(contains(refusal("digits.obj", square + "f 1 2 12345678901234567890/1/1\n"), "'12345678901234567890'"));
   CHECK(contains(refusal("negative.obj", square + "f -1 -2 -4294967299\n"), "'-4294967299'"));
+  // atoi read "1e300" as 1 (a degenerate face) and "x" as 0.
+  CHECK(std::string(refusal("float.obj", square + "f 1 2 1e300\n").what()) ==
+        "float.obj: the face on line 5 has the vertex index '1e300', which is not a whole number.");
+  CHECK(contains(refusal("word.obj", square + "f 1 2 x\n"), "'x', which is not a whole number"));
   // glTF: byteOffset 2^63 became 0 in the 32-bit WASM build.
   std::string offset = triangle_gltf(data_uri_buffer());
   offset.replace(offset.find(R"("buffer":0,)"), 11, R"("buffer":0,"byteOffset":9223372036854775808,)");
