@@ -1,4 +1,4 @@
-// crestline INPUT -o OUT.{obj,json,svg}: read → repair → pipeline → write.
+// crestline INPUT -o OUT.{obj,json,svg,glb}: read → repair → pipeline → write.
 // Exit codes: 0 success, 1 a problem with a file or the computation, 2 a
 // usage error, 130 interrupted. On failure no output file is left behind.
 #include <chrono>
@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <iostream>
 #include <string>
+#include <vector>
 
 #include "crestline/error.h"
 #include "crestline/io/read_mesh.h"
@@ -74,7 +75,7 @@ std::string render(const CliOptions& options, const Pipeline& pipeline) {
     case OutputFormat::Json:
       return io::write_lines_json(pipeline.lines(), pipeline.stats());
     case OutputFormat::Svg:
-      return io::write_lines_svg(pipeline.lines(), pipeline.input_mesh(), pipeline.topology(), options.svg);
+      return io::write_lines_svg(pipeline.lines(), pipeline.input_mesh(), pipeline.topology(), options.settings.svg);
     case OutputFormat::Glb: {
       const std::vector<uint8_t> bytes =
           io::write_glb(options.with_mesh ? &pipeline.input_mesh() : nullptr, pipeline.lines());
@@ -115,7 +116,7 @@ int run(const CliOptions& options) {
     }
     if (options.repair_report) print_repair_report(options.input, repaired.report, progress);
 
-    PipelineOptions pipeline_options = options.pipeline;
+    PipelineOptions pipeline_options = options.settings.pipeline;
     if (!options.weights.empty()) {
       file = options.weights;
       pipeline_options.smoothing.vertex_weights = read_vertex_weights(options.weights, soup, repaired.mesh);
@@ -153,7 +154,11 @@ int run(const CliOptions& options) {
 int main(int argc, char** argv) {
   using namespace crestline::cli;
   CliOptions options;
-  if (const int code = parse_options(argc, argv, options); code >= 0) return code;
+  const ParseOutcome parsed = parse_arguments(std::vector<std::string>(argv + 1, argv + argc), options);
+  if (parsed.exit_code >= 0) {
+    (parsed.exit_code == kExitOk ? std::cout : std::cerr) << parsed.text;
+    return parsed.exit_code;
+  }
   Progress::catch_interrupt();
   return run(options);
 }

@@ -1,18 +1,37 @@
 #include "options.h"
 
-#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cctype>
-#include <cstdio>
-#include <iostream>
-#include <map>
 
 namespace crestline::cli {
 namespace {
 
-const std::map<std::string, io::View> kViews = {{"front", io::View::Front}, {"back", io::View::Back},
-                                                {"left", io::View::Left},   {"right", io::View::Right},
-                                                {"top", io::View::Top},     {"bottom", io::View::Bottom}};
+/// The command's own options: files and output choices. Everything else is
+/// a parameter of the table.
+enum class Own { Help, Output, Weights, WithMesh, Stats, RepairReport, Threads, Quiet };
+struct OwnOption {
+  Own id;
+  const char* short_name;  // "" for none
+  const char* name;
+  const char* value;  // "" for a flag without value
+  const char* help;
+};
+const OwnOption kOwn[] = {
+    {Own::Help, "-h", "--help", "", "Print this help and exit"},
+    {Own::Output, "-o", "--output", "FILE",
+     "Output lines (required); the format follows the extension: .obj, .json, .svg or .glb"},
+    {Own::Weights, "", "--weights", "FILE",
+     "Per-vertex smoothing strength for inhomogeneous smoothing: a text file with one number per vertex and "
+     "line (0 freezes a vertex, 1 is the global time step)"},
+    {Own::WithMesh, "", "--with-mesh", "",
+     "Also write the welded surface into the output, so it opens in any viewer (.obj and .glb only)"},
+    {Own::Stats, "", "--stats", "", "Print one JSON object of statistics and per-stage seconds on stdout"},
+    {Own::RepairReport, "", "--repair-report", "", "Print every count of the mesh repair on stderr, including zeros"},
+    {Own::Threads, "", "--threads", "N",
+     "Threads for the stages that are linear in the mesh; 0: every core; the lines are the same for any count "
+     "(0 to 1024; default 0)"},
+    {Own::Quiet, "-q", "--quiet", "", "No notes and no progress on stderr; errors only"},
+};
 
 std::string lowercase_extension(const std::string& path) {
   const size_t slash = path.find_last_of("/\\");
@@ -23,114 +42,193 @@ std::string lowercase_extension(const std::string& path) {
   return ext;
 }
 
+/// "  --smoothing-steps N" padded to the help column, then the text wrapped
+/// at 100 columns.
+void add_row(std::string& out, const std::string& left, const std::string& text) {
+  constexpr size_t kColumn = 32, kWidth = 100;
+  const std::string indent(kColumn, ' ');
+  std::string line = "  " + left;
+  line += line.size() < kColumn ? std::string(kColumn - line.size(), ' ') : "\n" + indent;
+  size_t column = line.size() - (line.rfind('\n') == std::string::npos ? 0 : line.rfind('\n') + 1);
+  out += line;
+  size_t start = 0;
+  bool first = true;
+  while (start < text.size()) {
+    size_t end = text.find(' ', start);
+    if (end == std::string::npos) end = text.size();
+    const std::string word = text.substr(start, end - start);
+    if (!first && column + 1 + word.size() > kWidth) {
+      out += "\n" + indent;
+      column = kColumn;
+    } else if (!first) {
+      out += ' ';
+      ++column;
+    }
+    out += word;
+    column += word.size();
+    first = false;
+    start = end + 1;
+  }
+  out += "\n";
+}
+
+std::string value_name(const Parameter& p) {
+  switch (p.kind) {
+    case ParameterKind::Integer:
+      return " N";
+    case ParameterKind::Number:
+      return " X";
+    case ParameterKind::Choice:
+      return " NAME";
+    default:
+      return "";
+  }
+}
+
+/// "… (mean edge lengths; 0 to 10; default 0.25)".
+std::string parameter_help(const Parameter& p) {
+  std::string details;
+  if (*p.unit) details += std::string(p.unit) + "; ";
+  const std::string range = describe_range(p);
+  if (!range.empty()) details += range + "; ";
+  details += "default " + format_parameter(p, p.get(Settings{}));
+  return std::string(p.help) + " (" + details + ")";
+}
+
+struct UsageFailure {
+  std::string sentence;
+};
+
+[[noreturn]] void fail(std::string sentence) { throw UsageFailure{std::move(sentence)}; }
+
+/// --threads is no parameter of the pipeline (nothing re-runs when it
+/// changes), but its value is checked like one. Its get/set are unused.
+const Parameter kThreads{"threads", "--threads", "run", ParameterKind::Integer, false,   0,      1024,
+                         {},        "",          "",    Stage::Count,           nullptr, nullptr};
+
 }  // namespace
 
-int parse_options(int argc, char** argv, CliOptions& o) {
-  CLI::App app{
+std::string help_text(const std::string& program) {
+  std::string out =
       "crestline: smooth feature lines (ridges and valleys) on a triangle mesh, after\n"
       "Hildebrandt, Polthier and Wardetzky, Smooth Feature Lines on Surface Meshes (SGP 2005).\n"
-      "Lengths and times are unitless: relative to the mesh's mean edge length."};
-  app.option_defaults()->always_capture_default();
-  app.get_formatter()->column_width(34);
+      "Lengths and times are unitless: relative to the mesh's mean edge length.\n\n"
+      "Usage: " +
+      program + " INPUT -o OUTPUT [options]\n\n";
+  add_row(out, "INPUT", "Input mesh: .obj, .ply, .stl, .off, .gltf or .glb");
+  for (const OwnOption& o : kOwn) {
+    std::string left = *o.short_name ? std::string(o.short_name) + "," + o.name : std::string(o.name);
+    if (*o.value) left += std::string(" ") + o.value;
+    add_row(out, left, o.help);
+  }
+  for (const char* group : {"pipeline", "svg"}) {
+    out += std::string("\n") + (std::string(group) == "svg" ? "SVG" : "Pipeline") + ":\n";
+    for (const Parameter& p : parameters())
+      if (std::string(p.group) == group) add_row(out, p.flag + value_name(p), parameter_help(p));
+  }
+  return out;
+}
 
-  app.add_option("input", o.input, "Input mesh: .obj, .ply, .stl, .off, .gltf or .glb")->required();
-  app.add_option("-o,--output", o.output, "Output lines; the format follows the extension: .obj, .json, .svg or .glb")
-      ->required();
-
-  PipelineOptions& p = o.pipeline;
-  // Every pipeline parameter but the threshold and the pre-smoothing steps
-  // (negative: automatic) is a non-negative number.
-  auto parameter = [&app](const char* name, auto& value, const char* help) {
-    return app.add_option(name, value, help)->check(CLI::NonNegativeNumber)->group("Pipeline");
-  };
-  char noisy[32];
-  std::snprintf(noisy, sizeof noisy, "%g", kNoisySurface);
-  app.add_option("--presmooth-steps", p.presmooth.steps,
-                 "Implicit mean-curvature-flow steps on the surface before curvature (0: off); negative: automatic, " +
-                     std::to_string(kNoisySurfaceSteps) + " steps when the measured noise exceeds " + noisy +
-                     " mean edge lengths, else none")
-      ->group("Pipeline");
-  parameter("--presmooth-time-step", p.presmooth.time_step,
-            "Time step of each presmoothing step, in mean edge lengths squared");
-  parameter("--smoothing-steps", p.smoothing.steps, "Implicit extremality smoothing steps (paper 5.1; 0: off)");
-  parameter("--smoothing-time-step", p.smoothing.time_step,
-            "Time step of each extremality smoothing step, in mean edge lengths squared");
-  app.add_option("--weights", o.weights,
-                 "Per-vertex smoothing strength for inhomogeneous smoothing: a text file with one "
-                 "number per vertex and line (0 freezes a vertex, 1 is the global time step)")
-      ->check(CLI::ExistingFile)
-      ->group("Pipeline");
-  parameter("--boundary-rings", p.trace.boundary_rings,
-            "Vertex rings next to the mesh boundary where no lines are traced");
-  parameter("--fairing-bound", p.fairing.hausdorff_bound,
-            "Largest distance faired lines may move, in mean edge lengths (0: no fairing)");
-  parameter("--fairing-iterations", p.fairing.iterations, "Line fairing iterations (paper 5.2)");
-  app.add_option("--threshold", p.filter.threshold,
-                 "Drop lines whose strength (integral of |curvature| along the line) is below this; "
-                 "negative: chosen automatically from the mesh, also dropping weak lines (strength < 1) "
-                 "shorter than 6 mean edge lengths")
-      ->group("Pipeline");
-
-  std::string view = "front";
-  app.add_option("--view", view, "SVG view direction (front looks along -z with +y up)")
-      ->check(CLI::IsMember([] {
-        std::vector<std::string> names;
-        for (const auto& entry : kViews) names.push_back(entry.first);
-        return names;
-      }()))
-      ->group("SVG");
-  app.add_option("--svg-width", o.svg.width, "SVG size in pixels of the longer side")
-      ->check(CLI::Range(16, 100000))
-      ->group("SVG");
-  app.add_option("--stroke-width", o.svg.stroke_width, "SVG line width in pixels")
-      ->check(CLI::PositiveNumber)
-      ->group("SVG");
-  app.add_flag("--silhouette", o.svg.silhouette, "Also draw the surface's outline in the SVG")->group("SVG");
-  app.add_option("--svg-surface-tolerance", o.svg.surface_tolerance,
-                 "How far lines may lie off the surface and still show, in mean edge lengths "
-                 "(faired lines move off it)")
-      ->check(CLI::NonNegativeNumber)
-      ->group("SVG");
-
-  app.add_flag("--with-mesh", o.with_mesh,
-               "Also write the welded surface into the output, so it opens in any viewer (.obj and .glb only)");
-  app.add_flag("--stats", o.stats, "Print one JSON object of statistics and per-stage seconds on stdout");
-  app.add_flag("--repair-report", o.repair_report, "Print every count of the mesh repair on stderr, including zeros");
-  app.add_option("--threads", o.threads,
-                 "Threads for the stages that are linear in the mesh (0: every core); the lines are the same for any "
-                 "count")
-      ->check(CLI::NonNegativeNumber);
-  app.add_flag("-q,--quiet", o.quiet, "No notes and no progress on stderr; errors only");
-
+ParseOutcome parse_arguments(const std::vector<std::string>& args, CliOptions& o, const std::string& program) {
+  const std::string hint = " (see " + program + " --help).";
   try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::cerr << "crestline: " << e.what() << " (see crestline --help)\n";
-    return 2;
-  }
-  o.svg.view = kViews.at(view);
+    bool options_ended = false;
+    for (size_t i = 0; i < args.size(); ++i) {
+      const std::string& arg = args[i];
+      if (options_ended || arg.size() < 2 || arg[0] != '-') {
+        if (!o.input.empty()) fail("unexpected argument \"" + arg + "\"; give one input mesh" + hint);
+        o.input = arg;
+        continue;
+      }
+      if (arg == "--") {
+        options_ended = true;
+        continue;
+      }
+      // --flag=value or --flag value.
+      std::string name = arg, inline_value;
+      bool has_inline = false;
+      if (const size_t eq = arg.find('='); arg.rfind("--", 0) == 0 && eq != std::string::npos) {
+        name = arg.substr(0, eq);
+        inline_value = arg.substr(eq + 1);
+        has_inline = true;
+      }
+      auto value = [&]() -> std::string {
+        if (has_inline) return inline_value;
+        if (i + 1 >= args.size()) fail(name + " needs a value" + hint);
+        return args[++i];
+      };
+      auto no_value = [&] {
+        if (has_inline) fail(name + " takes no value" + hint);
+      };
 
-  const std::string ext = lowercase_extension(o.output);
-  if (ext == ".obj")
-    o.format = OutputFormat::Obj;
-  else if (ext == ".json")
-    o.format = OutputFormat::Json;
-  else if (ext == ".svg")
-    o.format = OutputFormat::Svg;
-  else if (ext == ".glb")
-    o.format = OutputFormat::Glb;
-  else {
-    std::cerr << "crestline: " << o.output
-              << ": unsupported output format; use an output name ending in .obj, .json, .svg or .glb.\n";
-    return 2;
+      const OwnOption* own = nullptr;
+      for (const OwnOption& candidate : kOwn)
+        if (name == candidate.name || name == candidate.short_name) own = &candidate;
+      if (own) {
+        switch (own->id) {
+          case Own::Help:
+            return {kExitOk, help_text(program)};
+          case Own::Output:
+            o.output = value();
+            break;
+          case Own::Weights:
+            o.weights = value();
+            break;
+          case Own::WithMesh:
+            no_value(), o.with_mesh = true;
+            break;
+          case Own::Stats:
+            no_value(), o.stats = true;
+            break;
+          case Own::RepairReport:
+            no_value(), o.repair_report = true;
+            break;
+          case Own::Threads:
+            try {
+              o.threads = static_cast<int>(parse_parameter(kThreads, value()).number);
+            } catch (const UsageError& e) {
+              fail(e.what());
+            }
+            break;
+          case Own::Quiet:
+            no_value(), o.quiet = true;
+            break;
+        }
+        continue;
+      }
+      const Parameter* p = find_parameter_by_flag(name);
+      if (!p) fail("unknown option " + name + hint);
+      if (p->kind == ParameterKind::Boolean && !has_inline) {
+        ParameterValue on;
+        on.number = 1;
+        p->set(o.settings, on);
+        continue;
+      }
+      try {
+        p->set(o.settings, parse_parameter(*p, value()));
+      } catch (const UsageError& e) {
+        fail(e.what());
+      }
+    }
+    if (o.input.empty() || o.output.empty()) fail("an INPUT mesh and -o OUTPUT are required" + hint);
+
+    const std::string ext = lowercase_extension(o.output);
+    if (ext == ".obj")
+      o.format = OutputFormat::Obj;
+    else if (ext == ".json")
+      o.format = OutputFormat::Json;
+    else if (ext == ".svg")
+      o.format = OutputFormat::Svg;
+    else if (ext == ".glb")
+      o.format = OutputFormat::Glb;
+    else
+      fail(o.output + ": unsupported output format; use an output name ending in .obj, .json, .svg or .glb.");
+    if (o.with_mesh && o.format != OutputFormat::Obj && o.format != OutputFormat::Glb)
+      fail(o.output + ": --with-mesh needs an .obj or .glb output.");
+  } catch (const UsageFailure& failure) {
+    return {kExitUsage, "crestline: " + failure.sentence + "\n"};
   }
-  if (o.with_mesh && o.format != OutputFormat::Obj && o.format != OutputFormat::Glb) {
-    std::cerr << "crestline: " << o.output << ": --with-mesh needs an .obj or .glb output.\n";
-    return 2;
-  }
-  return -1;
+  return {};
 }
 
 }  // namespace crestline::cli

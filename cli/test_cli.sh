@@ -147,6 +147,54 @@ expect 2 "unknown option" -- "$work/wave.obj" -o "$work/out.obj" --no-such-optio
 expect 2 "missing -o" -- "$work/wave.obj"
 expect 2 "bad view" -- "$work/wave.obj" -o "$work/out.svg" --view sideways
 expect 2 "negative steps" -- "$work/wave.obj" -o "$work/out.obj" --smoothing-steps -1
+one_line_naming "negative steps" "--smoothing-steps must be a whole number from 0 to 50"
+
+# Every count and time step has a range (the parameter table): outside it, or
+# not a number (nan too), is a usage error naming the option, before the mesh
+# is read.
+long_number=$(printf '9%.0s' $(seq 309))
+while read -r flag value; do
+  expect 2 "$flag $value" -- "$work/wave.obj" -o "$work/out.obj" "$flag" "$value"
+  one_line_naming "$flag $value" "crestline: ${flag%%=*} must be "
+  absent "$flag $value" "$work/out.obj"
+done << EOF
+--smoothing-steps 1000000000
+--presmooth-steps 1000000000
+--fairing-iterations 1000000000
+--smoothing-steps 2.5
+--smoothing-steps 0x10
+--smoothing-steps auto
+--presmooth-time-step -1
+--presmooth-time-step nan
+--presmooth-time-step 11
+--smoothing-time-step inf
+--threshold nan
+--threshold -1
+--threshold 1e
+--fairing-bound $long_number
+--boundary-rings 21
+--short-line-length -0.5
+--svg-width 15
+--stroke-width 0
+--view sideways
+EOF
+expect 2 "309-digit value" -- "$work/wave.obj" -o "$work/out.obj" --fairing-bound "$long_number"
+[ "$(wc -c < "$work/stderr")" -lt 160 ] || fail "309-digit value: the message repeats it: $(cat "$work/stderr")"
+expect 2 "missing value" -- "$work/wave.obj" -o "$work/out.obj" --smoothing-steps
+one_line_naming "missing value" "--smoothing-steps needs a value"
+expect 2 "a flag with a wrong value" -- "$work/wave.obj" -o "$work/out.svg" --silhouette=maybe
+one_line_naming "a flag with a wrong value" "--silhouette must be true or false"
+# The bounds themselves are accepted, and "auto" where a parameter has it.
+expect 0 "range ends" -- "$work/wave.obj" -o "$work/ends.obj" --quiet --smoothing-steps 0 --presmooth-steps 0 \
+  --fairing-iterations 1000 --boundary-rings 0 --threshold auto --presmooth-time-step 10
+expect 0 "--threshold inf keeps no line" -- "$work/wave.obj" -o "$work/none.obj" --quiet --threshold inf --stats
+grep -q '"ridges":0,"valleys":0' "$work/stdout" || fail "--threshold inf kept lines: $(cat "$work/stdout")"
+
+# The automatic threshold and the same threshold set by hand keep the same lines.
+expect 0 "automatic threshold" -- "$work/wave.obj" -o "$work/auto.obj" --quiet --stats
+used=$(sed -n 's/.*"threshold":\([^,}]*\).*/\1/p' "$work/stdout")
+expect 0 "manual threshold" -- "$work/wave.obj" -o "$work/manual.obj" --quiet --threshold "$used"
+cmp -s "$work/auto.obj" "$work/manual.obj" || fail "threshold $used by hand keeps other lines than the automatic one"
 
 # --help documents every option with its default.
 expect 0 "--help" -- --help
@@ -155,8 +203,10 @@ for option in presmooth-steps presmooth-time-step smoothing-steps smoothing-time
   weights with-mesh stats quiet repair-report; do
   grep -q -- "--$option" "$work/stdout" || fail "--help does not document --$option"
 done
-grep -- '--smoothing-steps' "$work/stdout" | grep -q '=3' || fail "--help: no default for --smoothing-steps"
-grep -- '--threshold' "$work/stdout" | grep -q '=-1' || fail "--help: no default for --threshold"
+help=$(tr -s ' \n' ' ' < "$work/stdout")
+grep -qF -- '--smoothing-steps N Implicit extremality smoothing steps (paper 5.1); 0: off (0 to 50; default 3)' <<< "$help" ||
+  fail "--help: no range or default for --smoothing-steps"
+grep -qF -- '(auto or 0 to inf; default auto)' <<< "$help" || fail "--help: no range or default for --threshold"
 
 if [ "$failures" -ne 0 ]; then
   echo "$failures check(s) failed"

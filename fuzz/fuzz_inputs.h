@@ -161,11 +161,11 @@ inline PipelineInput decode_pipeline_input(const uint8_t* data, size_t size) {
   const double scale = scales[(transform & 15) % (sizeof scales / sizeof scales[0])];
   const double shift = shifts[(transform >> 4) % (sizeof shifts / sizeof shifts[0])];
   for (double& c : out.soup.positions) c = c * scale + shift;
-  out.options.presmooth.steps = option_bits & 1;
+  out.options.presmooth.steps = static_cast<int>(option_bits & 1);
   out.options.smoothing.steps = (option_bits >> 1) & 3;
   out.options.trace.boundary_rings = (option_bits >> 3) & 3;
   out.options.fairing.iterations = (option_bits >> 5) & 1 ? 5 : 30;
-  out.options.filter.threshold = (option_bits >> 6) & 1 ? 0.0 : -1.0;
+  if ((option_bits >> 6) & 1) out.options.filter.threshold = 0.0;  // else automatic
   out.repair.weld_tolerance = (option_bits >> 7) & 1 ? 0.0 : 1e-7;
   return out;
 }

@@ -11,6 +11,7 @@ EMSCRIPTEN_BINDINGS(crestline) {
       .function("loadFile", &Session::loadFile)
       .function("setOptions", &Session::setOptions)
       .function("options", &Session::options)
+      .function("describe", &Session::describe)
       .function("run", &Session::run)
       .function("surface", &Session::surface)
       .function("lines", &Session::lines)

@@ -167,27 +167,92 @@ val Session::adopt(TriangleSoup soup, const RepairOptions& repair) {
   out.set("report", report_value(repaired.report));
   out.set("notes", notes);
   pipeline_ = std::make_unique<Pipeline>(std::move(repaired.mesh));
+  pipeline_->set_options(settings_.pipeline);  // weights belong to the last mesh
   return out;
 }
 
+namespace {
+
+/// A JavaScript value for parameter p, checked against the table; throws
+/// UsageError naming `key`.
+ParameterValue value_from_js(const Parameter& p, const val& v, const std::string& key) {
+  const std::string type = v.typeOf().as<std::string>();
+  if (type == "string") return parse_parameter(p, v.as<std::string>(), key);
+  ParameterValue out;
+  if (type == "boolean" && p.kind == ParameterKind::Boolean)
+    out.number = v.as<bool>() ? 1 : 0;
+  else if (type == "number" && p.kind != ParameterKind::Choice)
+    out.number = v.as<double>();
+  else
+    return parse_parameter(p, type == "undefined" || type == "object" ? type : v.call<std::string>("toString"), key);
+  check_parameter(p, out, key);
+  return out;
+}
+
+val value_to_js(const Parameter& p, const ParameterValue& v) {
+  if (v.automatic) return val("auto");
+  switch (p.kind) {
+    case ParameterKind::Boolean:
+      return val(v.number != 0);
+    case ParameterKind::Choice:
+      return val(v.choice);
+    default:
+      return val(v.number);
+  }
+}
+
+const char* kind_name(ParameterKind kind) {
+  switch (kind) {
+    case ParameterKind::Integer:
+      return "integer";
+    case ParameterKind::Number:
+      return "number";
+    case ParameterKind::Boolean:
+      return "boolean";
+    case ParameterKind::Choice:
+      return "choice";
+  }
+  return "";
+}
+
+/// Applies every key of `o` to a copy of `settings`: all or nothing.
+Settings with_options(Settings settings, const val& o, std::vector<double>* weights, bool* weights_given) {
+  const val keys = val::global("Object").call<val>("keys", o);
+  const size_t count = keys["length"].as<size_t>();
+  for (size_t i = 0; i < count; ++i) {
+    const std::string key = keys[i].as<std::string>();
+    const val v = o[key];
+    if (key == "vertexWeights") {
+      *weights_given = true;
+      if (v.isNull() || v.isUndefined())
+        weights->clear();
+      else
+        *weights = copy_in<double>(v);
+      continue;
+    }
+    const Parameter* p = find_parameter_by_key(key);
+    if (!p) throw UsageError("there is no option \"" + key + "\".");
+    p->set(settings, value_from_js(*p, v, key));
+  }
+  return settings;
+}
+
+}  // namespace
+
 val Session::setOptions(val o) {
-  if (!pipeline_) return error_value(error_kind_name(ErrorKind::InvalidInput), "no mesh is loaded");
   return guarded(triangles_, [&] {
-    PipelineOptions p = pipeline_->options();
-    read(o, "presmoothSteps", p.presmooth.steps);
-    read(o, "presmoothTimeStep", p.presmooth.time_step);
-    read(o, "smoothingSteps", p.smoothing.steps);
-    read(o, "smoothingTimeStep", p.smoothing.time_step);
-    read(o, "boundaryRings", p.trace.boundary_rings);
-    read(o, "hausdorffBound", p.fairing.hausdorff_bound);
-    read(o, "fairingIterations", p.fairing.iterations);
-    read(o, "threshold", p.filter.threshold);
-    const val weights = o["vertexWeights"];
-    if (weights.isNull())
-      p.smoothing.vertex_weights.clear();
-    else if (!weights.isUndefined())
-      p.smoothing.vertex_weights = copy_in<double>(weights);
-    pipeline_->set_options(p);
+    std::vector<double> weights;
+    bool weights_given = false;
+    try {
+      settings_ = with_options(settings_, o, &weights, &weights_given);
+    } catch (const UsageError& e) {
+      return error_value("usage", e.what());
+    }
+    if (pipeline_) {
+      PipelineOptions p = settings_.pipeline;
+      p.smoothing.vertex_weights = weights_given ? weights : pipeline_->options().smoothing.vertex_weights;
+      pipeline_->set_options(p);
+    }
     val out = val::object();
     out.set("ok", true);
     return out;
@@ -195,20 +260,39 @@ val Session::setOptions(val o) {
 }
 
 val Session::options() const {
-  // Without a mesh: the defaults, so JavaScript never keeps copies of them.
-  const PipelineOptions defaults;
-  const PipelineOptions& p = pipeline_ ? pipeline_->options() : defaults;
   val o = val::object();
-  o.set("presmoothSteps", p.presmooth.steps);
-  o.set("presmoothTimeStep", p.presmooth.time_step);
-  o.set("smoothingSteps", p.smoothing.steps);
-  o.set("smoothingTimeStep", p.smoothing.time_step);
-  o.set("boundaryRings", p.trace.boundary_rings);
-  o.set("hausdorffBound", p.fairing.hausdorff_bound);
-  o.set("fairingIterations", p.fairing.iterations);
-  o.set("threshold", p.filter.threshold);
-  o.set("weighted", !p.smoothing.vertex_weights.empty());
+  for (const Parameter& p : parameters()) o.set(p.key, value_to_js(p, p.get(settings_)));
+  o.set("weighted", pipeline_ && !pipeline_->options().smoothing.vertex_weights.empty());
   return o;
+}
+
+val Session::describe() const {
+  val table = val::array();
+  const Settings defaults;
+  for (const Parameter& p : parameters()) {
+    val d = val::object();
+    d.set("key", std::string(p.key));
+    d.set("flag", std::string(p.flag));
+    d.set("group", std::string(p.group));
+    d.set("kind", std::string(kind_name(p.kind)));
+    d.set("automatic", p.may_be_automatic);
+    d.set("default", value_to_js(p, p.get(defaults)));
+    if (p.kind == ParameterKind::Integer || p.kind == ParameterKind::Number) {
+      d.set("min", p.min);
+      d.set("max", p.max);
+    } else {
+      d.set("min", val::null());
+      d.set("max", val::null());
+    }
+    val choices = val::array();
+    for (const std::string& c : p.choices) choices.call<void>("push", c);
+    d.set("choices", choices);
+    d.set("unit", std::string(p.unit));
+    d.set("help", std::string(p.help));
+    d.set("stage", p.stage == Stage::Count ? val::null() : val(std::string(stage_name(p.stage))));
+    table.call<void>("push", d);
+  }
+  return table;
 }
 
 val Session::run(val progress) {
@@ -328,23 +412,17 @@ std::string Session::statsJson() const { return pipeline_ ? io::stats_json(pipel
 
 val Session::linesSvg(val o) const {
   if (!pipeline_) return error_value(error_kind_name(ErrorKind::InvalidInput), "no mesh is loaded");
-  static const char* kViews[] = {"front", "back", "left", "right", "top", "bottom"};
-  io::SvgOptions options;
-  std::string view = "front";
-  read(o, "view", view);
-  read(o, "width", options.width);
-  read(o, "strokeWidth", options.stroke_width);
-  read(o, "silhouette", options.silhouette);
-  bool known = false;
-  for (int v = 0; v < 6; ++v) {
-    if (view == kViews[v]) {
-      options.view = static_cast<io::View>(v);
-      known = true;
-    }
+  Settings settings;
+  try {
+    std::vector<double> weights;
+    bool weights_given = false;
+    settings = o.isUndefined() || o.isNull() ? settings_ : with_options(settings_, o, &weights, &weights_given);
+  } catch (const UsageError& e) {
+    return error_value("usage", e.what());
   }
-  if (!known) return error_value(error_kind_name(ErrorKind::InvalidInput), "unknown view \"" + view + "\"");
-  return guarded(triangles_,
-                 [&] { return val(io::write_lines_svg(pipeline_->lines(), pipeline_->input_mesh(), options)); });
+  return guarded(triangles_, [&] {
+    return val(io::write_lines_svg(pipeline_->lines(), pipeline_->input_mesh(), pipeline_->topology(), settings.svg));
+  });
 }
 
 }  // namespace crestline::wasm

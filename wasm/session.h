@@ -9,6 +9,7 @@
 #include <string>
 
 #include "crestline/mesh/repair.h"
+#include "crestline/parameters.h"
 #include "crestline/pipeline.h"
 
 namespace crestline::wasm {
@@ -30,11 +31,23 @@ class Session {
   /// the browser decodes those.
   val loadFile(std::string name, val bytes, val companions, val options);
 
-  /// Partial PipelineOptions in camelCase (see options()); unknown keys are
-  /// ignored, missing ones keep their value. Cheap: only marks stages dirty.
+  /// Sets parameters of the table (crestline/parameters.h) by their keys;
+  /// missing ones keep their value. Values: numbers, booleans, a choice's
+  /// name, or "auto" where describe() says `automatic`. Also `vertexWeights`
+  /// (Float64Array, one per vertex, or null). All or nothing: an unknown key
+  /// or a value outside its range returns {error, kind: "usage"} naming the
+  /// key, and changes nothing. Works before a mesh is loaded (the settings
+  /// carry over to every mesh loaded later; weights do not). Cheap: only
+  /// marks stages dirty.
   val setOptions(val options);
-  /// The current PipelineOptions as a plain object.
+  /// Every parameter's current value by key ("auto" for the automatic mode),
+  /// plus `weighted`. Without a mesh: the defaults, unless set.
   val options() const;
+  /// The parameter table for JavaScript: an array, in --help's order, of
+  /// {key, flag, group, kind: "integer"|"number"|"boolean"|"choice",
+  /// automatic (may be "auto"), default, min, max, choices, unit, help,
+  /// stage (the first stage a change re-runs, or null)}. See wasm/README.md.
+  val describe() const;
 
   /// Runs the dirty stages. progress(stageName, fraction) may return false
   /// to cancel. Returns {ok, ran:[stage names], stats} or {cancelled} or
@@ -57,9 +70,10 @@ class Session {
   val fields() const;
   val stats() const;
   /// The filtered lines in the native CLI's formats (the shared writers):
-  /// OBJ, JSON with stats, the stats JSON alone, and SVG with options
-  /// {view: "front"|"back"|"left"|"right"|"top"|"bottom", width, strokeWidth,
-  /// silhouette} (returns the text or {error}).
+  /// OBJ, JSON with stats, the stats JSON alone, and SVG drawn with the
+  /// session's SVG parameters (view, svgWidth, strokeWidth, silhouette,
+  /// svgSurfaceTolerance), overridden by `options` with the same keys
+  /// (returns the text or {error}).
   std::string linesObj() const;
   std::string linesJson() const;
   std::string statsJson() const;
@@ -70,6 +84,7 @@ class Session {
   /// and loadFile().
   val adopt(TriangleSoup soup, const RepairOptions& repair);
 
+  Settings settings_;  // pipeline and SVG parameters, kept across loads
   std::unique_ptr<Pipeline> pipeline_;
   size_t triangles_ = 0;
 };

@@ -4,6 +4,8 @@
 #include <chrono>
 #include <numeric>
 
+#include "crestline/parameters.h"
+
 namespace crestline {
 namespace {
 
@@ -16,10 +18,6 @@ class StageTimer {
   double& seconds_;
   std::chrono::steady_clock::time_point start_;
 };
-
-bool same(const ExtremalitySmoothingOptions& a, const ExtremalitySmoothingOptions& b) {
-  return a.steps == b.steps && a.time_step == b.time_step && a.vertex_weights == b.vertex_weights;
-}
 
 // The graph's nodes and segments split by the component they lie on (a
 // segment never leaves its component), one part per component that has
@@ -90,14 +88,9 @@ void Pipeline::mark_dirty(Stage from) {
 }
 
 void Pipeline::set_options(const PipelineOptions& o) {
-  const PipelineOptions& p = options_;
-  if (o.presmooth.steps != p.presmooth.steps || o.presmooth.time_step != p.presmooth.time_step)
-    mark_dirty(Stage::Presmooth);
-  if (!same(o.smoothing, p.smoothing)) mark_dirty(Stage::Smoothing);
-  if (o.trace.boundary_rings != p.trace.boundary_rings) mark_dirty(Stage::Smoothing);  // freezes the band too
-  if (o.fairing.hausdorff_bound != p.fairing.hausdorff_bound || o.fairing.iterations != p.fairing.iterations)
-    mark_dirty(Stage::Fairing);
-  if (o.filter.threshold != p.filter.threshold) mark_dirty(Stage::Filter);
+  // The parameter table knows which stage each option feeds.
+  const Stage changed = first_changed_stage(options_, o);
+  if (changed != Stage::Count) mark_dirty(changed);
   options_ = o;
 }
 
@@ -127,7 +120,7 @@ void Pipeline::run(const ProgressCallback& progress) {
     presmooth_steps_.assign(frames_.count(), 0);
     for (size_t c = 0; c < frames_.count(); ++c)
       if (presmooth.time_step > 0)
-        presmooth_steps_[c] = presmooth.steps < 0 ? automatic_presmooth_steps(noise_levels_[c]) : presmooth.steps;
+        presmooth_steps_[c] = presmooth.steps ? *presmooth.steps : automatic_presmooth_steps(noise_levels_[c]);
     presmoothed_ = *std::max_element(presmooth_steps_.begin(), presmooth_steps_.end()) > 0;
     std::vector<int> vertex_steps(input_.positions.size());
     for (size_t v = 0; v < vertex_steps.size(); ++v) vertex_steps[v] = presmooth_steps_[frames_.vertex_component[v]];

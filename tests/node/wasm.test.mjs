@@ -53,7 +53,7 @@ test('sine height field: ridges on the crests x = k·L, valleys in the troughs x
 test('threshold change re-runs only the filter; smoothing change re-runs from smoothing on', () => {
   const engine = new Engine(module);
   engine.load(sineHeightField({ n: 40 }));
-  const first = run(engine, { threshold: -1 });
+  const first = run(engine, { threshold: 'auto' });
   assert.equal(first.ran[0], 'presmooth');
   const all = run(engine, { threshold: 0 });
   assert.deepEqual(all.ran, ['filter']);
@@ -188,13 +188,49 @@ test('loadFile reads bytes with the C++ readers: OBJ polygons, .gltf companions,
 test('without a mesh, Session.options() reports the core defaults; the app panel starts from them', () => {
   const session = new module.Session();
   const defaults = session.options();
+  const table = session.describe();
   session.delete();
-  // PipelineOptions{} (core/include/crestline/pipeline.h and its stages).
+  // PipelineOptions{} and io::SvgOptions{} (their headers), through the parameter table.
   assert.deepEqual(defaults, {
-    presmoothSteps: -1, presmoothTimeStep: 1, smoothingSteps: 3, smoothingTimeStep: 1, boundaryRings: 2,
-    hausdorffBound: 0.25, fairingIterations: 30, threshold: -1, weighted: false,
+    presmoothSteps: 'auto', presmoothTimeStep: 1, smoothingSteps: 3, smoothingTimeStep: 1, boundaryRings: 2,
+    hausdorffBound: 0.25, fairingIterations: 30, threshold: 'auto', shortLineLength: 6,
+    view: 'front', svgWidth: 1000, strokeWidth: 1.5, silhouette: false, svgSurfaceTolerance: 0.5, weighted: false,
   });
+  for (const p of table) assert.equal(defaults[p.key], p.default, `describe() default of ${p.key}`);
   // The panel keeps its own copy (it is drawn before the module loads): the two must agree.
   const panel = pipelineOptions(defaultParams());
   for (const key of Object.keys(panel)) assert.equal(panel[key], defaults[key], `panel default ${key}`);
+});
+
+test('Session.describe(): the table, and setOptions holds values to it all or nothing', () => {
+  const session = new module.Session();
+  const table = session.describe();
+  const byKey = Object.fromEntries(table.map((p) => [p.key, p]));
+  assert.deepEqual(byKey.threshold, {
+    key: 'threshold', flag: '--threshold', group: 'pipeline', kind: 'number', automatic: true, default: 'auto',
+    min: 0, max: Infinity, choices: [], unit: '', stage: 'filter', help: byKey.threshold.help,
+  });
+  assert.deepEqual({ ...byKey.smoothingSteps, help: '' }, {
+    key: 'smoothingSteps', flag: '--smoothing-steps', group: 'pipeline', kind: 'integer', automatic: false, default: 3,
+    min: 0, max: 50, choices: [], unit: '', stage: 'smoothing', help: '',
+  });
+  assert.deepEqual(byKey.view.choices, ['front', 'back', 'left', 'right', 'top', 'bottom']);
+  assert.equal(byKey.view.stage, null);
+  for (const [options, message] of [
+    [{ smoothingSteps: 1e9 }, 'smoothingSteps must be a whole number from 0 to 50; got 1e+09.'],
+    [{ threshold: NaN }, 'threshold must be auto or a number from 0 to inf; got nan.'],
+    [{ threshold: -1 }, 'threshold must be auto or a number from 0 to inf; got -1.'],
+    [{ smoothingSteps: 'auto' }, 'smoothingSteps must be a whole number from 0 to 50; got "auto".'],
+    [{ view: 'sideways' }, 'view must be one of front, back, left, right, top, bottom; got "sideways".'],
+    [{ treshold: 1 }, 'there is no option "treshold".'],
+    [{ smoothingSteps: 1, presmoothTimeStep: -1 }, 'presmoothTimeStep must be a number from 0 to 10; got -1.'],
+  ]) {
+    assert.deepEqual(session.setOptions(options), { error: message, kind: 'usage' }, JSON.stringify(options));
+  }
+  assert.equal(session.options().smoothingSteps, 3, 'a refused call changes nothing');
+  assert.ok(session.setOptions({ threshold: 2, presmoothSteps: 'auto', silhouette: true, view: 'top' }).ok);
+  assert.equal(session.options().threshold, 2);
+  assert.ok(session.setOptions({ threshold: 'auto' }).ok);
+  assert.equal(session.options().threshold, 'auto');
+  session.delete();
 });

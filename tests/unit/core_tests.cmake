@@ -7,6 +7,7 @@ target_sources(crestline_tests PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/lines/polylines_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/lines/fairing_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/pipeline/pipeline_test.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/pipeline/parameters_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/pipeline/real_meshes_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/pipeline/invariance_test.cpp
 )

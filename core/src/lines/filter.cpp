@@ -15,12 +15,11 @@ namespace crestline {
 // short segments between crossings of the cosine product (strength 0.8–1.7).
 constexpr double kReferenceShare = 0.15;
 constexpr double kMinimumStrength = 0.35;
-// The automatic threshold also drops lines that are both weak and short: a
-// weak feature that runs for 6 edges and more is a feature (the cosine
-// product's segments, 7–14 edges), while a scan's bumps leave hundreds of
-// lines of 0.4–1.0 that are shorter (168 of the Stanford bunny's 221).
-constexpr double kWeakStrength = 1.0;
-constexpr double kShortLineEdges = 6.0;
+// Lines both weak and short are dropped too (FilterOptions::short_line_edges,
+// 6 edges by default): a weak feature that runs for 6 edges and more is a
+// feature (the cosine product's segments, 7–14 edges), while a scan's bumps
+// leave hundreds of lines of 0.4–1.0 that are shorter (168 of the Stanford
+// bunny's 221).
 static double automatic_threshold(const std::vector<Polyline>& lines) {
   std::vector<double> s;
   s.reserve(lines.size());
@@ -40,12 +39,12 @@ static double automatic_threshold(const std::vector<Polyline>& lines) {
 
 FilterResult filter_lines(const std::vector<Polyline>& lines, const FilterOptions& options, double mean_edge_length) {
   FilterResult out;
-  out.threshold = options.threshold >= 0 ? options.threshold : automatic_threshold(lines);
-  const bool automatic = options.threshold < 0;
+  out.threshold = options.threshold ? *options.threshold : automatic_threshold(lines);
+  const double short_length = options.short_line_edges * mean_edge_length;
   for (uint32_t i = 0; i < lines.size(); ++i) {
     const Polyline& l = lines[i];
     if (l.strength < out.threshold) continue;
-    if (automatic && l.strength < kWeakStrength && l.length < kShortLineEdges * mean_edge_length) continue;
+    if (l.strength < kWeakStrength && l.length < short_length) continue;
     out.kept.push_back(i);
   }
   return out;

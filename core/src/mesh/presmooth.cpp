@@ -160,7 +160,7 @@ static void smooth_boundary_curves(std::vector<Vec3>& x, const Mesh& mesh,
 }
 
 std::vector<Vec3> presmooth_surface(const Mesh& mesh, const Topology& topology, const PresmoothOptions& options) {
-  const int steps = options.steps < 0 ? automatic_presmooth_steps(surface_noise_level(mesh, topology)) : options.steps;
+  const int steps = options.steps ? *options.steps : automatic_presmooth_steps(surface_noise_level(mesh, topology));
   return presmooth_surface(mesh, topology, options.time_step, std::vector<int>(mesh.positions.size(), steps));
 }
 

@@ -83,11 +83,18 @@ TEST_CASE("automatic threshold: a floor for featureless meshes, weak lines kept 
   const double lengths[] = {5.9, 6.0, 20, 3};
   for (int i = 0; i < 4; ++i) weak[i].strength = 0.8, weak[i].length = lengths[i] * 0.5;
   CHECK(filter_lines(weak, {}, 0.5).kept == std::vector<uint32_t>{1, 2});
-  // A strong short line passes; a manual threshold ignores length.
+  // A strong short line passes.
   weak[3].strength = 1.5;
-  CHECK(filter_lines(weak, {}, 0.5).kept == std::vector<uint32_t>{1, 2, 3});
+  const FilterResult automatic = filter_lines(weak, {}, 1.0 / 2);
+  CHECK(automatic.kept == std::vector<uint32_t>{1, 2, 3});
+  // The same threshold set by hand keeps the same lines: the length rule
+  // does not depend on the mode; short_line_edges = 0 turns it off.
   FilterOptions manual;
+  manual.threshold = automatic.threshold;
+  CHECK(filter_lines(weak, manual, 0.5).kept == automatic.kept);
   manual.threshold = 0.5;
+  CHECK(filter_lines(weak, manual, 0.5).kept == std::vector<uint32_t>{1, 2, 3});
+  manual.short_line_edges = 0;
   CHECK(filter_lines(weak, manual, 0.5).kept == std::vector<uint32_t>{0, 1, 2, 3});
 }
 

@@ -41,6 +41,7 @@ TEST_CASE("changing the threshold re-runs only the filter", "[pipeline]") {
 
   PipelineOptions o = p.options();
   o.filter.threshold = 0;
+  o.filter.short_line_edges = 0;
   p.set_options(o);
   CHECK(stages_run(p) == std::vector<Stage>{Stage::Filter});
   CHECK(p.lines().size() == all);

@@ -40,9 +40,9 @@ export function defaultParams() {
 export function pipelineOptions(params) {
   return {
     smoothingSteps: params.smoothingSteps,
-    presmoothSteps: params.autoPresmooth ? -1 : params.presmoothSteps,
+    presmoothSteps: params.autoPresmooth ? 'auto' : params.presmoothSteps,
     hausdorffBound: params.hausdorffBound,
-    threshold: params.autoThreshold ? -1 : params.threshold,
+    threshold: params.autoThreshold ? 'auto' : params.threshold,
   };
 }
 

@@ -129,7 +129,7 @@ export class CrestlineViewer extends HTMLElement {
   }
 
   pipelineOptions() {
-    return { smoothingSteps: this.smoothing, hausdorffBound: this.fairing, threshold: this.threshold === 'auto' ? -1 : this.threshold };
+    return { smoothingSteps: this.smoothing, hausdorffBound: this.fairing, threshold: this.threshold };
   }
 
   /** Starts loading `src` unless it is loaded or lazy and far away; true when it started. */

@@ -1,6 +1,7 @@
 #pragma once
 // Paper §4 (beginning), [OBS04]: drop weak lines by their strength ∫|κ| ds.
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "crestline/lines/polylines.h"
@@ -8,12 +9,19 @@
 namespace crestline {
 
 struct FilterOptions {
-  /// Lines with strength below this are dropped. Negative: automatic, chosen
-  /// from the distribution of strengths on the mesh itself, and lines both
-  /// weak (strength < 1) and short (< 6 mean edges) are dropped too (see
+  /// Lines with strength below this are dropped. std::nullopt: automatic,
+  /// chosen from the distribution of strengths on the mesh itself (see
   /// filter.cpp).
-  double threshold = -1;
+  std::optional<double> threshold;
+  /// Lines that are weak (strength < kWeakStrength) must also be at least
+  /// this long, in mean edge lengths; 0 keeps weak short lines. Applied
+  /// whatever the threshold's mode, so an automatic threshold and the same
+  /// value set by hand keep the same lines.
+  double short_line_edges = 6.0;
 };
+
+/// Below this strength a line counts as weak for FilterOptions::short_line_edges.
+constexpr double kWeakStrength = 1.0;
 
 struct FilterResult {
   std::vector<uint32_t> kept;  // indices into the input lines, in order

@@ -1,6 +1,7 @@
 #pragma once
 // Paper Table 1, step 1 (optional): smooth the surface before computing
 // curvature, by implicit cotan (mean-curvature) flow [DMSB99].
+#include <optional>
 #include <vector>
 
 #include "crestline/mesh/mesh.h"
@@ -9,9 +10,9 @@
 namespace crestline {
 
 struct PresmoothOptions {
-  /// Implicit flow steps; 0 leaves the surface untouched. Negative:
+  /// Implicit flow steps; 0 leaves the surface untouched. std::nullopt:
   /// automatic, see automatic_presmooth_steps.
-  int steps = -1;
+  std::optional<int> steps;
   /// Time step per step, in units of mean edge length squared (unitless).
   double time_step = 1.0;
 };
