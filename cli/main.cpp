@@ -1,6 +1,9 @@
 // crestline INPUT -o OUT.{obj,json,svg,glb}: read → repair → pipeline → write.
 // Exit codes: 0 success, 1 a problem with a file or the computation, 2 a
 // usage error, 130 interrupted. On failure no output file is left behind.
+// The same program is built natively (build/cli/crestline) and to WASM for
+// node (wasm/dist/crestline-cli.*, run by wasm/cli.mjs), where it reaches the
+// real filesystem through Emscripten's NODERAWFS.
 #include <chrono>
 #include <cstdio>
 #include <exception>
@@ -19,6 +22,23 @@
 #include "options.h"
 #include "progress.h"
 
+#ifdef __EMSCRIPTEN__
+#include <emscripten.h>
+
+// The WASM build has neither Draco nor meshoptimizer compiled in: wasm/cli.mjs
+// rewrites a compressed glTF into a plain GLB with the npm decoders
+// (wasm/gltf-decompress.mjs) and hands it over in two calls: the size (or,
+// negative, the length of an error sentence), then the bytes.
+// clang-format off
+EM_JS(int, crestline_decompress_gltf, (const char* path), {
+  return Module.decompressGltf(UTF8ToString(path));
+});
+EM_JS(void, crestline_take_decompressed, (uint8_t* out), {
+  HEAPU8.set(Module.takeDecompressed(), out);
+});
+// clang-format on
+#endif
+
 namespace crestline::cli {
 namespace {
 
@@ -35,6 +55,26 @@ class Stopwatch {
  private:
   std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
 };
+
+/// io::read_mesh, and in the WASM build the JavaScript decoders for
+/// compressed glTF: one file, one outcome in both builds.
+TriangleSoup read_input(const std::string& path) {
+#ifdef __EMSCRIPTEN__
+  try {
+    return io::read_mesh(path);
+  } catch (const Error& e) {
+    if (e.kind() != ErrorKind::Unsupported || std::string(e.what()).find("is compressed with") == std::string::npos)
+      throw;
+  }
+  const int size = crestline_decompress_gltf(path.c_str());
+  std::vector<uint8_t> bytes(static_cast<size_t>(size < 0 ? -size : size));
+  crestline_take_decompressed(bytes.data());
+  if (size < 0) throw Error(ErrorKind::InvalidInput, std::string(bytes.begin(), bytes.end()));
+  return io::read_mesh_bytes(std::filesystem::path(path).filename().string(), bytes);
+#else
+  return io::read_mesh(path);
+#endif
+}
 
 /// "crestline: FILE: problem". Messages that already start with the file
 /// (io::read_mesh names it by its full path or its base name) are not
@@ -105,7 +145,7 @@ int run(const CliOptions& options) {
     if (options.threads > 0) set_max_threads(options.threads);
     Progress progress(!options.quiet);
     Stopwatch clock;
-    const TriangleSoup soup = io::read_mesh(options.input);
+    const TriangleSoup soup = read_input(options.input);
     const double read_seconds = clock.lap();
     progress.phase("repairing");
     RepairResult repaired = repair_mesh(soup);

@@ -23,7 +23,11 @@ extern "C" void on_interrupt(int) {
 }  // namespace
 
 Progress::Progress(bool enabled) {
+#ifdef __EMSCRIPTEN__
+  (void)enabled;  // the WASM build of this command has no threads: no ticker
+#else
   if (enabled && isatty(fileno(stderr))) ticker_ = std::thread([this] { tick(); });
+#endif
 }
 
 void Progress::catch_interrupt() { std::signal(SIGINT, on_interrupt); }
