@@ -82,7 +82,7 @@ test('--help: the same text in both builds, and every parameter of describe() in
     const row = `${p.flag}${valueName[p.kind]} ${p.help} (${details})`;
     assert.ok(text.includes(row), `--help does not show the table's row\n  ${row}`);
   }
-  for (const flag of ['--output', '--weights', '--with-mesh', '--stats', '--repair-report', '--quiet']) assert.ok(text.includes(flag), flag);
+  for (const flag of ['--output', '--weights', '--with-mesh', '--stats', '--repair-report', '--threads', '--quiet']) assert.ok(text.includes(flag), flag);
 });
 
 // Usage errors: exit code 2, one line naming the option, nothing written.
@@ -93,6 +93,7 @@ const USAGE = [
   ['--threshold', 'nan'], ['--threshold', '-1'], ['--threshold', 'x'], ['--fairing-bound', '9'.repeat(309)],
   ['--boundary-rings', '21'], ['--short-line-length', '-1'], ['--svg-width', '15'], ['--stroke-width', '0'],
   ['--view', 'sideways'], ['--silhouette=maybe'], ['--no-such-option'], ['--stats=1'], ['--smoothing-steps'],
+  ['--threads', '-1'], ['--threads', '2000'],
 ];
 
 test('usage errors: the same exit code 2 and sentence in both builds', { skip: noNative }, async () => {
