@@ -10,17 +10,19 @@ export interface MeshArrays {
 /**
  * The parameter table's keys (`Session.options()`, the CLI's flags in
  * camelCase); each left out keeps its default. Lengths are in mean edge
- * lengths, strengths in ∫|κ| ds; a negative threshold or pre-smoothing
- * count means automatic.
+ * lengths, strengths in ∫|κ| ds; 'auto' lets the core choose the threshold
+ * or the pre-smoothing count. Ranges: `Session.describe()`.
  */
 export interface PipelineOptions {
-  presmoothSteps?: number;
+  presmoothSteps?: number | 'auto';
   presmoothTimeStep?: number;
   smoothingSteps?: number;
   smoothingTimeStep?: number;
   hausdorffBound?: number;
   fairingIterations?: number;
-  threshold?: number;
+  threshold?: number | 'auto';
+  /** Weak lines (strength below 1) shorter than this many mean edges are dropped too; 0 keeps them. */
+  shortLineLength?: number;
   boundaryRings?: number;
   /** Per-vertex smoothing strength (0 freezes a vertex, 1 is the global time step). */
   vertexWeights?: Float64Array | null;
