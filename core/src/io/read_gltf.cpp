@@ -142,7 +142,10 @@ void check_version(const Input& in, const Json& json) {
 std::string describe(const Json& value) {
   if (value.is_number_unsigned()) return std::to_string(value.get<uint64_t>());
   if (value.is_number_integer()) return std::to_string(value.get<int64_t>());
-  if (value.is_number()) return number_text(value.get<double>());
+  if (value.is_number()) {
+    const std::string text = number_text(value.get<double>());  // 3.0 as "3.0", not "3"
+    return text.find_first_not_of("-0123456789") == std::string::npos ? text + ".0" : text;
+  }
   if (value.is_string()) return "the string " + quote(value.get<std::string>());
   return std::string("a ") + value.type_name();
 }

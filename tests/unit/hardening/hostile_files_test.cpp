@@ -198,6 +198,10 @@ TEST_CASE("integers read from files are range-checked in 64 bits", "[hardening][
   std::string huge = triangle_gltf(data_uri_buffer());
   huge.replace(huge.find(R"("count":3)"), 9, R"("count":1e300)");
   CHECK(contains(refusal("huge.gltf", huge), "accessors[0].count is 1e+300;"));  // not 301 digits
+  // An integer written as a float is refused (as tinygltf would), shown as written.
+  std::string written = triangle_gltf(data_uri_buffer());
+  written.replace(written.find(R"("count":3)"), 9, R"("count":3.0)");
+  CHECK(contains(refusal("float-count.gltf", written), "accessors[0].count is 3.0;"));
 }
 
 TEST_CASE("glTF spec violations are refused in one sentence", "[hardening][hostile]") {
