@@ -19,37 +19,6 @@ class StageTimer {
   std::chrono::steady_clock::time_point start_;
 };
 
-// The graph's nodes and segments split by the component they lie on (a
-// segment never leaves its component), one part per component that has
-// nodes, with that component in `part_component`. Joining then bridges gaps
-// only within a component and measures them in that component's segments.
-std::vector<FeatureGraph> split_by_component(const FeatureGraph& graph, const Mesh& mesh, const Topology& topology,
-                                             const ComponentFrames& frames, std::vector<uint32_t>& part_component) {
-  std::vector<FeatureGraph> parts;
-  part_component.clear();
-  std::vector<uint32_t> part_of(frames.count(), kNone);
-  std::vector<uint32_t> index(graph.points.size()), node_part(graph.points.size());
-  for (size_t n = 0; n < graph.points.size(); ++n) {
-    const uint32_t vertex =
-        graph.trisector[n] ? mesh.triangles[graph.source[n]][0] : topology.edges[graph.source[n]][0];
-    const uint32_t c = frames.vertex_component[vertex];
-    if (part_of[c] == kNone) {
-      part_of[c] = static_cast<uint32_t>(parts.size());
-      part_component.push_back(c);
-      parts.emplace_back().type = graph.type;
-    }
-    FeatureGraph& part = parts[node_part[n] = part_of[c]];
-    index[n] = static_cast<uint32_t>(part.points.size());
-    part.points.push_back(graph.points[n]);
-    part.curvature.push_back(graph.curvature[n]);
-    part.source.push_back(graph.source[n]);
-    part.edge_parameter.push_back(graph.edge_parameter[n]);
-    part.trisector.push_back(graph.trisector[n]);
-  }
-  for (const auto& s : graph.segments) parts[node_part[s[0]]].segments.push_back({index[s[0]], index[s[1]]});
-  return parts;
-}
-
 // A line from the working frame to the input's coordinates.
 Polyline to_user(Polyline line, const ComponentFrames& frames, uint32_t component) {
   const double scale = frames.scale[component];
@@ -88,8 +57,10 @@ void Pipeline::mark_dirty(Stage from) {
 }
 
 void Pipeline::set_options(const PipelineOptions& o) {
-  // The parameter table knows which stage each option feeds.
-  const Stage changed = first_changed_stage(options_, o);
+  // The parameter table knows which stage each option feeds; shape-operator
+  // averaging is not a user parameter (the quality harness sets it).
+  Stage changed = first_changed_stage(options_, o);
+  if (o.averaging.rings != options_.averaging.rings) changed = std::min(changed, Stage::Curvature);
   if (changed != Stage::Count) mark_dirty(changed);
   options_ = o;
 }
@@ -136,20 +107,16 @@ void Pipeline::run(const ProgressCallback& progress) {
     }
   });
   const Mesh& surface = working_surface_;
-  step(Stage::Curvature, [&] { curvature_ = compute_curvature(surface, topology_); });
+  step(Stage::Curvature, [&] {
+    curvature_ = compute_curvature(surface, topology_);
+    if (options_.averaging.rings > 0)
+      curvature_ = average_shape_operator(surface, topology_, curvature_, options_.averaging.rings);
+  });
   step(Stage::Extremality, [&] { raw_extremality_ = compute_extremality(surface, curvature_); });
   step(Stage::Regularity, [&] { regularity_ = classify_triangles(surface, curvature_); });
   step(Stage::Smoothing, [&] {
-    // The boundary band is frozen: its curvature sees half a neighbourhood
-    // and must not diffuse into the interior.
     ExtremalitySmoothingOptions smoothing = options_.smoothing;
-    const int rings = options_.trace.boundary_rings;
-    if (rings > 0) {
-      const std::vector<uint32_t> distance = boundary_ring_distance(surface, topology_, static_cast<uint32_t>(rings));
-      if (smoothing.vertex_weights.empty()) smoothing.vertex_weights.assign(surface.positions.size(), 1.0);
-      for (size_t v = 0; v < distance.size(); ++v)
-        if (distance[v] < static_cast<uint32_t>(rings)) smoothing.vertex_weights[v] = 0;
-    }
+    smoothing.frozen_boundary_rings = options_.trace.boundary_rings;
     extremality_ =
         smooth_extremality(surface, topology_, curvature_, raw_extremality_, smoothing, within(Stage::Smoothing));
   });
@@ -159,26 +126,14 @@ void Pipeline::run(const ProgressCallback& progress) {
   });
   step(Stage::Singular, [&] { singular_ = connect_singular_triangles(surface, topology_, regularity_, traced_); });
   step(Stage::Polylines, [&] {
-    joined_.clear();
-    line_component_.clear();
-    for (const FeatureGraph* traced : {&singular_.lines.ridges, &singular_.lines.valleys}) {
-      // Lines traced on the pre-smoothed surface are drawn on the input one:
-      // same edges, same edge parameters, so they lie on what the user gave us.
-      FeatureGraph placed;
-      if (presmoothed_) {
-        placed = *traced;
-        place_nodes_on(placed, local_input_, topology_.edges);
-        traced = &placed;
-      }
-      std::vector<FeatureGraph> parts;
-      std::vector<uint32_t> part_component{0};
-      if (frames_.count() > 1) parts = split_by_component(*traced, local_input_, topology_, frames_, part_component);
-      for (size_t i = 0; i < part_component.size(); ++i) {
-        std::vector<Polyline> lines = join_polylines(parts.empty() ? *traced : parts[i]);
-        line_component_.insert(line_component_.end(), lines.size(), part_component[i]);
-        joined_.insert(joined_.end(), std::make_move_iterator(lines.begin()), std::make_move_iterator(lines.end()));
-      }
-    }
+    PolylinesInput input;
+    if (presmoothed_) input.place_on = &local_input_;
+    input.vertex_component = &frames_.vertex_component;
+    input.components = frames_.count();
+    PolylinesResult joined =
+        build_polylines(singular_.lines.ridges, singular_.lines.valleys, surface, topology_, input);
+    joined_ = std::move(joined.lines);
+    line_component_ = std::move(joined.component);
   });
   // In the working frame every component's mean edge length is 1.
   step(Stage::Fairing, [&] {

@@ -58,12 +58,6 @@ Score run_case(const Surface& surface, double noise, unsigned noise_seed, const 
 /// The surface's repaired mesh with normal noise σ = noise·h (h its clean mean edge length).
 Mesh noisy_mesh(const Surface& surface, double noise, unsigned noise_seed, double& h);
 
-/// As run_case, with the shape operator averaged over `rings` vertex rings
-/// (average_shape_operator) between curvature and extremality. Pipeline has
-/// no such option yet, so the stages are composed here as Pipeline::run does.
-Score run_case_averaged(const Surface& surface, double noise, unsigned noise_seed, const PipelineOptions& options,
-                        int rings);
-
 /// The targets: coverage ≥ 0.95, precision ≥ 0.90, fragments ≤ 1.5,
 /// no spurious valleys on convex shapes. Empty if met (or a control surface), else what failed.
 std::string target_failures(const Score& score);

@@ -23,7 +23,6 @@ namespace {
 struct Config {
   std::string name;
   PipelineOptions options;
-  int average_rings = 0;  // > 0: run_case_averaged
 };
 
 struct Summary {
@@ -101,8 +100,9 @@ int main(int argc, char** argv) {
   std::vector<Config> configs = {{"defaults", tuned}, {"no smoothing", unsmoothed}};
   if (tuned.presmooth.steps == 0) {
     configs.insert(configs.begin() + 1, {"defaults + presmooth 2", with_presmoothing(tuned)});
-    configs.insert(configs.begin() + 2,
-                   {"defaults + presmooth 2 + S averaged over 1 ring", with_presmoothing(tuned), 1});
+    PipelineOptions averaged = with_presmoothing(tuned);
+    averaged.averaging.rings = 1;
+    configs.insert(configs.begin() + 2, {"defaults + presmooth 2 + S averaged over 1 ring", averaged});
   }
   const double noises[] = {0.0, 0.1, 0.25};
   const Triangulation triangulations[] = {Triangulation::Uniform, Triangulation::Alternating, Triangulation::Irregular};
@@ -131,9 +131,7 @@ int main(int argc, char** argv) {
           for (size_t c = 0; c < configs.size(); ++c) {
             const unsigned noise_seed = 100u + static_cast<unsigned>(seed);
             const Config& config = configs[c];
-            const Score s = config.average_rings > 0 ? run_case_averaged(surface, noises[n], noise_seed, config.options,
-                                                                         config.average_rings)
-                                                     : run_case(surface, noises[n], noise_seed, config.options);
+            const Score s = run_case(surface, noises[n], noise_seed, config.options);
             summary[c][n].add(s);
             if (summary_only) continue;
             std::printf("| %s | %s | %d | %.2f | %s | %s | %s | %s | %s | %s | %s | %d | %.2f |\n", name.c_str(),

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "crestline/curvature/extremality_smoothing.h"
+#include "crestline/curvature/shape_operator_averaging.h"
 #include "crestline/lines/fairing.h"
 #include "crestline/lines/filter.h"
 #include "crestline/lines/singular.h"
@@ -31,6 +32,8 @@ namespace crestline {
 
 struct PipelineOptions {
   PresmoothOptions presmooth;
+  ShapeOperatorAveragingOptions averaging;
+  /// smoothing.frozen_boundary_rings is set from trace.boundary_rings.
   ExtremalitySmoothingOptions smoothing;
   TraceOptions trace;
   FairingOptions fairing;

@@ -5,6 +5,7 @@
 
 #include "crestline/error.h"
 #include "crestline/mesh/cotan.h"
+#include "crestline/mesh/topology.h"
 #include "crestline/numerics/paired_cg.h"
 #include "crestline/numerics/parallel.h"
 #include "crestline/numerics/sparse_solver.h"
@@ -121,7 +122,15 @@ Extremality smooth_extremality(const Mesh& mesh, const Topology& topology, const
                                const std::function<void(double)>& progress) {
   if (options.steps <= 0 || options.time_step <= 0) return extremality;
   const size_t nv = mesh.positions.size();
-  const std::vector<double>& weights = options.vertex_weights;
+  std::vector<double> banded;  // the weights with the boundary band frozen
+  if (options.frozen_boundary_rings > 0) {
+    const auto rings = static_cast<uint32_t>(options.frozen_boundary_rings);
+    const std::vector<uint32_t> distance = boundary_ring_distance(mesh, topology, rings);
+    banded = options.vertex_weights.empty() ? std::vector<double>(nv, 1.0) : options.vertex_weights;
+    for (size_t v = 0; v < distance.size() && v < banded.size(); ++v)
+      if (distance[v] < rings) banded[v] = 0;
+  }
+  const std::vector<double>& weights = options.frozen_boundary_rings > 0 ? banded : options.vertex_weights;
   if (!weights.empty() && weights.size() != nv)
     throw Error(ErrorKind::InvalidInput, "the smoothing weights have " + std::to_string(weights.size()) +
                                              " values but the mesh has " + std::to_string(nv) + " vertices.");

@@ -271,4 +271,61 @@ std::vector<Polyline> join_polylines(const FeatureGraph& graph) {
   return bridge_gaps(std::move(lines), open_end, total / graph.segments.size());
 }
 
+namespace {
+
+// The graph's nodes and segments split by the component they lie on, one
+// part per component that has nodes, with that component in part_component.
+std::vector<FeatureGraph> split_by_component(const FeatureGraph& graph, const Mesh& mesh, const Topology& topology,
+                                             const std::vector<uint32_t>& vertex_component, size_t components,
+                                             std::vector<uint32_t>& part_component) {
+  std::vector<FeatureGraph> parts;
+  part_component.clear();
+  std::vector<uint32_t> part_of(components, kNone);
+  std::vector<uint32_t> index(graph.points.size()), node_part(graph.points.size());
+  for (size_t n = 0; n < graph.points.size(); ++n) {
+    const uint32_t vertex =
+        graph.trisector[n] ? mesh.triangles[graph.source[n]][0] : topology.edges[graph.source[n]][0];
+    const uint32_t c = vertex_component[vertex];
+    if (part_of[c] == kNone) {
+      part_of[c] = static_cast<uint32_t>(parts.size());
+      part_component.push_back(c);
+      parts.emplace_back().type = graph.type;
+    }
+    FeatureGraph& part = parts[node_part[n] = part_of[c]];
+    index[n] = static_cast<uint32_t>(part.points.size());
+    part.points.push_back(graph.points[n]);
+    part.curvature.push_back(graph.curvature[n]);
+    part.source.push_back(graph.source[n]);
+    part.edge_parameter.push_back(graph.edge_parameter[n]);
+    part.trisector.push_back(graph.trisector[n]);
+  }
+  for (const auto& s : graph.segments) parts[node_part[s[0]]].segments.push_back({index[s[0]], index[s[1]]});
+  return parts;
+}
+
+}  // namespace
+
+PolylinesResult build_polylines(const FeatureGraph& ridges, const FeatureGraph& valleys, const Mesh& mesh,
+                                const Topology& topology, const PolylinesInput& input) {
+  PolylinesResult out;
+  for (const FeatureGraph* traced : {&ridges, &valleys}) {
+    FeatureGraph placed;
+    if (input.place_on) {
+      placed = *traced;
+      place_nodes_on(placed, *input.place_on, topology.edges);
+      traced = &placed;
+    }
+    std::vector<FeatureGraph> parts;
+    std::vector<uint32_t> part_component{0};
+    if (input.vertex_component && input.components > 1)
+      parts = split_by_component(*traced, mesh, topology, *input.vertex_component, input.components, part_component);
+    for (size_t i = 0; i < part_component.size(); ++i) {
+      std::vector<Polyline> lines = join_polylines(parts.empty() ? *traced : parts[i]);
+      out.component.insert(out.component.end(), lines.size(), part_component[i]);
+      out.lines.insert(out.lines.end(), std::make_move_iterator(lines.begin()), std::make_move_iterator(lines.end()));
+    }
+  }
+  return out;
+}
+
 }  // namespace crestline

@@ -2,6 +2,8 @@
 #include <cmath>
 
 #include "analytic_meshes.h"
+#include "crestline/curvature/extremality.h"
+#include "crestline/curvature/extremality_smoothing.h"
 #include "crestline/numerics/parallel.h"
 #include "run_pipeline.h"
 
@@ -175,4 +177,27 @@ TEST_CASE("stats count what the pipeline produced", "[pipeline]") {
   CHECK(s.triangles == p.input_mesh().triangle_count());
   CHECK(s.singular_max == p.regularity().singular_max);
   CHECK(s.mean_edge_length > 0);
+}
+
+TEST_CASE("the smoothing stage freezes the boundary band it is given", "[pipeline]") {
+  const Mesh mesh = repair_mesh(bumpy()).mesh;
+  const Topology topology = build_topology(mesh);
+  const Curvature curvature = compute_curvature(mesh, topology);
+  const Extremality raw = compute_extremality(mesh, curvature);
+  ExtremalitySmoothingOptions options;
+  options.frozen_boundary_rings = 2;
+  const Extremality smoothed = smooth_extremality(mesh, topology, curvature, raw, options);
+  const std::vector<uint32_t> distance = boundary_ring_distance(mesh, topology, 2);
+  size_t frozen = 0, moved = 0;
+  for (size_t v = 0; v < distance.size(); ++v) {
+    if (distance[v] < 2) {
+      ++frozen;
+      CHECK(smoothed.e_max[v] == raw.e_max[v]);
+      CHECK(smoothed.e_min[v] == raw.e_min[v]);
+    } else {
+      moved += smoothed.e_max[v] != raw.e_max[v];
+    }
+  }
+  CHECK(frozen > 300);  // two rings along the 50 × 50 grid's border
+  CHECK(moved > distance.size() / 2);
 }

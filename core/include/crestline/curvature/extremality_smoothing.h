@@ -18,6 +18,11 @@ struct ExtremalitySmoothingOptions {
   /// time step is scaled by it, edge-wise by the mean of its two ends. Empty
   /// means 1 everywhere; 0 freezes a region.
   std::vector<double> vertex_weights;
+  /// Vertices fewer than this many rings from the mesh boundary keep their
+  /// extremality (weight 0): their curvature sees half a neighbourhood and
+  /// must not diffuse into the interior. The Pipeline sets it to
+  /// TraceOptions::boundary_rings, the band the tracer leaves out.
+  int frozen_boundary_rings = 0;
 };
 
 /// Independent of the initial sign choice of the directions: flipping

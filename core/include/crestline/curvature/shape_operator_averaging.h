@@ -18,6 +18,14 @@
 
 namespace crestline {
 
+struct ShapeOperatorAveragingOptions {
+  /// Vertex rings to average S over after the curvature stage; 0 (the
+  /// default) keeps the paper's 1-ring operator. Measured in tests/quality
+  /// (2 pre-smoothing steps + 1 ring at σ = 0.25 edge); not exposed in the
+  /// CLI or the page.
+  int rings = 0;
+};
+
 /// Returns `curvature` with κ_max, κ_min, dir_max, dir_min recomputed from
 /// S̄(p) = Σ_{q ∈ ring^k(p)} S(q) / Σ_{q ∈ ring^k(p)} area(star q)/3,
 /// projected onto the tangent plane of p (normals and star areas unchanged).
