@@ -124,9 +124,9 @@ TEST_CASE("singular triangle frequency matches the paper's Table 2", "[real][tab
   const double bunny_smooth = frequency("classic/stanford-bunny.obj", 1);
   CHECK(bunny_smooth < 3.0);
   CHECK(frequency("classic/stanford-bunny.obj", 2) < bunny_smooth);
-  // feline: paper 2.82 %, same triangle count; we measure 4.8 %. The paper's
-  // copy may have been smoothed or differ in vertex positions (the same
-  // pipeline matches mannequin and bunny closely); recorded as a regression.
+  // feline: paper 2.82 %, same triangle count; we measure 4.8 % (and 1.5 %
+  // after one pre-smoothing step). README, Table 2 paragraph, lists what was
+  // measured and ruled out; recorded as a regression.
   const double feline = frequency("classic/feline.obj", 0);
   CHECK(feline > 4.3);
   CHECK(feline < 5.3);
