@@ -69,6 +69,29 @@ test('the built-in bunny gets ridges and valleys on first load', async () => {
   assert.equal(result.ran[0], 'presmooth', 'a load runs every stage');
 });
 
+test('the panel is made from Session.describe(): a control per pipeline parameter, its range and default', async () => {
+  const mismatches = await page.evaluate(() => {
+    const { parameters, params, gui } = window.crestline;
+    const controllers = gui.controllersRecursive();
+    const out = [];
+    for (const p of parameters.filter((q) => q.group === 'pipeline' && q.stage)) {
+      const c = controllers.find((k) => k.property === p.key);
+      if (!c) {
+        out.push(`${p.key}: no control`);
+        continue;
+      }
+      if (c._min !== p.min) out.push(`${p.key}: min ${c._min} ≠ ${p.min}`);
+      if (Number.isFinite(p.max) && c._max !== p.max) out.push(`${p.key}: max ${c._max} ≠ ${p.max}`);
+      const auto = controllers.find((k) => k.property === `auto${p.key[0].toUpperCase()}${p.key.slice(1)}`);
+      if (p.automatic !== Boolean(auto)) out.push(`${p.key}: automatic ${p.automatic}, switch ${Boolean(auto)}`);
+      if (p.default === 'auto' ? !auto?.getValue() : params[p.key] !== p.default) out.push(`${p.key}: default ${p.default}, panel ${params[p.key]}`);
+    }
+    return out;
+  });
+  assert.deepEqual(mismatches, []);
+  assert.ok(await page.evaluate(() => window.crestline.parameters.some((p) => p.key === 'threshold' && p.automatic)));
+});
+
 test('GLB (feline): lines match the native CLI and are drawn', { skip: noMeshes }, async () => {
   const result = await nextResult(() => drop(['glb/feline.glb']));
   assert.equal(result.name, 'feline.glb');
@@ -98,10 +121,10 @@ test('threshold change re-filters only, and changes the count', { skip: noMeshes
   assert.ok(!smoothed.ran.includes('curvature'));
   const camera = () => page.evaluate(() => window.crestline.viewer.camera.position.toArray());
   const view = await camera();
-  const presmoothed = await nextResult(() => page.evaluate(() => window.crestline.update({ smoothingSteps: 3, autoPresmooth: false, presmoothSteps: 1 })));
+  const presmoothed = await nextResult(() => page.evaluate(() => window.crestline.update({ smoothingSteps: 3, autoPresmoothSteps: false, presmoothSteps: 1 })));
   assert.equal(presmoothed.ran[0], 'presmooth');
   assert.deepEqual(await camera(), view, 'a new surface of the same mesh keeps the view');
-  await nextResult(() => page.evaluate(() => window.crestline.update({ autoPresmooth: true })));
+  await nextResult(() => page.evaluate(() => window.crestline.update({ autoPresmoothSteps: true })));
 });
 
 test('a broken file and an unsupported one: one sentence each, and the page recovers', async () => {

@@ -108,6 +108,24 @@ test('a viewer from another origin loads a GLB, re-thresholds and exports', asyn
   assert.ok(total(first.detail.counts) > 0, 'the first result has lines');
   assert.ok(first.detail.lengths.ridges + first.detail.lengths.valleys > 0);
 
+  // The pipeline's attributes are the core's table (Session.describe()): one per parameter,
+  // named by its CLI flag, the core's default when absent; `smoothing` and `fairing` stay as aliases.
+  const parameters = await page.evaluate(() => {
+    const table = customElements.get('crestline-viewer').parameters.filter((p) => p.group === 'pipeline' && p.stage);
+    const v = document.getElementById('v');
+    const loose = document.createElement('crestline-viewer');
+    loose.setAttribute('smoothing-steps', '2');
+    loose.setAttribute('fairing', '0.5');
+    loose.setAttribute('threshold', 'nonsense');
+    return {
+      table: table.map((p) => ({ key: p.key, default: p.default, property: v[p.key], sent: v.pipelineOptions()[p.key] })),
+      loose: { smoothingSteps: loose.smoothingSteps, smoothing: loose.smoothing, hausdorffBound: loose.hausdorffBound, threshold: loose.threshold },
+    };
+  });
+  assert.ok(parameters.table.length >= 5, JSON.stringify(parameters.table));
+  for (const p of parameters.table) assert.deepEqual([p.property, p.sent], [p.default, p.default], `${p.key}: the element's default is the core's`);
+  assert.deepEqual(parameters.loose, { smoothingSteps: 2, smoothing: 2, hausdorffBound: 0.5, threshold: 'auto' });
+
   // A higher threshold, set as a property (reflected to the attribute), keeps fewer lines.
   const threshold = first.detail.threshold * 4 || 1;
   await page.evaluate((t) => (document.getElementById('v').threshold = t), threshold);

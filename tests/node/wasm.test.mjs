@@ -197,8 +197,8 @@ test('without a mesh, Session.options() reports the core defaults; the app panel
     view: 'front', svgWidth: 1000, strokeWidth: 1.5, silhouette: false, svgSurfaceTolerance: 0.5, weighted: false,
   });
   for (const p of table) assert.equal(defaults[p.key], p.default, `describe() default of ${p.key}`);
-  // The panel keeps its own copy (it is drawn before the module loads): the two must agree.
-  const panel = pipelineOptions(defaultParams());
+  // The panel is made from the table: its options at start are the core's defaults.
+  const panel = pipelineOptions(defaultParams(table), table);
   for (const key of Object.keys(panel)) assert.equal(panel[key], defaults[key], `panel default ${key}`);
 });
 

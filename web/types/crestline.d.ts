@@ -79,6 +79,8 @@ export interface FeatureLinesEventMap extends Object3DEventMap {
 /** The ridges and valleys of a mesh as wide lines; add it to the mesh. */
 export class FeatureLines extends Group<FeatureLinesEventMap> {
   constructor(source: Mesh | BufferGeometry | MeshArrays, options?: FeatureLinesOptions);
+  /** The pipeline options in use. */
+  readonly options: PipelineOptions;
   /** Resolves with this object once the first lines are shown. */
   readonly ready: Promise<FeatureLines>;
   /** Session.stats() of the lines shown (camelCase), null before the first result. */

@@ -1,6 +1,9 @@
-// The parameters panel (lil-gui). Pipeline parameters call onCompute;
-// display parameters call onDisplay. Both receive the whole params object.
+// The parameters panel (lil-gui). Pipeline parameters are made from the
+// core's table (Session.describe(): range, default, automatic mode, help) and
+// call onCompute; display parameters call onDisplay. Both receive the whole
+// params object.
 import GUI from 'lil-gui';
+import { describeParameter, label, pipelineParameters } from '../client/parameters.js';
 
 export const VIEWS = {
   shaded: 'shaded',
@@ -13,14 +16,24 @@ export const VIEWS = {
   'smoothing weights (brush)': 'weights',
 };
 
-export function defaultParams() {
+/** params[autoKey(p)]: the parameter is in its automatic mode. @param {{key: string}} p */
+export const autoKey = (p) => `auto${p.key[0].toUpperCase()}${p.key.slice(1)}`;
+
+/**
+ * The panel's values: every pipeline parameter at the table's default (an
+ * automatic one with its switch on), then the display settings.
+ * @param {import('../client/parameters.js').Parameter[]} table
+ */
+export function defaultParams(table) {
+  const pipeline = {};
+  for (const p of pipelineParameters(table)) {
+    const automatic = p.default === 'auto';
+    if (p.automatic) pipeline[autoKey(p)] = automatic;
+    // An automatic parameter shows the value the core used once it ran.
+    pipeline[p.key] = automatic ? p.min : p.default;
+  }
   return {
-    smoothingSteps: 3,
-    autoThreshold: true,
-    threshold: 1,
-    hausdorffBound: 0.25,
-    autoPresmooth: true,
-    presmoothSteps: 3,
+    ...pipeline,
     showRidges: true,
     showValleys: true,
     lineWidth: 2.5,
@@ -37,13 +50,10 @@ export function defaultParams() {
 }
 
 /** The options the worker passes to Session.setOptions. */
-export function pipelineOptions(params) {
-  return {
-    smoothingSteps: params.smoothingSteps,
-    presmoothSteps: params.autoPresmooth ? 'auto' : params.presmoothSteps,
-    hausdorffBound: params.hausdorffBound,
-    threshold: params.autoThreshold ? 'auto' : params.threshold,
-  };
+export function pipelineOptions(params, table) {
+  const options = {};
+  for (const p of pipelineParameters(table)) options[p.key] = p.automatic && params[autoKey(p)] ? 'auto' : params[p.key];
+  return options;
 }
 
 /** PNG resolutions offered: multiples of the canvas's CSS size. */
@@ -52,23 +62,33 @@ export const PNG_SCALES = { '1× canvas': 1, '2× canvas': 2, '4× canvas': 4 };
 /** Export buttons: format → label. */
 export const EXPORTS = { svg: 'SVG (visible lines)', png: 'PNG', obj: 'OBJ (polylines)', json: 'JSON (lines + stats)', glb: 'GLB (mesh + lines)' };
 
-export function createGui(params, { onCompute, onDisplay, onFit, onOpen, onBrush, onClearWeights, onExport }) {
+/** Slider step: whole numbers for integers, else about a thousandth of the range. */
+const stepOf = (p, max) => (p.kind === 'integer' ? 1 : Math.min(0.01, (max - p.min) / 1000));
+
+export function createGui(params, table, { onCompute, onDisplay, onFit, onOpen, onBrush, onClearWeights, onExport }) {
   const gui = new GUI({ title: 'Crestline' });
   const lines = gui.addFolder('Feature lines');
-  lines.add(params, 'smoothingSteps', 0, 10, 1).name('smoothing steps').onFinishChange(onCompute);
-  lines.add(params, 'autoThreshold').name('automatic threshold').onChange(onCompute);
-  const threshold = lines.add(params, 'threshold', 0, 10, 0.01).name('threshold ∫|κ|ds').onChange(() => {
-    params.autoThreshold = false;
-    gui.controllersRecursive().forEach((c) => c.updateDisplay());
-    onCompute();
-  });
-  lines.add(params, 'hausdorffBound', 0, 1, 0.01).name('fairing bound (edges)').onFinishChange(onCompute);
-  lines.add(params, 'autoPresmooth').name('automatic pre-smoothing').onChange(onCompute);
-  lines.add(params, 'presmoothSteps', 0, 10, 1).name('pre-smoothing steps').onFinishChange(() => {
-    params.autoPresmooth = false;
-    gui.controllersRecursive().forEach((c) => c.updateDisplay());
-    onCompute();
-  });
+  const more = lines.addFolder('More parameters');
+  more.close();
+  const unbounded = []; // controllers of parameters without a maximum: their slider follows the values used
+  for (const p of pipelineParameters(table)) {
+    // The three the paper's figures vary stay in view; the others fold away.
+    const folder = ['smoothingSteps', 'threshold', 'hausdorffBound', 'presmoothSteps'].includes(p.key) ? lines : more;
+    if (p.automatic) {
+      folder.add(params, autoKey(p)).name(`automatic ${label(p)}`).onChange(onCompute).domElement.title = describeParameter(p);
+    }
+    const max = Number.isFinite(p.max) ? p.max : Math.max(1, p.min * 10);
+    const controller = p.kind === 'boolean' ? folder.add(params, p.key) : folder.add(params, p.key, p.min, max, stepOf(p, max));
+    controller.name(label(p)).domElement.title = describeParameter(p);
+    controller.onFinishChange(() => {
+      // Moving an automatic parameter's slider leaves its automatic mode.
+      if (p.automatic) params[autoKey(p)] = false;
+      gui.controllersRecursive().forEach((c) => c.updateDisplay());
+      onCompute();
+    });
+    controller.parameter = p;
+    if (!Number.isFinite(p.max)) unbounded.push(controller);
+  }
   const display = gui.addFolder('Display');
   display.add(params, 'showRidges').name('ridges').onChange(onDisplay);
   display.add(params, 'showValleys').name('valleys').onChange(onDisplay);
@@ -92,11 +112,22 @@ export function createGui(params, { onCompute, onDisplay, onFit, onOpen, onBrush
 
   return {
     gui,
-    /** After a run with the automatic threshold: show the value used, and a useful slider range. */
-    showThreshold(value, rescale) {
-      if (rescale && value > 0) threshold.max(Math.max(1, Math.ceil(value * 4)));
-      if (params.autoThreshold) params.threshold = value;
-      threshold.updateDisplay();
+    /**
+     * After a run: automatic parameters show the value the core used (stats
+     * `threshold`, `presmoothStepsUsed`); an unbounded one gets a slider
+     * range around it for a new mesh (`rescale`).
+     */
+    showUsed(stats, rescale) {
+      for (const p of pipelineParameters(table)) {
+        const used = stats[p.key] ?? stats[`${p.key}Used`];
+        if (!p.automatic || typeof used !== 'number') continue;
+        if (params[autoKey(p)]) params[p.key] = used;
+      }
+      for (const controller of unbounded) {
+        const used = stats[controller.parameter.key];
+        if (rescale && used > 0) controller.max(Math.max(1, Math.ceil(used * 4)));
+      }
+      gui.controllersRecursive().forEach((c) => c.updateDisplay());
     },
   };
 }

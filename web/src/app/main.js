@@ -8,13 +8,17 @@ import { Viewer } from '../three/viewer.js';
 import { setState, showError, showFile, showNotes, showProgress, showStats } from './dom.js';
 import { installDrop } from './drop.js';
 import { createExports } from './exports.js';
-import { createGui, defaultParams, pipelineOptions } from './gui.js';
+import { pipelineParameters } from '../client/parameters.js';
+import { autoKey, createGui, defaultParams, pipelineOptions } from './gui.js';
 
-const params = defaultParams();
 // Three.js's Draco decoder, served from draco/ beside the app (vite.config.js).
 const dracoPath = new URL(`${import.meta.env.BASE_URL}draco/`, location.href).href;
+const connection = sharedConnection({ dracoPath });
+// The parameter table of the core: the panel's controls and defaults.
+const table = await connection.describe();
+const params = defaultParams(table);
 // Test and debugging hooks: the last result, the stages each run re-computed.
-const app = (window.crestline = { results: [], params, lastResult: null, fields: null, mesh: null });
+const app = (window.crestline = { results: [], params, parameters: table, lastResult: null, fields: null, mesh: null });
 
 const viewer = new Viewer(document.getElementById('view'), {
   onContextLost: () => fail('The WebGL context was lost (the GPU was reset or ran out of memory); the view returns when the browser restores it.'),
@@ -23,11 +27,11 @@ const viewer = new Viewer(document.getElementById('view'), {
 
 const brush = new WeightBrush(viewer, { onStroke: () => compute() });
 /** What the worker gets: the panel's values and the brushed weights (a copy: it is transferred). */
-const currentOptions = () => ({ ...pipelineOptions(params), vertexWeights: brush.current()?.slice() ?? null });
+const currentOptions = () => ({ ...pipelineOptions(params, table), vertexWeights: brush.current()?.slice() ?? null });
 
 let rescaleThreshold = false;
 
-const client = sharedConnection({ dracoPath }).session({
+const client = connection.session({
   onProgress: (stage, fraction) => showProgress(stage, overallFraction(stage, fraction)),
   onLoaded: ({ name, vertices, triangles, notes, milliseconds }) => {
     app.mesh = { name, vertices, triangles, loadMs: milliseconds }; // reading (C++) and repair
@@ -50,7 +54,7 @@ const client = sharedConnection({ dracoPath }).session({
     app.shown = { name: app.mesh?.name, get lines() { return (selected ??= selectLines(lines, kept)); } };
     app.lastResult = { name: app.mesh?.name, ran: result.ran, stats: result.stats, lineCount: kept.length, linesChanged: result.linesChanged, drawMs, milliseconds: result.milliseconds };
     app.results.push(app.lastResult);
-    gui.showThreshold(result.stats.threshold, rescaleThreshold);
+    gui.showUsed(result.stats, rescaleThreshold);
     rescaleThreshold = false;
     showStats(result, app.mesh);
     showProgress(null);
@@ -129,7 +133,7 @@ function applyView() {
 const exporter = createExports({ viewer, client, params, current: () => app.shown });
 
 const picker = document.getElementById('picker');
-const gui = createGui(params, {
+const gui = createGui(params, table, {
   onCompute: compute,
   onDisplay: applyDisplay,
   onFit: () => viewer.fitView(),
@@ -159,7 +163,7 @@ function startMesh(name, send) {
   app.mesh = { name };
   rescaleThreshold = true;
   brush.weights = null; // a new mesh starts homogeneous
-  send({ ...pipelineOptions(params), vertexWeights: null });
+  send({ ...pipelineOptions(params, table), vertexWeights: null });
 }
 
 /** The built-in sample, already a soup. */
@@ -181,6 +185,7 @@ async function openFiles(fileList) {
 // Test hooks: change parameters as the panel would.
 app.viewer = viewer;
 app.client = client;
+app.gui = gui.gui;
 /** Makes and downloads an export (the panel's buttons); failures show on the page. */
 app.save = (format) =>
   exporter.save(format).catch((error) => {
@@ -191,7 +196,8 @@ app.brush = brush;
 app.update = (partial) => {
   Object.assign(params, partial);
   gui.gui.controllersRecursive().forEach((c) => c.updateDisplay());
-  if (Object.keys(partial).some((k) => k in pipelineOptions(partial) || k === 'autoThreshold' || k === 'autoPresmooth')) compute();
+  const pipelineKeys = pipelineParameters(table).flatMap((p) => [p.key, autoKey(p)]);
+  if (Object.keys(partial).some((k) => pipelineKeys.includes(k))) compute();
   else applyDisplay();
 };
 

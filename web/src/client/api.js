@@ -2,7 +2,6 @@
 // The public JavaScript API over the client: computeFeatureLines(mesh,
 // options) → {ridges, valleys, stats}. The entry points (../index.js for
 // browsers and bundlers, ../index.node.js for node) give it their worker.
-import { OPTION_KEYS } from '../worker/protocol.js';
 import { selectLines } from './client.js';
 
 /**
@@ -41,12 +40,15 @@ export function meshArrays(mesh) {
   return { positions: xyz, indices: triangles };
 }
 
-/** The pipeline options among `options` (the parameter table's keys). @param {ComputeOptions} options */
-export function pipelineOptions(options) {
-  /** @type {Record<string, any>} */
-  const out = {};
-  for (const key of OPTION_KEYS) if (options[key] !== undefined) out[key] = options[key];
-  return out;
+/**
+ * The pipeline options among `options`: all but `exclude` (callbacks, display
+ * settings). The core refuses an unknown key or a value out of its range
+ * with a sentence naming it.
+ * @param {Record<string, any>} options
+ * @param {string[]} [exclude]
+ */
+export function pipelineOptions(options, exclude = ['onProgress', 'signal']) {
+  return Object.fromEntries(Object.entries(options).filter(([key, value]) => value !== undefined && !exclude.includes(key)));
 }
 
 /**

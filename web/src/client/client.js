@@ -90,7 +90,24 @@ export class Connection {
     /** @type {Map<number, Session>} */
     this.sessions = new Map();
     this.nextId = 1;
+    /** @type {Promise<import('./parameters.js').Parameter[]> | null} */
+    this.table = null;
+    /** @type {Map<number, (table: import('./parameters.js').Parameter[]) => void>} */
+    this.describing = new Map();
     this.start();
+  }
+
+  /**
+   * The core's parameter table (Session.describe()), asked once.
+   * @returns {Promise<import('./parameters.js').Parameter[]>}
+   */
+  describe() {
+    this.table ??= new Promise((resolve) => {
+      const request = this.nextId++;
+      this.describing.set(request, resolve);
+      this.post({ type: 'describe', request });
+    });
+    return this.table;
   }
 
   start() {
@@ -111,6 +128,11 @@ export class Connection {
   /** @param {Reply} message */
   receive(message) {
     if (message.type === 'ready') return;
+    if (message.type === 'described') {
+      this.describing.get(message.request)?.(message.table);
+      this.describing.delete(message.request);
+      return;
+    }
     const session = message.id === undefined ? undefined : this.sessions.get(message.id);
     if (message.type === 'error' && message.fatal) {
       // Unusable module (trap) or a full heap that never shrinks: a fresh worker.
@@ -132,6 +154,7 @@ export class Connection {
   restart(cause) {
     /** @type {WorkerLike} */ (this.worker).terminate();
     this.start();
+    for (const request of this.describing.keys()) this.post({ type: 'describe', request });
     for (const session of this.sessions.values()) session.workerRestarted(session !== cause);
   }
 

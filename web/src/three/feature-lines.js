@@ -5,6 +5,8 @@
 // lines (line-layer.js).
 import { Group } from 'three';
 import { meshArrays, pipelineOptions } from '../client/api.js';
+
+const DISPLAY = ['ridgeColor', 'valleyColor', 'lineWidth'];
 import { LineLayer } from './line-layer.js';
 
 const ORIGIN = [0, 0, 0];
@@ -23,7 +25,7 @@ export class FeatureLines extends Group {
     const { ridgeColor = '#d62d20', valleyColor = '#1f5fbf', lineWidth = 2.5 } = options;
     this.layer = new LineLayer({ ridgeColor, valleyColor, width: lineWidth });
     this.add(this.layer.group);
-    this.options = pipelineOptions(options);
+    this.options = pipelineOptions(options, DISPLAY);
     this.stats = null;
     this.ridgeCount = 0;
     this.valleyCount = 0;
@@ -61,13 +63,12 @@ export class FeatureLines extends Group {
 
   /** New options (merged with the current ones); resolves when the lines are shown. */
   update(options) {
-    const display = ['ridgeColor', 'valleyColor', 'lineWidth'];
-    if (display.some((k) => k in options)) {
+    if (DISPLAY.some((k) => k in options)) {
       const { ridgeColor, valleyColor, lineWidth } = options;
       if (ridgeColor || valleyColor) this.layer.setColors(ridgeColor ?? this.layer.objects[0].material.color, valleyColor ?? this.layer.objects[1].material.color);
       if (lineWidth) this.layer.setWidth(lineWidth);
     }
-    const pipeline = pipelineOptions(options);
+    const pipeline = pipelineOptions(options, DISPLAY);
     if (!Object.keys(pipeline).length) return Promise.resolve(this);
     this.options = { ...this.options, ...pipeline };
     const done = this.next();

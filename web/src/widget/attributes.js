@@ -1,6 +1,9 @@
 // The element's attributes, each reflected as a camelCase property, in the
 // style of <model-viewer>. `parse` turns the attribute text (or null when
-// absent) into the property value; `unparse` the other way.
+// absent) into the property value; `unparse` the other way. The pipeline's
+// parameters are not here: they come from the core's table
+// (defineParameterProperties, ../client/parameters.js).
+import { ATTRIBUTE_ALIASES, attributeName, parseParameter, pipelineParameters } from '../client/parameters.js';
 
 const number = (fallback) => ({
   parse: (text) => (text === null || text.trim() === '' || !Number.isFinite(Number(text)) ? fallback : Number(text)),
@@ -18,14 +21,6 @@ const oneOf = (values) => ({
 export const ATTRIBUTES = {
   src: { ...text(''), kind: 'source' },
   alt: { ...text(''), kind: 'label' },
-  smoothing: { ...number(3), kind: 'pipeline' },
-  // 'auto' (or absent): the core picks the threshold; otherwise ∫|κ| ds.
-  threshold: {
-    parse: (t) => (t === null || t.trim().toLowerCase() === 'auto' || !Number.isFinite(Number(t)) ? 'auto' : Number(t)),
-    unparse: String,
-    kind: 'pipeline',
-  },
-  fairing: { ...number(0.25), kind: 'pipeline' },
   ridges: { ...shown, kind: 'display' },
   valleys: { ...shown, kind: 'display' },
   'ridge-color': { ...text(null), kind: 'display' },
@@ -59,12 +54,56 @@ export function reflectAttributes(klass) {
 }
 
 /**
+ * One attribute and property per pipeline parameter of the table: the
+ * attribute is the CLI flag ("smoothing-steps"), the property the table's
+ * key ("smoothingSteps"); the older names `smoothing` and `fairing` stay as
+ * aliases. A property reads the attribute's value, or the core's default
+ * when it is absent or invalid. Returns the attribute names.
+ * @param {Function} klass
+ * @param {import('../client/parameters.js').Parameter[]} table
+ */
+export function defineParameterProperties(klass, table) {
+  const byAttribute = new Map(pipelineParameters(table).map((p) => [attributeName(p), p]));
+  const names = [...byAttribute.keys(), ...Object.keys(ATTRIBUTE_ALIASES)];
+  for (const name of names) {
+    const attribute = ATTRIBUTE_ALIASES[name] ?? name;
+    const p = byAttribute.get(attribute);
+    const property = attribute === name ? p.key : name;
+    Object.defineProperty(klass.prototype, property, {
+      get() {
+        return parameterValue(this, p) ?? p.default;
+      },
+      set(value) {
+        if (value === null || value === undefined) this.removeAttribute(name);
+        else this.setAttribute(name, String(value));
+      },
+      configurable: true,
+    });
+  }
+  return names;
+}
+
+/**
+ * A parameter's value from the element's attributes (its own name first,
+ * then an alias), or undefined.
+ * @param {Element} element
+ * @param {import('../client/parameters.js').Parameter} p
+ */
+export function parameterValue(element, p) {
+  const own = attributeName(p);
+  const alias = Object.keys(ATTRIBUTE_ALIASES).find((a) => ATTRIBUTE_ALIASES[a] === own);
+  return parseParameter(p, element.getAttribute(own)) ?? (alias ? parseParameter(p, element.getAttribute(alias)) : undefined);
+}
+
+/** The properties defineParameterProperties made, for upgradeProperties. */
+export const parameterProperties = (table) => [...pipelineParameters(table).map((p) => p.key), ...Object.keys(ATTRIBUTE_ALIASES)];
+
+/**
  * Properties set on the element before its definition loaded are own
  * properties that hide the accessors: pass them through the setters.
  */
-export function upgradeProperties(element) {
-  for (const attribute of Object.keys(ATTRIBUTES)) {
-    const name = propertyName(attribute);
+export function upgradeProperties(element, names = Object.keys(ATTRIBUTES).map(propertyName)) {
+  for (const name of names) {
     if (!Object.prototype.hasOwnProperty.call(element, name)) continue;
     const value = element[name];
     delete element[name];

@@ -2,7 +2,8 @@
 // in the page's one worker (../client) and drawn by its one WebGL context.
 import { sharedConnection } from '../client/browser.js';
 import { overallFraction, selectLines } from '../client/client.js';
-import { ATTRIBUTES, parseOrbit, reflectAttributes, upgradeProperties } from './attributes.js';
+import { pipelineParameters } from '../client/parameters.js';
+import { ATTRIBUTES, defineParameterProperties, parameterProperties, parameterValue, parseOrbit, reflectAttributes, upgradeProperties } from './attributes.js';
 import { exportGlb, linesSummary, renderPng } from '../three/exports.js';
 import { viewToSvg } from '../three/svg.js';
 import { DISPLAY_DEFAULTS, fillShadowRoot } from './template.js';
@@ -16,7 +17,26 @@ function nameOf(url) {
   return decodeURIComponent(url.pathname.split('/').pop() || url.hostname);
 }
 
+/** The core's parameter table, asked once per page; its properties are defined when it arrives. */
+let table = null;
+let tableArrived = null;
+let parameterAttributes = new Set();
+function parameterTable() {
+  tableArrived ??= sharedConnection()
+    .describe()
+    .then((t) => {
+      table = t;
+      parameterAttributes = new Set(defineParameterProperties(CrestlineViewer, t));
+    });
+  return tableArrived;
+}
+
 export class CrestlineViewer extends HTMLElement {
+  /** The core's parameter table once it arrived (null before): the pipeline's attributes. */
+  static get parameters() {
+    return table;
+  }
+
   static get observedAttributes() {
     return Object.keys(ATTRIBUTES);
   }
@@ -59,6 +79,15 @@ export class CrestlineViewer extends HTMLElement {
       if (this.near) this.queue('loading');
     }, { rootMargin: '100%' });
     this.nearScreen.observe(this);
+    // The pipeline's attributes are the table's: watched here, not in observedAttributes.
+    this.parameterObserver = new MutationObserver((records) => {
+      if (records.some((r) => parameterAttributes.has(r.attributeName))) this.queue('pipeline');
+    });
+    this.parameterObserver.observe(this, { attributes: true });
+    parameterTable().then(() => {
+      upgradeProperties(this, parameterProperties(table));
+      this.queue('source'); // a load waits for the table
+    });
     for (const kind of ['label', 'display', 'orbit', 'motion', 'interaction', 'poster', 'source']) this.queue(kind);
   }
 
@@ -66,6 +95,7 @@ export class CrestlineViewer extends HTMLElement {
     this.resizeObserver.disconnect();
     this.onScreen.disconnect();
     this.nearScreen.disconnect();
+    this.parameterObserver.disconnect();
     this.view.visible = false;
     // Moved elements come back at once; removed ones free their worker session.
     this.releaseTimer = setTimeout(() => this.release(), 0);
@@ -128,13 +158,14 @@ export class CrestlineViewer extends HTMLElement {
     this.view.setBackground(style.background);
   }
 
+  /** Every pipeline parameter: its attribute's value, else the core's default (a removed attribute resets it). */
   pipelineOptions() {
-    return { smoothingSteps: this.smoothing, hausdorffBound: this.fairing, threshold: this.threshold };
+    return Object.fromEntries(pipelineParameters(table).map((p) => [p.key, parameterValue(this, p) ?? p.default]));
   }
 
   /** Starts loading `src` unless it is loaded or lazy and far away; true when it started. */
   maybeLoad() {
-    if (!this.src || this.src === this.loadedSrc) return false;
+    if (!table || !this.src || this.src === this.loadedSrc) return false;
     if (this.loading === 'lazy' && !this.near) return false;
     this.load(this.src);
     return true;
@@ -171,7 +202,7 @@ export class CrestlineViewer extends HTMLElement {
 
   /** A parameter changed: the client runs the latest parameters once the running job is done. */
   compute() {
-    this.session?.setOptions(this.pipelineOptions());
+    if (table) this.session?.setOptions(this.pipelineOptions());
   }
 
   /** Stops the running computation ('cancel' event); the lines shown stay. */

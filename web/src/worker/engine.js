@@ -4,14 +4,14 @@
 // directly. Files are read by the C++ readers (Session.loadFile), as in the
 // native CLI; only compressed glTF is decoded here first (compressed-gltf.js).
 import { decodeCompressedGltf } from './compressed-gltf.js';
-import { OPTION_KEYS, pickMainFile, toUint8 } from './protocol.js';
+import { pickMainFile, toUint8 } from './protocol.js';
 
 /**
  * @typedef {import('./protocol.js').NamedBytes} NamedBytes
  * @typedef {import('./protocol.js').PipelineOptions} PipelineOptions
  * @typedef {{error?: string, kind?: string, cancelled?: boolean, [key: string]: any}} SessionResult
  * @typedef {{load: Function, loadFile: Function, setOptions: Function, options: Function, run: Function,
- *            surface: Function, lines: Function, keptLines: Function, fields: Function, linesObj: Function, linesJson: Function, statsJson: Function,
+ *            surface: Function, lines: Function, keptLines: Function, fields: Function, linesObj: Function, linesJson: Function, statsJson: Function, describe: Function,
  *            delete: Function}} WasmSession
  * @typedef {{Session: new () => WasmSession}} CrestlineModule
  * @typedef {{name: string, vertices: number, triangles: number, notes: string[],
@@ -56,12 +56,9 @@ function check(result, file) {
   return result;
 }
 
-/** @param {PipelineOptions} options */
-function pickOptions(options = {}) {
-  /** @type {PipelineOptions} */
-  const out = {};
-  for (const key of OPTION_KEYS) if (options[key] !== undefined) out[key] = options[key];
-  return out;
+/** The options that are set (the core refuses unknown keys and bad values, naming them). @param {PipelineOptions} options */
+function setOnly(options = {}) {
+  return Object.fromEntries(Object.entries(options).filter(([, value]) => value !== undefined));
 }
 
 /**
@@ -160,7 +157,7 @@ export class Engine {
    */
   run(options, onProgress, withLines = false) {
     const session = this.current();
-    check(session.setOptions(pickOptions(options)));
+    check(session.setOptions(setOnly(options)));
     const start = performance.now();
     const result = session.run(onProgress ?? (() => true));
     // Out of memory: free what the half-run pipeline holds before reporting.
@@ -187,6 +184,16 @@ export class Engine {
     const session = this.current();
     if (format === 'stats') return session.statsJson();
     return format === 'json' ? session.linesJson() : session.linesObj();
+  }
+
+  /** The parameter table (Session.describe()). @param {CrestlineModule} module */
+  static describe(module) {
+    const session = new module.Session();
+    try {
+      return session.describe();
+    } finally {
+      session.delete();
+    }
   }
 
   dispose() {

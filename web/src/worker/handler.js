@@ -121,6 +121,10 @@ export function createHandler({ startModule, post, canDecodeDraco = false }) {
         const engine = await engineFor(message.id);
         return post({ type: 'fields', id: message.id, job: message.job, fields: engine.fields() });
       }
+      case 'describe': {
+        starting ??= startModule();
+        return post({ type: 'described', request: message.request, table: Engine.describe(await starting) });
+      }
       case 'export': {
         const engine = await engineFor(message.id);
         return post({ type: 'export', id: message.id, request: message.request, format: message.format, text: engine.exportText(message.format) });

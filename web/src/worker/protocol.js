@@ -8,8 +8,8 @@
 /**
  * @typedef {{name: string, bytes: ArrayBuffer | Uint8Array}} NamedBytes
  *   a file: the main mesh file or one of a .gltf's companions
- * @typedef {Record<string, number | boolean | Float64Array | null | undefined>} PipelineOptions
- *   Session.setOptions keys (camelCase, see wasm/session.h)
+ * @typedef {Record<string, number | boolean | string | Float64Array | null | undefined>} PipelineOptions
+ *   Session.setOptions keys: the parameter table's (Session.describe()) and vertexWeights
  * @typedef {{positions: Float64Array, indices: Uint32Array}} Surface
  * @typedef {{points: Float64Array, offsets: Uint32Array, types: Uint8Array,
  *            strengths: Float64Array, lengths: Float64Array, closed: Uint8Array}} Lines
@@ -37,7 +37,9 @@
  * @typedef {{type: 'export', id: number, request: number, format: 'obj' | 'json' | 'stats'}} ExportMessage
  *   the CLI's text: OBJ polylines, JSON lines and stats, or the --stats object
  * @typedef {{type: 'dispose', id: number}} DisposeMessage
- * @typedef {InitMessage | OpenMessage | LoadMessage | OptionsMessage | FieldsMessage | ExportMessage | DisposeMessage} Request
+ * @typedef {{type: 'describe', request: number}} DescribeMessage  the parameter table
+ * @typedef {InitMessage | OpenMessage | LoadMessage | OptionsMessage | FieldsMessage | ExportMessage | DisposeMessage |
+ *           DescribeMessage} Request
  */
 
 /**
@@ -56,6 +58,7 @@
  *   pre-smoothing ran
  * @typedef {{type: 'fields', id: number, job: number, fields: Fields}} FieldsReply
  * @typedef {{type: 'export', id: number, request: number, format: string, text: string}} ExportReply
+ * @typedef {{type: 'described', request: number, table: import('../client/parameters.js').Parameter[]}} DescribedReply
  * @typedef {{type: 'cancelled', id: number, job: number}} CancelledReply
  * @typedef {{type: 'lost', id: number, job: number}} LostReply
  *   the worker holds no mesh for this session (it was restarted): send it again
@@ -64,24 +67,11 @@
  *   named: the message already names the file; fatal: the WASM module is
  *   unusable or its heap full (trap, out of memory): the client restarts the worker
  * @typedef {ReadyReply | ProgressReply | LoadedReply | ResultReply | FieldsReply | ExportReply |
- *           CancelledReply | LostReply | ErrorReply} Reply
+ *           CancelledReply | LostReply | ErrorReply | DescribedReply} Reply
  */
 
 /** Pipeline stages in order (core stage_name()). */
 export const STAGES = ['presmooth', 'curvature', 'extremality', 'regularity', 'smoothing', 'tracing', 'singular', 'polylines', 'fairing', 'filter'];
-
-/** Session.setOptions keys the page may set (see wasm/session.h). */
-export const OPTION_KEYS = [
-  'presmoothSteps',
-  'presmoothTimeStep',
-  'smoothingSteps',
-  'smoothingTimeStep',
-  'hausdorffBound',
-  'fairingIterations',
-  'threshold',
-  'boundaryRings',
-  'vertexWeights',
-];
 
 /**
  * Transferable buffers of a message payload (every typed array in it).
