@@ -10,7 +10,7 @@ packages=(
   libeigen3-dev libtinygltf-dev nlohmann-json3-dev libtinyobjloader-dev
   libcli11-dev libdraco-dev libmeshoptimizer-dev catch2
   emscripten nodejs chromium
-  clang clang-format libclang-rt-14-dev python3
+  clang clang-format clang-tidy libclang-rt-14-dev python3
 )
 missing=()
 # Node.js may come from elsewhere (e.g. a nodesource build that bundles npm,

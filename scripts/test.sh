@@ -8,7 +8,7 @@ cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 bash scripts/build.sh
 status=0
-for suite in scripts/check-format.sh tests/run-lint.sh tests/run-native.sh tests/run-node.sh tests/run-browser.sh tests/run-sanitize.sh fuzz/smoke.sh; do
+for suite in scripts/check-format.sh tests/run-lint.sh tests/run-tidy.sh tests/run-native.sh tests/run-node.sh tests/run-browser.sh tests/run-sanitize.sh fuzz/smoke.sh; do
   if [ -f "$suite" ]; then
     echo "== $suite"
     bash "$suite" || status=1
