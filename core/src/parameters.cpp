@@ -384,6 +384,8 @@ Stage first_changed_stage(const PipelineOptions& before, const PipelineOptions& 
     if (static_cast<int>(p.stage) < first && p.get(a) != p.get(b)) first = static_cast<int>(p.stage);
   if (before.smoothing.vertex_weights != after.smoothing.vertex_weights)
     first = std::min(first, static_cast<int>(Stage::Smoothing));
+  // Not offered to users (tests/quality tunes it), so not in the table.
+  if (before.averaging.rings != after.averaging.rings) first = std::min(first, static_cast<int>(Stage::Curvature));
   return static_cast<Stage>(first);
 }
 

@@ -82,7 +82,8 @@ std::string describe_range(const Parameter& p);
 
 /// The stages to re-run after changing `before` into `after`: the earliest
 /// stage whose parameters changed (Stage::Count when none did). Vertex
-/// weights are data, not a table parameter: a change re-runs smoothing.
+/// weights are data, not a table parameter: a change re-runs smoothing;
+/// shape-operator averaging is no user option: a change re-runs curvature.
 Stage first_changed_stage(const PipelineOptions& before, const PipelineOptions& after);
 
 }  // namespace crestline

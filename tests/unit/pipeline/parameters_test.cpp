@@ -113,4 +113,7 @@ TEST_CASE("set_options re-runs from the stage the table names for each parameter
   PipelineOptions weighted;
   weighted.smoothing.vertex_weights.assign(pipeline.input_mesh().positions.size(), 0.5);
   CHECK(first_changed_stage(PipelineOptions{}, weighted) == Stage::Smoothing);
+  PipelineOptions averaged;
+  averaged.averaging.rings = 1;
+  CHECK(first_changed_stage(PipelineOptions{}, averaged) == Stage::Curvature);
 }
