@@ -31,8 +31,8 @@ Polyline to_user(Polyline line, const ComponentFrames& frames, uint32_t componen
 }  // namespace
 
 const char* stage_name(Stage stage) {
-  static const char* names[] = {"presmooth", "curvature", "extremality", "regularity", "smoothing",
-                                "tracing",   "singular",  "polylines",   "fairing",    "filter"};
+  static const char* names[] = {"presmooth", "curvature", "extremality", "regularity", "smoothing", "tracing",
+                                "singular",  "polylines", "fairing",     "filter",     "creases"};
   const int i = static_cast<int>(stage);
   return i >= 0 && i < static_cast<int>(Stage::Count) ? names[i] : "unknown";
 }
@@ -62,6 +62,11 @@ void Pipeline::set_options(const PipelineOptions& o) {
   Stage changed = first_changed_stage(options_, o);
   if (o.averaging.rings != options_.averaging.rings) changed = std::min(changed, Stage::Curvature);
   if (changed != Stage::Count) mark_dirty(changed);
+  // The creases depend on nothing upstream: their own flags (run() runs them last).
+  if (o.creases.normal_filter_steps != options_.creases.normal_filter_steps)
+    crease_angles_valid_ = false, creases_dirty_ = true;
+  if (o.creases.angle != options_.creases.angle || o.creases.max_turn != options_.creases.max_turn)
+    creases_dirty_ = true;
   options_ = o;
 }
 
@@ -166,12 +171,35 @@ void Pipeline::run(const ProgressCallback& progress) {
     }
     std::sort(filtered_.kept.begin(), filtered_.kept.end());
   });
+  if (creases_dirty_) {
+    // Outside step(): no other stage makes it dirty, and a new crease angle
+    // re-runs nothing else. Measured on the input mesh (pre-smoothing rounds
+    // creases; angles do not depend on the frame), the automatic filter
+    // decided by the largest component's noise level, as stats() reports it.
+    if (progress && !progress(Stage::Creases, 0.0)) throw Cancelled();
+    StageTimer timer(seconds_[static_cast<int>(Stage::Creases)]);
+    if (!crease_angles_valid_) {
+      CreaseMeasureOptions measure{options_.creases.normal_filter_steps};
+      const double noise = noise_levels_.empty() ? 0.0 : noise_levels_[frames_.largest()];
+      if (measure.normal_filter_steps < 0) measure.normal_filter_steps = automatic_normal_filter_steps(noise);
+      crease_angles_ = measure_crease_angles(input_, topology_, measure);
+      crease_angles_valid_ = true;
+    }
+    creases_ = select_creases(input_, topology_, crease_angles_, options_.creases, mean_edge_);
+    creases_dirty_ = false;
+  }
 }
 
 std::vector<Polyline> Pipeline::lines() const {
   std::vector<Polyline> out;
   out.reserve(filtered_.kept.size());
   for (uint32_t i : filtered_.kept) out.push_back(faired_[i]);
+  return out;
+}
+
+std::vector<Polyline> Pipeline::all_kinds() const {
+  std::vector<Polyline> out = lines();
+  out.insert(out.end(), creases_.lines.begin(), creases_.lines.end());
   return out;
 }
 
@@ -189,6 +217,8 @@ PipelineStats Pipeline::stats() const {
       ++s.valleys, s.valley_length += l.length;
   }
   s.components = frames_.count();
+  for (const Polyline& l : creases_.lines) ++s.creases, s.crease_length += l.length;
+  s.crease_angle = creases_.angle;
   s.threshold = filtered_.threshold;
   s.mean_edge_length = mean_edge_;
   const uint32_t largest = frames_.largest();

@@ -4,7 +4,9 @@
 //   mesh ─ presmooth ─► curvature ─► extremality ─► regularity ─ smoothing ─►
 //   tracing ─► singular ─► polylines ─► fairing ─► filter
 // (Fairing runs on every line before filtering so that re-thresholding is a
-// pure selection: instant.)
+// pure selection: instant.) Beside them, on the input mesh and depending on
+// nothing else, the sharp creases (lines/creases.h): their stage runs last
+// and only when its own options changed.
 //
 // Every stage computes in the working frame of mesh/frame.h: each connected
 // component centred on its bounding box and measured in its own mean edge
@@ -22,6 +24,7 @@
 
 #include "crestline/curvature/extremality_smoothing.h"
 #include "crestline/curvature/shape_operator_averaging.h"
+#include "crestline/lines/creases.h"
 #include "crestline/lines/fairing.h"
 #include "crestline/lines/filter.h"
 #include "crestline/lines/singular.h"
@@ -38,6 +41,7 @@ struct PipelineOptions {
   TraceOptions trace;
   FairingOptions fairing;
   FilterOptions filter;
+  CreaseOptions creases;
 };
 
 enum class Stage : int {
@@ -51,6 +55,7 @@ enum class Stage : int {
   Polylines,
   Fairing,
   Filter,
+  Creases,  // independent of the stages before it: runs only when its options change
   Count
 };
 
@@ -69,7 +74,10 @@ struct PipelineStats {
   size_t singular_max = 0, singular_min = 0;
   size_t ridges = 0, valleys = 0;  // kept lines
   double ridge_length = 0, valley_length = 0;
-  size_t components = 0;  // connected components, each processed on its own
+  size_t creases = 0;
+  double crease_length = 0;
+  double crease_angle = 0;  // degrees, the threshold used
+  size_t components = 0;    // connected components, each processed on its own
   // Per component, reported for the largest one (most triangles):
   double threshold = 0;                                 // used by the filter
   double noise_level = 0;                               // surface_noise_level of the input
@@ -112,6 +120,12 @@ class Pipeline {
   const FilterResult& filtered() const { return filtered_; }
   /// The lines that pass the filter, ridges first then valleys.
   std::vector<Polyline> lines() const;
+  /// The sharp creases of the input mesh (type LineType::Crease).
+  const std::vector<Polyline>& creases() const { return creases_.lines; }
+  const CreaseResult& crease_result() const { return creases_; }
+  const CreaseAngles& crease_angles() const { return crease_angles_; }
+  /// lines() followed by creases(): what the writers draw.
+  std::vector<Polyline> all_kinds() const;
   PipelineStats stats() const;
 
  private:
@@ -140,6 +154,10 @@ class Pipeline {
   std::vector<Polyline> faired_local_;
   std::vector<Polyline> faired_;  // input's coordinates
   FilterResult filtered_;
+  bool creases_dirty_ = true;
+  bool crease_angles_valid_ = false;
+  CreaseAngles crease_angles_;
+  CreaseResult creases_;
   double seconds_[static_cast<int>(Stage::Count)] = {};
   double topology_seconds_ = 0;
 };

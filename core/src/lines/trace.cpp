@@ -98,7 +98,9 @@ void trace_field(const Mesh& mesh, const Topology& topology, const Field& field,
 
 }  // namespace
 
-const char* line_type_name(LineType type) { return type == LineType::Ridge ? "ridge" : "valley"; }
+const char* line_type_name(LineType type) {
+  return type == LineType::Ridge ? "ridge" : type == LineType::Valley ? "valley" : "crease";
+}
 
 void place_nodes_on(FeatureGraph& graph, const Mesh& mesh, const std::vector<std::array<uint32_t, 2>>& edges) {
   const std::vector<Vec3>& x = mesh.positions;

@@ -53,7 +53,8 @@ TEST_CASE("changing the threshold re-runs only the filter", "[pipeline]") {
   const auto ran = stages_run(p);
   REQUIRE(!ran.empty());
   CHECK(ran.front() == Stage::Smoothing);
-  CHECK(ran.size() == static_cast<size_t>(Stage::Count) - static_cast<size_t>(Stage::Smoothing));
+  // Up to the filter: the creases do not depend on smoothing.
+  CHECK(ran.size() == static_cast<size_t>(Stage::Creases) - static_cast<size_t>(Stage::Smoothing));
 
   p.set_options(o);
   CHECK(stages_run(p).empty());

@@ -9,9 +9,11 @@
 
 namespace crestline {
 
-enum class LineType : uint8_t { Ridge = 0, Valley = 1 };
+/// Ridges and valleys are the paper's smooth lines; creases are sharp edges
+/// of the mesh (lines/creases.h).
+enum class LineType : uint8_t { Ridge = 0, Valley = 1, Crease = 2 };
 
-const char* line_type_name(LineType type);  // "ridge" / "valley"
+const char* line_type_name(LineType type);  // "ridge" / "valley" / "crease"
 
 struct FeatureGraph {
   LineType type = LineType::Ridge;

@@ -15,6 +15,8 @@ struct Polyline {
   /// ∫|κ| ds along the line, trapezoidal [OBS04]: unitless, so independent of scale.
   double strength = 0;
   double length = 0;
+  /// Creases only: the dihedral angle is positive (convex, an outer edge).
+  bool convex = false;
 };
 
 /// Walks the graph into maximal chains: they end at nodes of degree ≠ 2

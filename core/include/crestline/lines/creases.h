@@ -1,0 +1,95 @@
+#pragma once
+// Sharp creases (issue 16): the third kind of line, beside the paper's
+// smooth ridges and valleys. A crease is a chain of mesh edges whose dihedral
+// angle exceeds a threshold: the sharp edges of CAD parts and machined
+// objects, where the one-ring of a vertex spans two surfaces and the
+// curvature of §3 means nothing.
+//
+// Two steps, so that a new crease angle is a pure selection:
+//   measure_crease_angles  — a signed dihedral angle per edge, from face
+//                            normals denoised by a feature-preserving filter;
+//   select_creases         — threshold, chain, split, drop spurs.
+#include <cstdint>
+#include <vector>
+
+#include "crestline/lines/polylines.h"
+#include "crestline/mesh/mesh.h"
+#include "crestline/mesh/topology.h"
+
+namespace crestline {
+
+/// Default crease angle (degrees), the least the automatic choice takes.
+/// Measured on tests/quality's CAD-like surfaces (crestline_crease_report):
+/// their fillets turn by 10° per edge, the smallest true crease is 45°, and
+/// the filtered dihedral of their flat parts under noise of 0.1 mean edges
+/// stays below 30° away from the creases.
+constexpr double kDefaultCreaseAngle = 35.0;
+
+struct CreaseMeasureOptions {
+  /// Steps of the bilateral face-normal filter before the dihedral angles are
+  /// measured; 0 uses the raw face normals. Negative: automatic, see
+  /// automatic_normal_filter_steps.
+  int normal_filter_steps = -1;
+};
+
+/// 0 on a clean surface (surface_noise_level ≤ kNoisySurface): raw normals
+/// are exact on a CAD tessellation; on a noisy one, enough steps that the
+/// dihedral of flat parts no longer reaches the default angle (creases.cpp).
+int automatic_normal_filter_steps(double noise_level);
+
+struct CreaseAngles {
+  /// Per edge (Topology::edges), the signed dihedral angle in radians between
+  /// the (filtered) normals of its two triangles: positive where the surface
+  /// is convex across the edge (a box's edges), negative where concave; 0 on
+  /// boundary edges and where below 20° (never a crease, not computed).
+  std::vector<double> angle;
+  /// Per edge, radians ≥ 0: the angle between the mean raw normals of the
+  /// faces around its ends on either side of it (creases.cpp); 0 where the
+  /// angle is below 20°. A crease must have both.
+  std::vector<double> support;
+  int normal_filter_steps = 0;  // used (the automatic choice resolved)
+  /// The median |angle| over (every fourth) interior edge, degrees: how much
+  /// a smooth edge of this mesh turns.
+  double median = 0;
+};
+
+/// The automatic crease angle (degrees): kDefaultCreaseAngle, raised to a
+/// multiple of the median dihedral on meshes whose ordinary edges turn a lot
+/// (scans), so that their fine folds do not count as creases (creases.cpp).
+double automatic_crease_angle(const CreaseAngles& angles);
+
+/// Linear in the mesh size times the filter steps.
+CreaseAngles measure_crease_angles(const Mesh& mesh, const Topology& topology, const CreaseMeasureOptions& options);
+
+struct CreaseOptions {
+  /// Edges whose |dihedral angle| is at least this (degrees) are crease
+  /// edges. Negative: automatic_crease_angle. Below 20° it acts as 20°
+  /// (smaller angles are not measured). Angles are unitless, so the choice
+  /// does not depend on the model's scale.
+  double angle = -1;
+  /// A chain turning by more than this (degrees) between two consecutive
+  /// edges is split there, as at a corner where three or more creases meet.
+  double max_turn = 60.0;
+  /// Steps of the normal filter (measure_crease_angles); negative automatic.
+  int normal_filter_steps = -1;
+};
+
+struct CreaseResult {
+  /// Type LineType::Crease, points at the input mesh's vertices; `convex`
+  /// tells the sign; `curvature` per point is |angle| / mean edge length (the
+  /// turn across the crease, spread over one edge), so `strength` is
+  /// ∑ |angle|·length / mean edge, unitless like the smooth lines'.
+  std::vector<Polyline> lines;
+  /// The crease edges the lines run along (after spurs were dropped).
+  std::vector<uint32_t> edges;
+  double angle = 0;  // degrees, the threshold used
+};
+
+/// Selects the edges at or above the angle, chains them through vertices
+/// where exactly two crease edges meet, splits chains at corners (three or
+/// more), at turns sharper than max_turn and where the sign changes, and drops
+/// short weak spurs (creases.cpp). Reads only `angles`: no curvature.
+CreaseResult select_creases(const Mesh& mesh, const Topology& topology, const CreaseAngles& angles,
+                            const CreaseOptions& options, double mean_edge_length);
+
+}  // namespace crestline
