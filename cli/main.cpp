@@ -111,20 +111,20 @@ void print_repair_report(const std::string& input, const RepairReport& r, Progre
 }
 
 std::string render(const CliOptions& options, const Pipeline& pipeline) {
+  const std::vector<Polyline> lines = pipeline.all_kinds();  // ridges, valleys, creases
   switch (options.format) {
     case OutputFormat::Json:
-      return io::write_lines_json(pipeline.lines(), pipeline.stats());
+      return io::write_lines_json(lines, pipeline.stats());
     case OutputFormat::Svg:
-      return io::write_lines_svg(pipeline.lines(), pipeline.input_mesh(), pipeline.topology(), options.settings.svg);
+      return io::write_lines_svg(lines, pipeline.input_mesh(), pipeline.topology(), options.settings.svg);
     case OutputFormat::Glb: {
-      const std::vector<uint8_t> bytes =
-          io::write_glb(options.with_mesh ? &pipeline.input_mesh() : nullptr, pipeline.lines());
+      const std::vector<uint8_t> bytes = io::write_glb(options.with_mesh ? &pipeline.input_mesh() : nullptr, lines);
       return std::string(bytes.begin(), bytes.end());
     }
     case OutputFormat::Obj:
     default:
-      return options.with_mesh ? io::write_mesh_and_lines_obj(pipeline.input_mesh(), pipeline.lines())
-                               : io::write_lines_obj(pipeline.lines());
+      return options.with_mesh ? io::write_mesh_and_lines_obj(pipeline.input_mesh(), lines)
+                               : io::write_lines_obj(lines);
   }
 }
 

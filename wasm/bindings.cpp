@@ -16,6 +16,7 @@ EMSCRIPTEN_BINDINGS(crestline) {
       .function("surface", &Session::surface)
       .function("lines", &Session::lines)
       .function("keptLines", &Session::keptLines)
+      .function("creases", &Session::creases)
       .function("fields", &Session::fields)
       .function("stats", &Session::stats)
       .function("linesObj", &Session::linesObj)

@@ -332,14 +332,14 @@ val Session::surface() const {
   return out;
 }
 
-val Session::lines(bool all) const {
-  std::vector<Polyline> kept;
-  if (pipeline_ && !all) kept = pipeline_->lines();
-  const std::vector<Polyline>& lines = all && pipeline_ ? pipeline_->all_lines() : kept;
+namespace {
+
+// Lines as flat typed arrays (see Session::lines and Session::creases).
+val flat_lines(const std::vector<Polyline>& lines, bool creases, double mean_edge) {
   std::vector<Vec3> points;
   std::vector<uint32_t> offsets{0};
-  std::vector<uint8_t> types, closed;
-  std::vector<double> strengths, lengths;
+  std::vector<uint8_t> types, closed, convex;
+  std::vector<double> strengths, lengths, angles;
   for (const Polyline& line : lines) {
     points.insert(points.end(), line.points.begin(), line.points.end());
     offsets.push_back(static_cast<uint32_t>(points.size()));
@@ -347,15 +347,35 @@ val Session::lines(bool all) const {
     closed.push_back(line.closed ? 1 : 0);
     strengths.push_back(line.strength);
     lengths.push_back(line.length);
+    convex.push_back(line.convex ? 1 : 0);
+    // strength = ∑ |angle|·length / h, so the mean angle is strength·h / length.
+    angles.push_back(line.length > 0 ? line.strength * mean_edge / line.length * 180 / 3.14159265358979323846 : 0);
   }
   val out = val::object();
   out.set("points", positions_out(points));
   out.set("offsets", copy_out(offsets.data(), offsets.size()));
-  out.set("types", copy_out(types.data(), types.size()));
+  if (!creases) out.set("types", copy_out(types.data(), types.size()));
   out.set("closed", copy_out(closed.data(), closed.size()));
   out.set("strengths", copy_out(strengths.data(), strengths.size()));
   out.set("lengths", copy_out(lengths.data(), lengths.size()));
+  if (creases) {
+    out.set("convex", copy_out(convex.data(), convex.size()));
+    out.set("angles", copy_out(angles.data(), angles.size()));
+  }
   return out;
+}
+
+}  // namespace
+
+val Session::lines(bool all) const {
+  std::vector<Polyline> kept;
+  if (pipeline_ && !all) kept = pipeline_->lines();
+  return flat_lines(all && pipeline_ ? pipeline_->all_lines() : kept, false, 0);
+}
+
+val Session::creases() const {
+  if (!pipeline_) return flat_lines({}, true, 0);
+  return flat_lines(pipeline_->creases(), true, pipeline_->stats().mean_edge_length);
 }
 
 val Session::keptLines() const {
@@ -391,6 +411,9 @@ val Session::stats() const {
   out.set("valleys", s.valleys);
   out.set("ridgeLength", s.ridge_length);
   out.set("valleyLength", s.valley_length);
+  out.set("creases", s.creases);
+  out.set("creaseLength", s.crease_length);
+  out.set("creaseAngle", s.crease_angle);
   out.set("threshold", s.threshold);
   out.set("meanEdgeLength", s.mean_edge_length);
   out.set("noiseLevel", s.noise_level);
@@ -402,10 +425,12 @@ val Session::stats() const {
   return out;
 }
 
-std::string Session::linesObj() const { return pipeline_ ? io::write_lines_obj(pipeline_->lines()) : std::string(); }
+std::string Session::linesObj() const {
+  return pipeline_ ? io::write_lines_obj(pipeline_->all_kinds()) : std::string();
+}
 
 std::string Session::linesJson() const {
-  return pipeline_ ? io::write_lines_json(pipeline_->lines(), pipeline_->stats()) : std::string();
+  return pipeline_ ? io::write_lines_json(pipeline_->all_kinds(), pipeline_->stats()) : std::string();
 }
 
 std::string Session::statsJson() const { return pipeline_ ? io::stats_json(pipeline_->stats()) : std::string(); }
@@ -421,7 +446,8 @@ val Session::linesSvg(val o) const {
     return error_value("usage", e.what());
   }
   return guarded(triangles_, [&] {
-    return val(io::write_lines_svg(pipeline_->lines(), pipeline_->input_mesh(), pipeline_->topology(), settings.svg));
+    return val(
+        io::write_lines_svg(pipeline_->all_kinds(), pipeline_->input_mesh(), pipeline_->topology(), settings.svg));
   });
 }
 

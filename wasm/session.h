@@ -57,7 +57,7 @@ class Session {
   /// {positions: Float64Array, indices: Uint32Array} of the surface the
   /// lines lie on (after pre-smoothing).
   val surface() const;
-  /// Lines as flat arrays: {points: Float64Array (xyz), offsets: Uint32Array
+  /// Ridges and valleys as flat arrays: {points: Float64Array (xyz), offsets: Uint32Array
   /// (lineCount+1, in points), types: Uint8Array (0 ridge, 1 valley),
   /// strengths, lengths: Float64Array, closed: Uint8Array}. `all` selects
   /// every faired line instead of those passing the filter.
@@ -65,6 +65,13 @@ class Session {
   /// Uint32Array: the indices into lines(true) of the lines that pass the
   /// filter, in order (a threshold change needs only these).
   val keptLines() const;
+  /// The sharp creases (lines/creases.h) as flat arrays: {points, offsets,
+  /// closed, strengths, lengths} as in lines(), plus convex: Uint8Array (1 where
+  /// the dihedral angle is positive, an outer edge) and angles: Float64Array
+  /// (the mean |dihedral angle| along each line, degrees). Their own call, so
+  /// that lines() keeps ridges and valleys only; a new creaseAngle re-runs
+  /// only the crease selection.
+  val creases() const;
   /// Per-vertex kappaMax, kappaMin, eMax, eMin (Float64Array, pointwise) and
   /// per-triangle regularMax, regularMin (Uint8Array).
   val fields() const;

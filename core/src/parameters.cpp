@@ -156,6 +156,36 @@ std::vector<Parameter> make_table() {
                [](Settings& s, const ParameterValue& v) {
                  s.pipeline.filter.threshold = v.automatic ? std::nullopt : std::optional<double>(v.number);
                }});
+  t.push_back({"creaseAngle",
+               "--crease-angle",
+               "pipeline",
+               ParameterKind::Number,
+               true,
+               20,
+               180,
+               {},
+               "degrees",
+               "Sharp creases: edges whose dihedral angle is at least this (a selection, no curvature is "
+               "recomputed; 180: none); auto: 35, or 12 times the median dihedral angle where larger",
+               Stage::Creases,
+               [](const Settings& s) {
+                 const double a = s.pipeline.creases.angle;
+                 return automatic_or(a < 0 ? std::nullopt : std::optional<double>(a));
+               },
+               [](Settings& s, const ParameterValue& v) { s.pipeline.creases.angle = v.automatic ? -1 : v.number; }});
+  t.push_back({"creaseMaxTurn",
+               "--crease-max-turn",
+               "pipeline",
+               ParameterKind::Number,
+               false,
+               0,
+               180,
+               {},
+               "degrees",
+               "Split a crease line where it turns by more than this",
+               Stage::Creases,
+               [](const Settings& s) { return number(s.pipeline.creases.max_turn); },
+               [](Settings& s, const ParameterValue& v) { s.pipeline.creases.max_turn = v.number; }});
   t.push_back({"shortLineLength",
                "--short-line-length",
                "pipeline",

@@ -196,7 +196,8 @@ for (const file of MESH_FILES) {
     const [a, b] = ['wasm', 'native'].map((build) => parseLinesObj(readFileSync(out(`${name}.obj`)(build), 'utf8')));
     assert.equal(a.ridges.length, b.ridges.length, `${file}: ridge count`);
     assert.equal(a.valleys.length, b.valleys.length, `${file}: valley count`);
-    for (const group of ['ridges', 'valleys']) {
+    assert.equal(a.creases.length, b.creases.length, `${file}: crease count`);
+    for (const group of ['ridges', 'valleys', 'creases']) {
       const d = Math.max(maxNearestDistance(flat(a[group], a.vertices), flat(b[group], b.vertices)),
         maxNearestDistance(flat(b[group], b.vertices), flat(a[group], a.vertices)));
       assert.equal(d, 0, `${file}: ${group} differ by up to ${d}`);

@@ -33,10 +33,10 @@ export function sineHeightField({ n = 60, size = 4, wavelength = 1, amplitude = 
   return { name: 'sine height field', positions, indices: Uint32Array.from(indices) };
 }
 
-/** The OBJ line contract: vertices, then `o ridges` / `o valleys` groups of `l` lines. */
+/** The OBJ line contract: vertices, then `o ridges` / `o valleys` (/ `o creases`) groups of `l` lines. */
 export function parseLinesObj(text) {
   const vertices = [];
-  const groups = { ridges: [], valleys: [] };
+  const groups = { ridges: [], valleys: [], creases: [] };
   let group = null;
   for (const line of text.split('\n')) {
     const parts = line.trim().split(/\s+/);

@@ -50,6 +50,53 @@ test('sine height field: ridges on the crests x = k·L, valleys in the troughs x
   engine.dispose();
 });
 
+// The cube [−1, 1]³, each face an n × n grid, outward, welded by the core.
+function cube(n) {
+  const positions = [], indices = [];
+  for (let axis = 0; axis < 3; axis++) {
+    for (const side of [-1, 1]) {
+      const u = (axis + 1) % 3, v = (axis + 2) % 3, base = positions.length / 3;
+      for (let j = 0; j <= n; j++) {
+        for (let i = 0; i <= n; i++) {
+          const p = [0, 0, 0];
+          p[axis] = side;
+          p[u] = side > 0 ? (2 * i) / n - 1 : (2 * j) / n - 1;
+          p[v] = side > 0 ? (2 * j) / n - 1 : (2 * i) / n - 1;
+          positions.push(...p);
+        }
+      }
+      for (let j = 0; j < n; j++) {
+        for (let i = 0; i < n; i++) {
+          const a = base + j * (n + 1) + i, b = a + 1, c = a + n + 2, d = a + n + 1;
+          indices.push(a, b, c, a, c, d);
+        }
+      }
+    }
+  }
+  return { positions: new Float64Array(positions), indices: new Uint32Array(indices) };
+}
+
+test('creases: a cube has twelve convex ones of 90°; a new crease angle re-runs only their selection', () => {
+  const session = new module.Session();
+  const mesh = cube(24);
+  assert.ok(session.load(mesh.positions, mesh.indices, {}).ok);
+  const first = session.run(null);
+  assert.ok(first.ran.includes('creases'));
+  assert.equal(first.stats.creases, 12);
+  assert.ok(Math.abs(first.stats.creaseLength - 24) < 1e-9);
+  const creases = session.creases();
+  assert.equal(creases.offsets.length, 13);
+  assert.deepEqual([...creases.convex], new Array(12).fill(1));
+  for (const angle of creases.angles) assert.ok(Math.abs(angle - 90) < 1e-6, `mean angle ${angle}`);
+  assert.match(session.linesObj(), /\no creases\n(l [\d ]+\n){12}$/);
+  assert.equal(JSON.parse(session.linesJson()).creases.length, 12);
+  session.setOptions({ creaseAngle: 95 });
+  const strict = session.run(null);
+  assert.deepEqual(strict.ran, ['creases']);
+  assert.equal(session.creases().offsets.length, 1);
+  session.delete();
+});
+
 test('threshold change re-runs only the filter; smoothing change re-runs from smoothing on', () => {
   const engine = new Engine(module);
   engine.load(sineHeightField({ n: 40 }));

@@ -370,16 +370,23 @@ std::string write_lines_svg(const std::vector<Polyline>& lines, const Mesh& surf
     LineType type;
     const char* id;
     const std::string& color;
-  } groups[] = {{LineType::Ridge, "ridges", options.ridge_color}, {LineType::Valley, "valleys", options.valley_color}};
+  } groups[] = {{LineType::Ridge, "ridges", options.ridge_color},
+                {LineType::Valley, "valleys", options.valley_color},
+                {LineType::Crease, "creases", options.crease_color}};
   std::vector<Vec3> projected;
   for (const auto& group : groups) {
+    // Ridges and valleys always have their group; creases only when there are any.
+    const bool crease = group.type == LineType::Crease;
+    if (crease &&
+        std::none_of(lines.begin(), lines.end(), [](const Polyline& l) { return l.type == LineType::Crease; }))
+      continue;
     open_group(out, group.id, group.color, options.stroke_width);
     for (const Polyline& line : lines) {
       if (line.type != group.type) continue;
       projected.clear();
       for (const Vec3& p : line.points) projected.push_back(proj(p));
       for (const Run& run : visible_runs(projected, line.closed, depth)) {
-        out += "<path d=\"";
+        out += crease ? (line.convex ? "<path class=\"convex\" d=\"" : "<path class=\"concave\" d=\"") : "<path d=\"";
         append_path_data(out, run);
         out += "\"/>\n";
       }

@@ -18,7 +18,7 @@ namespace {
 constexpr uint32_t kArrayBuffer = 34962, kElementArrayBuffer = 34963;
 constexpr uint32_t kFloat = 5126, kUnsignedInt = 5125;
 constexpr int kTriangles = 4, kLineStrip = 3;
-constexpr int kRidgeMaterial = 0, kValleyMaterial = 1, kSurfaceMaterial = 2;
+constexpr int kRidgeMaterial = 0, kValleyMaterial = 1, kSurfaceMaterial = 2, kCreaseMaterial = 3;
 
 // float32 printed so that it reads back to the same float.
 void append_float(std::string& out, float value) {
@@ -86,9 +86,10 @@ class Builder {
   }
 };
 
-std::string primitive(size_t positions, size_t indices, int mode, int material) {
+std::string primitive(size_t positions, size_t indices, int mode, int material, const std::string& extras = {}) {
   return "{\"attributes\":{\"POSITION\":" + std::to_string(positions) + "},\"indices\":" + std::to_string(indices) +
-         ",\"mode\":" + std::to_string(mode) + ",\"material\":" + std::to_string(material) + '}';
+         ",\"mode\":" + std::to_string(mode) + ",\"material\":" + std::to_string(material) +
+         (extras.empty() ? "" : ",\"extras\":" + extras) + '}';
 }
 
 void append_u32(std::vector<uint8_t>& out, uint32_t value) {
@@ -122,8 +123,10 @@ std::vector<uint8_t> write_glb(const Mesh* mesh, const std::vector<Polyline>& li
     for (const Triangle& t : mesh->triangles) indices.insert(indices.end(), t.begin(), t.end());
     add_node("surface", primitive(positions, builder.add_indices(indices), kTriangles, kSurfaceMaterial));
   }
-  for (LineType type : {LineType::Ridge, LineType::Valley}) {
-    const bool ridge = type == LineType::Ridge;
+  for (LineType type : {LineType::Ridge, LineType::Valley, LineType::Crease}) {
+    const int material = type == LineType::Ridge    ? kRidgeMaterial
+                         : type == LineType::Valley ? kValleyMaterial
+                                                    : kCreaseMaterial;
     std::string primitives;
     for (const Polyline& line : lines) {
       if (line.type != type || line.points.size() < 2) continue;
@@ -132,10 +135,13 @@ std::vector<uint8_t> write_glb(const Mesh* mesh, const std::vector<Polyline>& li
       if (line.closed) indices.push_back(0);  // LINE_STRIP back to the start
       const size_t positions = builder.add_positions(line.points);
       if (!primitives.empty()) primitives += ',';
-      primitives +=
-          primitive(positions, builder.add_indices(indices), kLineStrip, ridge ? kRidgeMaterial : kValleyMaterial);
+      const std::string extras =
+          type == LineType::Crease ? std::string("{\"convex\":") + (line.convex ? "true" : "false") + '}' : "";
+      primitives += primitive(positions, builder.add_indices(indices), kLineStrip, material, extras);
     }
-    add_node(ridge ? "ridges" : "valleys", primitives);
+    // Ridges and valleys always have their node; creases only when there are any.
+    if (type == LineType::Crease && primitives.empty()) continue;
+    add_node(type == LineType::Ridge ? "ridges" : type == LineType::Valley ? "valleys" : "creases", primitives);
   }
 
   std::string scene_nodes;
@@ -149,7 +155,7 @@ std::vector<uint8_t> write_glb(const Mesh* mesh, const std::vector<Polyline>& li
       scene_nodes + "]}],\"nodes\":[" + nodes + "]";
   if (mesh_count) json += ",\"meshes\":[" + meshes + "]";
   json += ",\"materials\":[" + material("ridge", "0.75,0.22,0.17,1") + ',' + material("valley", "0.14,0.45,0.64,1") +
-          ',' + material("surface", "0.8,0.8,0.8,1") + ']';
+          ',' + material("surface", "0.8,0.8,0.8,1") + ',' + material("crease", "0.13,0.13,0.13,1") + ']';
   if (!builder.bin.empty()) {
     json += ",\"buffers\":[{\"byteLength\":" + std::to_string(builder.bin.size()) + "}],\"bufferViews\":[" +
             builder.views + "],\"accessors\":[" + builder.accessors + ']';

@@ -31,10 +31,17 @@ void append_number(std::string& out, double value) {
 
 void append_count(std::string& out, size_t value) { out += std::to_string(value); }
 
-// Ridges first, then valleys, each in input order: the OBJ and JSON
-// contracts both group by type.
-constexpr LineType kTypes[] = {LineType::Ridge, LineType::Valley};
-const char* group_name(LineType type) { return type == LineType::Ridge ? "ridges" : "valleys"; }
+// Ridges first, then valleys, then creases, each in input order: the OBJ
+// and JSON contracts both group by type.
+constexpr LineType kTypes[] = {LineType::Ridge, LineType::Valley, LineType::Crease};
+const char* group_name(LineType type) {
+  return type == LineType::Ridge ? "ridges" : type == LineType::Valley ? "valleys" : "creases";
+}
+bool any_of_type(const std::vector<Polyline>& lines, LineType type) {
+  for (const Polyline& l : lines)
+    if (l.type == type && l.points.size() >= 2) return true;
+  return false;
+}
 
 void append_vertex(std::string& out, const Vec3& p) {
   out += "v ";
@@ -62,6 +69,8 @@ void append_lines_obj(std::string& out, const std::vector<Polyline>& lines, size
     }
   }
   for (LineType type : kTypes) {
+    // Ridges and valleys always have their object; creases only when there are any.
+    if (type == LineType::Crease && !any_of_type(lines, type)) continue;
     out += "o ";
     out += group_name(type);
     out += '\n';
@@ -85,7 +94,7 @@ void append_lines_obj(std::string& out, const std::vector<Polyline>& lines, size
 }  // namespace
 
 std::string write_lines_obj(const std::vector<Polyline>& lines) {
-  std::string out = "# crestline feature lines: o ridges, o valleys; one l per polyline\n";
+  std::string out = "# crestline feature lines: o ridges, o valleys (, o creases); one l per polyline\n";
   append_lines_obj(out, lines, 0);
   return out;
 }
@@ -113,13 +122,14 @@ std::string stats_json(const PipelineStats& stats) {
                                                    {"singular_min", stats.singular_min},
                                                    {"ridges", stats.ridges},
                                                    {"valleys", stats.valleys},
+                                                   {"creases", stats.creases},
                                                    {"components", stats.components},
                                                    {"presmooth_steps", static_cast<size_t>(stats.presmooth_steps)}};
-  const std::pair<const char*, double> measures[] = {{"ridge_length", stats.ridge_length},
-                                                     {"valley_length", stats.valley_length},
-                                                     {"threshold", stats.threshold},
-                                                     {"mean_edge_length", stats.mean_edge_length},
-                                                     {"noise_level", stats.noise_level}};
+  const std::pair<const char*, double> measures[] = {
+      {"ridge_length", stats.ridge_length},   {"valley_length", stats.valley_length},
+      {"crease_length", stats.crease_length}, {"crease_angle", stats.crease_angle},
+      {"threshold", stats.threshold},         {"mean_edge_length", stats.mean_edge_length},
+      {"noise_level", stats.noise_level}};
   std::string out = "{";
   auto key = [&out](const char* name) {
     if (out.size() > 1 && out.back() != '{') out += ',';
@@ -173,6 +183,7 @@ std::string write_lines_json(const std::vector<Polyline>& lines, const PipelineS
       append_number(out, line.length);
       out += ",\"closed\":";
       out += line.closed ? "true" : "false";
+      if (type == LineType::Crease) out += line.convex ? ",\"convex\":true" : ",\"convex\":false";
       out += '}';
     }
     out += ']';

@@ -292,3 +292,17 @@ TEST_CASE("SVG: empty input gives a valid, empty drawing", "[io][svg]") {
   CHECK(svg.find("</svg>") != std::string::npos);
   CHECK(paths_in(svg, "ridges").empty());
 }
+
+TEST_CASE("SVG: creases in group \"creases\", each path classed convex or concave", "[io][writers][svg][creases]") {
+  auto convex = test_line(LineType::Crease, {{-0.5, 0.5, 0.1}, {0.5, 0.5, 0.1}});
+  convex.convex = true;
+  const auto concave = test_line(LineType::Crease, {{-0.5, -0.5, 0.1}, {0.5, -0.5, 0.1}});
+  const std::string svg = svg_of({convex, concave}, plane());
+  const size_t group = svg.find("<g id=\"creases\"");
+  REQUIRE(group != std::string::npos);
+  CHECK(svg.find("<path class=\"convex\" d=\"M", group) != std::string::npos);
+  CHECK(svg.find("<path class=\"concave\" d=\"M", group) != std::string::npos);
+  // Without creases there is no such group.
+  CHECK(svg_of({test_line(LineType::Ridge, {{-0.5, 0, 0.1}, {0.5, 0, 0.1}})}, plane()).find("creases") ==
+        std::string::npos);
+}

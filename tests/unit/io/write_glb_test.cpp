@@ -143,3 +143,23 @@ TEST_CASE("GLB without lines is still a valid file with both nodes", "[io][write
   CHECK_FALSE(gltf.contains("meshes"));
   CHECK(glb.size() == 20 + u32(glb, 12));  // no BIN chunk
 }
+
+TEST_CASE("GLB: creases in node \"creases\", each primitive with extras.convex", "[io][writers][glb][creases]") {
+  std::vector<crestline::Polyline> with_creases = lines();
+  with_creases.push_back(test_line(LineType::Crease, {{0, 0, 0}, {0, 0, 1}}, false));
+  with_creases.back().convex = true;
+  with_creases.push_back(test_line(LineType::Crease, {{1, 0, 0}, {1, 0, 1}, {1, 1, 1}}, false));
+  const nlohmann::json gltf = parse_glb(crestline::io::write_glb(nullptr, with_creases));
+  CHECK(strip_lengths(gltf, "creases") == std::vector<size_t>{2, 3});
+  for (const auto& node : gltf["nodes"])
+    if (node["name"] == "creases") {
+      const auto& primitives = gltf["meshes"][node["mesh"].get<size_t>()]["primitives"];
+      CHECK(primitives[0]["extras"]["convex"] == true);
+      CHECK(primitives[1]["extras"]["convex"] == false);
+      const size_t material = primitives[0]["material"];
+      CHECK(gltf["materials"][material]["name"] == "crease");
+    }
+  // No creases: no node for them.
+  for (const auto& node : parse_glb(crestline::io::write_glb(nullptr, lines()))["nodes"])
+    CHECK(node["name"] != "creases");
+}

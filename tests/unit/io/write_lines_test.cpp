@@ -222,3 +222,39 @@ TEST_CASE("OBJ with the mesh: o surface with v/f first, line indices numbered af
   CHECK(obj.substr(first_line_vertex, obj.find("\no ridges\n") - first_line_vertex) ==
         plain.substr(plain_first, plain.find("\no ridges\n") - plain_first));
 }
+
+TEST_CASE("creases: OBJ object o creases after the valleys, JSON with convex per line", "[io][writers][creases]") {
+  std::vector<Polyline> lines = sample_lines();
+  lines.push_back(make_line(LineType::Crease, {{0, 0, 0}, {0, 0, 1}}, false, 4.0));
+  lines.back().convex = true;
+  lines.push_back(make_line(LineType::Crease, {{0, 1, 0}, {0, 1, 1}, {0, 2, 1}}, false, 5.0));
+
+  std::vector<std::string> objects;
+  for (const std::string& line : lines_of(crestline::io::write_lines_obj(lines)))
+    if (line.rfind("o ", 0) == 0) objects.push_back(line);
+  CHECK(objects == std::vector<std::string>{"o ridges", "o valleys", "o creases"});
+  const std::vector<std::string> obj = lines_of(crestline::io::write_lines_obj(lines));
+  CHECK(obj[obj.size() - 2] == "l 10 11");  // 9 ridge/valley vertices before
+  CHECK(obj.back() == "l 12 13 14");
+
+  crestline::PipelineStats stats;
+  stats.creases = 2;
+  stats.crease_length = 2.0;
+  stats.crease_angle = 35;
+  const auto json = nlohmann::json::parse(crestline::io::write_lines_json(lines, stats));
+  REQUIRE(json["creases"].size() == 2);
+  CHECK(json["creases"][0]["convex"] == true);
+  CHECK(json["creases"][1]["convex"] == false);
+  CHECK(json["creases"][1]["points"].size() == 3);
+  CHECK(json["creases"][0]["strength"] == 4.0);
+  CHECK_FALSE(json["ridges"][0].contains("convex"));
+  CHECK(json["stats"]["creases"] == 2);
+  CHECK(json["stats"]["crease_length"] == 2.0);
+  CHECK(json["stats"]["crease_angle"] == 35);
+
+  // Without creases: no OBJ object, but always the JSON array.
+  const auto none = nlohmann::json::parse(crestline::io::write_lines_json(sample_lines(), {}));
+  CHECK(none["creases"].is_array());
+  CHECK(none["creases"].empty());
+  CHECK(crestline::io::write_lines_obj(sample_lines()).find("\no creases") == std::string::npos);
+}

@@ -13,7 +13,7 @@ namespace crestline::io {
 
 /// OBJ contract: `v` lines, then `o ridges` with one `l i j k …` per
 /// polyline (closed ones repeat their first index at the end), then
-/// `o valleys` likewise.
+/// `o valleys` likewise, then `o creases` likewise if there are any.
 std::string write_lines_obj(const std::vector<Polyline>& lines);
 
 /// The welded surface and the lines in one OBJ: `o surface` with its `v` and
@@ -27,9 +27,12 @@ std::string write_mesh_and_lines_obj(const Mesh& mesh, const std::vector<Polylin
 /// LINE_STRIP primitive (mode 3) per polyline (red and blue materials);
 /// closed lines repeat their first point at the end. Lines with fewer than
 /// two points are left out; an empty group is still a node without a mesh.
+/// Node "creases" (dark grey) follows only if there are creases; each of its
+/// primitives has extras {"convex": b}.
 std::vector<uint8_t> write_glb(const Mesh* mesh, const std::vector<Polyline>& lines);
 
-/// {"ridges":[{"points":[[x,y,z],…],"strength":s,"closed":b}…],"valleys":[…],"stats":{…}}
+/// {"ridges":[{"points":[[x,y,z],…],"strength":s,"length":l,"closed":b}…],"valleys":[…],
+///  "creases":[{…,"convex":b}…],"stats":{…}} — "creases" is always there (maybe empty).
 std::string write_lines_json(const std::vector<Polyline>& lines, const PipelineStats& stats);
 
 /// The stats object alone (also what `crestline --stats` prints).
@@ -43,7 +46,8 @@ struct SvgOptions {
   double stroke_width = 1.5;
   std::string ridge_color = "#c0392b";
   std::string valley_color = "#2471a3";
-  bool silhouette = false;  // also draw the surface's outline (group "silhouette")
+  std::string crease_color = "#222222";  // group "creases", each path class "convex" or "concave"
+  bool silhouette = false;               // also draw the surface's outline (group "silhouette")
   /// How far (in mean edge lengths of `surface`) a line may lie off the
   /// surface and still count as on it: faired lines move up to
   /// FairingOptions::hausdorff_bound, and chords between crossings on curved
