@@ -79,12 +79,12 @@ absent "--with-mesh with .svg" "$work/mesh.svg"
 # --stats: one JSON object on stdout.
 expect 0 "--stats" -- "$work/wave.obj" -o "$work/stats.obj" --stats --quiet
 [ "$(wc -l < "$work/stdout")" -eq 1 ] || fail "--stats: stdout is not one line"
-for key in vertices triangles singular_max singular_min ridges valleys ridge_length valley_length seconds; do
+for key in vertices triangles singular_max singular_min ridges valleys creases ridge_length valley_length crease_length crease_angle seconds; do
   grep -q "\"$key\":" "$work/stdout" || fail "--stats: no $key"
 done
 grep -q "\"vertices\":$vertices," "$work/stdout" || fail "--stats: vertices is not $vertices"
 grep -q '"seconds":{"read":[0-9.e-]*,"repair":[0-9.e-]*,"topology":[0-9.e-]*,"presmooth":' "$work/stdout" || fail "--stats: seconds not read, repair, topology, then by stage"
-grep -q '"filter":[0-9.e-]*,"write":[0-9.e-]*}}' "$work/stdout" || fail "--stats: no write seconds after the stages"
+grep -q '"filter":[0-9.e-]*,"creases":[0-9.e-]*,"write":[0-9.e-]*}}' "$work/stdout" || fail "--stats: no write seconds after the stages"
 if command -v node > /dev/null; then
   node -e 'JSON.parse(require("fs").readFileSync(process.argv[1], "utf8"))' "$work/stdout" ||
     fail "--stats output does not parse as JSON"
