@@ -240,7 +240,7 @@ test('without a mesh, Session.options() reports the core defaults; the app panel
   // PipelineOptions{} and io::SvgOptions{} (their headers), through the parameter table.
   assert.deepEqual(defaults, {
     presmoothSteps: 'auto', presmoothTimeStep: 1, smoothingSteps: 3, smoothingTimeStep: 1, boundaryRings: 2,
-    hausdorffBound: 0.25, fairingIterations: 30, threshold: 'auto', shortLineLength: 6,
+    hausdorffBound: 0.25, fairingIterations: 30, threshold: 'auto', creaseAngle: 'auto', creaseMaxTurn: 60, shortLineLength: 6,
     view: 'front', svgWidth: 1000, strokeWidth: 1.5, silhouette: false, svgSurfaceTolerance: 0.5, weighted: false,
   });
   for (const p of table) assert.equal(defaults[p.key], p.default, `describe() default of ${p.key}`);
