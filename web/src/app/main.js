@@ -1,13 +1,14 @@
 // Wires the page: files → the client (../client) → the worker (C++ readers,
 // repair, Pipeline) → viewer; the panel re-runs only what a changed parameter needs.
 import { sharedConnection } from '../client/browser.js';
-import { overallFraction, pickMainFile, selectLines } from '../client/client.js';
+import { overallFraction, selectLines } from '../client/client.js';
 import { sampleMesh } from './sample.js';
 import { WeightBrush } from '../three/brush.js';
 import { Viewer } from '../three/viewer.js';
 import { setState, showError, showFile, showNotes, showProgress, showStats } from './dom.js';
 import { installDrop } from './drop.js';
 import { createExports } from './exports.js';
+import { PICKER_ACCEPT, ignoredSentence, selectFiles } from './files.js';
 import { pipelineParameters } from '../client/parameters.js';
 import { autoKey, createGui, defaultParams, pipelineOptions } from './gui.js';
 
@@ -36,7 +37,7 @@ const client = connection.session({
   onLoaded: ({ name, vertices, triangles, notes, milliseconds }) => {
     app.mesh = { name, vertices, triangles, loadMs: milliseconds }; // reading (C++) and repair
     showFile(`${name}: ${triangles.toLocaleString()} triangles`);
-    showNotes(notes);
+    showNotes([app.ignored, ...notes].filter(Boolean));
   },
   onResult: (result) => {
     if (result.surface) {
@@ -132,7 +133,8 @@ function applyView() {
 
 const exporter = createExports({ viewer, client, params, current: () => app.shown });
 
-const picker = document.getElementById('picker');
+const picker = /** @type {HTMLInputElement} */ (document.getElementById('picker'));
+picker.accept = PICKER_ACCEPT;
 const gui = createGui(params, table, {
   onCompute: compute,
   onDisplay: applyDisplay,
@@ -157,6 +159,7 @@ function startMesh(name, send) {
   app.previous = { mesh: app.mesh, surfaceShown: true };
   showError(null);
   showNotes([]);
+  app.ignored = null;
   setState('busy');
   app.fields = null;
   app.surfaceShown = false; // the next surface is framed
@@ -175,8 +178,11 @@ function loadSoup(soup) {
 async function openFiles(fileList) {
   if (!fileList.length) return;
   try {
-    const files = await Promise.all(fileList.map(async (f) => ({ name: f.name, bytes: await f.arrayBuffer() })));
-    startMesh(pickMainFile(files).name, (options) => client.open(files, options));
+    const all = await Promise.all(fileList.map(async (f) => ({ name: f.name, bytes: await f.arrayBuffer() })));
+    const { read: files, ignored } = selectFiles(all);
+    startMesh(files[0].name, (options) => client.open(files, options));
+    app.ignored = ignoredSentence(files[0].name, ignored);
+    showNotes([app.ignored].filter(Boolean));
   } catch (error) {
     fail(`${fileList[0].name}: could not be read (${error.message}).`);
   }

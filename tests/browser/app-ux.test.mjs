@@ -1,0 +1,89 @@
+// The page as a new user meets it (issue 17): broken files give one clean
+// sentence, several dropped files load the mesh with its companions and name
+// the ignored ones, the picker's formats. Needs web/dist (web/build.sh).
+import assert from 'node:assert/strict';
+import { after, before, test } from 'node:test';
+import { dropFiles, nextResult, openApp, sampleReady } from './app-page.mjs';
+import { MESHES, haveMeshes } from '../node/helpers.mjs';
+
+const noMeshes = !haveMeshes && `SKIPPED: ${MESHES} is absent`;
+let app, page;
+
+before(async () => {
+  app = await openApp({ '/meshes/': MESHES });
+  ({ page } = app);
+  await sampleReady(page);
+});
+
+after(() => app?.close());
+
+/** Drops `files` (name + bytes given as numbers) and returns the error sentence. */
+async function errorFor(name, bytes) {
+  await page.evaluate(({ name, bytes }) => {
+    const transfer = new DataTransfer();
+    transfer.items.add(new File([new Uint8Array(bytes)], name));
+    document.getElementById('error').textContent = '';
+    document.body.dispatchEvent(new DragEvent('drop', { dataTransfer: transfer, bubbles: true, cancelable: true }));
+  }, { name, bytes });
+  await page.waitForFunction(() => document.body.dataset.state === 'error' && document.getElementById('error').textContent);
+  return page.textContent('#error');
+}
+
+/** One sentence naming the file, printable ASCII/Latin text only (no binary junk). */
+function assertCleanSentence(message, name) {
+  assert.ok(message.startsWith(`${name}: `), `names the file: ${message}`);
+  assert.doesNotMatch(message, /[^\x20-\x7e\u00a0-\u024f\u2010-\u2027]/u, `printable: ${JSON.stringify(message)}`);
+  assert.equal(message.split(/[.!?](\s|$)/).filter((s) => s && s.trim()).length, 1, `one sentence: ${message}`);
+}
+
+test('a random blob named x.glb and a zero-byte x.stl: one clean sentence each naming the file', async () => {
+  let seed = 17;
+  const random = Array.from({ length: 4096 }, () => ((seed = (seed * 1103515245 + 12345) >>> 0) >>> 16) & 255);
+  const glb = await errorFor('x.glb', random);
+  const stl = await errorFor('x.stl', []);
+  console.log(`${glb} / ${stl}`);
+  assertCleanSentence(glb, 'x.glb');
+  assertCleanSentence(stl, 'x.stl');
+  // The page recovers: the bunny is still loaded and re-filters.
+  const result = await nextResult(page, () => page.evaluate(() => window.crestline.update({ autoThreshold: false, threshold: window.crestline.lastResult.stats.threshold * 0.9 })));
+  assert.deepEqual(result.ran, ['filter']);
+  await nextResult(page, () => page.evaluate(() => window.crestline.update({ autoThreshold: true })));
+});
+
+test('the file picker accepts only the formats read (and their companions)', async () => {
+  const accept = (await page.getAttribute('#picker', 'accept')).split(',');
+  for (const ext of ['.gltf', '.glb', '.bin', '.obj', '.mtl', '.ply', '.stl', '.off']) assert.ok(accept.includes(ext), `accepts ${ext}`);
+  for (const ext of ['.txt', '.fbx', '.blend', '.zip']) assert.ok(!accept.includes(ext), `refuses ${ext}`);
+});
+
+test('OBJ + its .mtl + an unrelated STL and a text file: the OBJ loads, one sentence names the ignored files', async () => {
+  const obj = 'mtllib cube.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nusemtl red\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n';
+  const result = await nextResult(page, () =>
+    dropFiles(page, [
+      { name: 'notes.txt', text: 'hello' },
+      { name: 'other.stl', text: 'solid x\nendsolid x\n' },
+      { name: 'tetra.obj', text: obj },
+      { name: 'cube.mtl', text: 'newmtl red\nKd 1 0 0\n' },
+    ]),
+  );
+  assert.equal(result.name, 'tetra.obj');
+  assert.equal(result.stats.triangles, 4);
+  const notes = await page.textContent('#notes');
+  assert.match(notes, /ignored notes\.txt and other\.stl \(/);
+  assert.doesNotMatch(notes, /cube\.mtl/, 'the .mtl is a companion, not ignored');
+});
+
+test('glTF + .bin + texture + an unrelated OBJ: the glTF loads with its buffers, the OBJ is ignored', { skip: noMeshes }, async () => {
+  const result = await nextResult(page, () =>
+    dropFiles(page, ['gltf/Duck/Duck.gltf', 'gltf/Duck/Duck0.bin', 'gltf/Duck/DuckCM.png', { name: 'stray.obj', text: 'v 0 0 0\n' }]),
+  );
+  assert.equal(result.name, 'Duck.gltf');
+  assert.ok(result.stats.triangles > 1000);
+  const notes = await page.textContent('#notes');
+  assert.match(notes, /ignored stray\.obj \(/);
+  assert.doesNotMatch(notes, /Duck0\.bin|DuckCM\.png/);
+});
+
+test('no uncaught errors in the page', () => {
+  assert.deepEqual(app.pageErrors, []);
+});
