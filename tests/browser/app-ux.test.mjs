@@ -1,6 +1,6 @@
 // The page as a new user meets it (issue 17): broken files give one clean
 // sentence, several dropped files load the mesh with its companions and name
-// the ignored ones, the picker's formats. Needs web/dist (web/build.sh).
+// the ignored ones, the picker's formats; a legend and a tooltip per control. Needs web/dist (web/build.sh).
 import assert from 'node:assert/strict';
 import { after, before, test } from 'node:test';
 import { dropFiles, nextResult, openApp, sampleReady } from './app-page.mjs';
@@ -82,6 +82,42 @@ test('glTF + .bin + texture + an unrelated OBJ: the glTF loads with its buffers,
   const notes = await page.textContent('#notes');
   assert.match(notes, /ignored stray\.obj \(/);
   assert.doesNotMatch(notes, /Duck0\.bin|DuckCM\.png/);
+});
+
+test('a legend names ridges and valleys in their colours and follows the panel', async () => {
+  const legend = () => page.evaluate(() => ['ridge', 'valley'].map((k) => {
+    const entry = document.getElementById(`legend-${k}`);
+    const box = entry.getBoundingClientRect();
+    return { text: entry.textContent.trim(), color: getComputedStyle(entry.querySelector('.swatch')).backgroundColor, off: entry.classList.contains('off'), visible: box.width > 0 && box.height > 0, title: entry.title };
+  }));
+  const [ridge, valley] = await legend();
+  assert.equal(ridge.text, 'ridges');
+  assert.equal(valley.text, 'valleys');
+  assert.ok(ridge.visible && valley.visible);
+  assert.equal(ridge.color, 'rgb(214, 45, 32)', 'the default ridge colour #d62d20');
+  assert.equal(valley.color, 'rgb(31, 95, 191)', 'the default valley colour #1f5fbf');
+  assert.ok(ridge.title && valley.title);
+  await page.evaluate(() => window.crestline.update({ ridgeColor: '#00ff00', showValleys: false }));
+  const [ridge2, valley2] = await legend();
+  assert.equal(ridge2.color, 'rgb(0, 255, 0)');
+  assert.equal(valley2.off, true, 'hidden valleys are struck through');
+  await page.evaluate(() => window.crestline.update({ ridgeColor: '#d62d20', showValleys: true }));
+});
+
+test('every panel control has a plain-words tooltip; the pipeline ones are the parameter table\'s help', async () => {
+  const problems = await page.evaluate(() => {
+    const { gui, parameters } = window.crestline;
+    const out = [];
+    for (const c of gui.controllersRecursive()) {
+      const title = c.domElement.title;
+      if (!title || title.length < 12) out.push(`${c._name}: no tooltip`);
+      const p = parameters.filter((q) => q.group === 'pipeline' && q.stage).find((q) => q.key === c.property || `auto${q.key[0].toUpperCase()}${q.key.slice(1)}` === c.property);
+      if (p && !title.startsWith(p.help)) out.push(`${c._name}: "${title}" is not the table's help "${p.help}"`);
+      if (p && p.unit && !title.includes(p.unit)) out.push(`${c._name}: no unit ${p.unit}`);
+    }
+    return out;
+  });
+  assert.deepEqual(problems, []);
 });
 
 test('no uncaught errors in the page', () => {

@@ -42,3 +42,11 @@ export function showStats({ stats, ran, milliseconds }, mesh = {}) {
     mesh.loadMs === undefined ? '' : `read and repair ${mesh.loadMs.toFixed(0)} ms`,
   ].filter(Boolean).join('\n');
 }
+
+/** The legend: each line kind in its colour, struck through when hidden. */
+export function showLegend({ ridgeColor, valleyColor, showRidges, showValleys }) {
+  for (const [id, color, shown] of [['legend-ridge', ridgeColor, showRidges], ['legend-valley', valleyColor, showValleys]]) {
+    $(id).querySelector('.swatch').style.background = color;
+    $(id).classList.toggle('off', !shown);
+  }
+}

@@ -62,6 +62,21 @@ export const PNG_SCALES = { '1× canvas': 1, '2× canvas': 2, '4× canvas': 4 };
 /** Export buttons: format → label. */
 export const EXPORTS = { svg: 'SVG (visible lines)', png: 'PNG', obj: 'OBJ (polylines)', json: 'JSON (lines + stats)', glb: 'GLB (mesh + lines)' };
 
+/** What each export holds, for its tooltip. */
+const EXPORT_TIPS = {
+  svg: 'lines seen from this view as a vector drawing',
+  png: 'picture of the view',
+  obj: 'lines as 3D polylines (OBJ)',
+  json: 'lines with their strength and the statistics (JSON)',
+  glb: 'mesh with its lines as a glTF binary',
+};
+
+/** A plain-words tooltip on a panel control. */
+const tip = (controller, text) => {
+  controller.domElement.title = text;
+  return controller;
+};
+
 /** Slider step: whole numbers for integers, else about a thousandth of the range. */
 const stepOf = (p, max) => (p.kind === 'integer' ? 1 : Math.min(0.01, (max - p.min) / 1000));
 
@@ -90,25 +105,25 @@ export function createGui(params, table, { onCompute, onDisplay, onFit, onOpen, 
     if (!Number.isFinite(p.max)) unbounded.push(controller);
   }
   const display = gui.addFolder('Display');
-  display.add(params, 'showRidges').name('ridges').onChange(onDisplay);
-  display.add(params, 'showValleys').name('valleys').onChange(onDisplay);
-  display.add(params, 'lineWidth', 0.5, 8, 0.1).name('line width (px)').onChange(onDisplay);
-  display.addColor(params, 'ridgeColor').name('ridge colour').onChange(onDisplay);
-  display.addColor(params, 'valleyColor').name('valley colour').onChange(onDisplay);
-  display.add(params, 'view', VIEWS).name('surface').onChange(onDisplay);
-  display.add(params, 'dark').name('dark background').onChange(onDisplay);
+  tip(display.add(params, 'showRidges').name('ridges'), 'Show the ridges: lines where the surface bends most sharply outward (crests)').onChange(onDisplay);
+  tip(display.add(params, 'showValleys').name('valleys'), 'Show the valleys: lines where the surface bends most sharply inward (grooves)').onChange(onDisplay);
+  tip(display.add(params, 'lineWidth', 0.5, 8, 0.1).name('line width (px)'), 'Width of the drawn lines, in screen pixels').onChange(onDisplay);
+  tip(display.addColor(params, 'ridgeColor').name('ridge colour'), 'Colour of the ridges, on the page and in the exports').onChange(onDisplay);
+  tip(display.addColor(params, 'valleyColor').name('valley colour'), 'Colour of the valleys, on the page and in the exports').onChange(onDisplay);
+  tip(display.add(params, 'view', VIEWS).name('surface'), 'What the surface shows: plain shading, a principal curvature κ or extremality (how fast κ changes along its direction), the triangles where the directions cannot be ordered consistently (singular), or the brushed smoothing weights').onChange(onDisplay);
+  tip(display.add(params, 'dark').name('dark background'), 'Dark or light background').onChange(onDisplay);
   const brush = gui.addFolder('Smoothing brush (paper Fig. 6)');
-  brush.add(params, 'brush').name('paint (drag on surface)').onChange(onBrush);
-  brush.add(params, 'brushRadius', 0.01, 0.5, 0.01).name('radius (of model size)').onChange(onBrush);
-  brush.add(params, 'brushValue', 0, 3, 0.05).name('strength painted').onChange(onBrush);
-  brush.add({ clear: onClearWeights }, 'clear').name('clear weights');
+  tip(brush.add(params, 'brush').name('paint (drag on surface)'), 'Drag on the surface to paint how much smoothing each area gets (the smoothing weight): 0 turns it off there, 1 is normal').onChange(onBrush);
+  tip(brush.add(params, 'brushRadius', 0.01, 0.5, 0.01).name('radius (of model size)'), 'Brush radius, as a fraction of the model’s size').onChange(onBrush);
+  tip(brush.add(params, 'brushValue', 0, 3, 0.05).name('strength painted'), 'Smoothing weight the brush paints: 0 none, 1 the normal amount, above 1 more').onChange(onBrush);
+  tip(brush.add({ clear: onClearWeights }, 'clear').name('clear weights'), 'Forget the painted weights: every vertex smoothed normally again');
   brush.close();
   const exports = gui.addFolder('Export');
-  exports.add(params, 'exportSilhouette').name('SVG: silhouette');
-  exports.add(params, 'pngScale', PNG_SCALES).name('PNG resolution');
-  for (const [format, label] of Object.entries(EXPORTS)) exports.add({ [format]: () => onExport(format) }, format).name(label);
-  gui.add({ fit: onFit }, 'fit').name('fit to view');
-  gui.add({ open: onOpen }, 'open').name('open mesh…');
+  tip(exports.add(params, 'exportSilhouette').name('SVG: silhouette'), 'Add the model’s outline to the SVG export');
+  tip(exports.add(params, 'pngScale', PNG_SCALES).name('PNG resolution'), 'Size of the PNG export, as a multiple of the canvas');
+  for (const [format, label] of Object.entries(EXPORTS)) tip(exports.add({ [format]: () => onExport(format) }, format).name(label), `Download the ${EXPORT_TIPS[format]}`);
+  tip(gui.add({ fit: onFit }, 'fit').name('fit to view'), 'Frame the whole model in the view');
+  tip(gui.add({ open: onOpen }, 'open').name('open mesh…'), 'Open a mesh file: glTF/GLB (with its .bin), OBJ, PLY, STL or OFF');
 
   return {
     gui,

@@ -5,7 +5,7 @@ import { overallFraction, selectLines } from '../client/client.js';
 import { sampleMesh } from './sample.js';
 import { WeightBrush } from '../three/brush.js';
 import { Viewer } from '../three/viewer.js';
-import { setState, showError, showFile, showNotes, showProgress, showStats } from './dom.js';
+import { setState, showError, showFile, showLegend, showNotes, showProgress, showStats } from './dom.js';
 import { installDrop } from './drop.js';
 import { createExports } from './exports.js';
 import { PICKER_ACCEPT, ignoredSentence, selectFiles } from './files.js';
@@ -103,6 +103,7 @@ function applyDisplay() {
   viewer.lines.setWidth(params.lineWidth);
   viewer.setBackground(params.dark ? 'dark' : 'light');
   document.body.classList.toggle('dark', params.dark);
+  showLegend(params);
   applyView();
 }
 
