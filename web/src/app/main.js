@@ -208,6 +208,11 @@ app.update = (partial) => {
   else applyDisplay();
 };
 
+// Phones: the panel starts collapsed and the statistics folded away.
+if (matchMedia('(max-width: 599px)').matches) {
+  gui.gui.close();
+  /** @type {HTMLDetailsElement} */ (document.getElementById('details')).open = false;
+}
 installDrop(document.body, openFiles);
 picker.addEventListener('change', () => {
   openFiles([...picker.files]);

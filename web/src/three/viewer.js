@@ -12,6 +12,7 @@ import {
   WebGLRenderer,
 } from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+import { fitDistance } from './fit.js';
 import { LineLayer } from './line-layer.js';
 import { SurfaceLayer } from './surface-layer.js';
 
@@ -84,7 +85,7 @@ export class Viewer {
     const geometry = this.surface.mesh.geometry;
     const sphere = geometry.boundingSphere ?? new Sphere(new Vector3(), 1);
     const radius = sphere.radius || 1;
-    const distance = radius / Math.sin((this.camera.fov * Math.PI) / 360);
+    const distance = fitDistance(this.camera, radius);
     this.camera.near = distance / 100;
     this.camera.far = distance * 10;
     this.camera.position.copy(sphere.center).add(new Vector3(0, 0, distance * 1.05));

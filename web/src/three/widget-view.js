@@ -3,6 +3,7 @@
 // through the shared renderer (renderer.js).
 import { Color, DirectionalLight, HemisphereLight, PerspectiveCamera, Scene, Spherical } from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+import { fitDistance } from './fit.js';
 import { LineLayer } from './line-layer.js';
 import { SurfaceLayer } from './surface-layer.js';
 import { forget, requestDraw } from './renderer.js';
@@ -70,7 +71,7 @@ export class WidgetView {
   }
 
   applyOrbit() {
-    const fit = this.radius / Math.sin((this.camera.fov * Math.PI) / 360);
+    const fit = fitDistance(this.camera, this.radius);
     const distance = fit * this.orbit.radius * 1.05;
     this.camera.near = fit / 100;
     this.camera.far = fit * 20;
