@@ -10,6 +10,7 @@ import { join } from 'node:path';
 import { after, before, test } from 'node:test';
 import { launch } from './browser.mjs';
 import { MESHES, ROOT, haveMeshes, sineHeightField } from '../node/helpers.mjs';
+import { boxObj } from './box-obj.mjs';
 import { glbFromSoup } from './widget-glb.mjs';
 import { serveWidgetSite } from './widget-site.mjs';
 
@@ -24,6 +25,7 @@ before(async () => {
   pages = mkdtempSync(join(tmpdir(), 'crestline-widget-'));
   writeFileSync(join(pages, 'sine.glb'), glbFromSoup(sineHeightField({ n: 40 })));
   writeFileSync(join(pages, 'garbage.glb'), 'this is not a mesh');
+  writeFileSync(join(pages, 'box.obj'), boxObj());
   servers = await serveWidgetSite({ '/meshes/': MESHES, '/pages/': pages });
   ({ siteUrl, cdnUrl } = servers);
   browser = await launch();
@@ -339,5 +341,47 @@ test('lazy loading waits for the viewport; keyboard orbit; reduced motion stops 
   assert.deepEqual(await eventsOf(page, 'far', 'load'), []);
   await page.evaluate(() => document.getElementById('far').scrollIntoView());
   await waitForEvents(page, 'far', 'lines', 1);
+  await page.close();
+});
+
+test('creases: shown in crease-color (attribute over --crestline-crease-color), creases="false" hides them, in toSVG/toOBJ/toJSON', async () => {
+  const { page, problems } = await openPage('creases.html', `
+    <crestline-viewer id="c" src="/pages/box.obj" crease-color="#00aa44" style="width:400px;height:300px;--crestline-crease-color:#aa0000"></crestline-viewer>
+    <crestline-viewer id="d" src="/pages/box.obj" creases="false" style="width:400px;height:300px;--crestline-crease-color:#123456"></crestline-viewer>`);
+  await waitForEvents(page, 'c', 'lines', 1);
+  await waitForEvents(page, 'd', 'lines', 1);
+  const state = (id) => page.evaluate((id) => {
+    const v = document.getElementById(id);
+    return {
+      creases: v.creases,
+      creaseColor: v.creaseColor,
+      count: v.stats.creases,
+      visible: v.view.creases.objects.map((o) => o.visible),
+      segments: v.view.creases.objects.map((o) => o.userData.segments),
+      colour: `#${v.view.creases.objects[0].material.color.getHexString()}`,
+    };
+  }, id);
+  const c = await state('c');
+  const d = await state('d');
+  // The box: 12 convex edges of 24 segments each, no concave ones.
+  assert.deepEqual(c, { creases: true, creaseColor: '#00aa44', count: 12, visible: [true, false], segments: [288, 0], colour: '#00aa44' });
+  assert.deepEqual(d, { creases: false, creaseColor: null, count: 12, visible: [false, false], segments: [288, 0], colour: '#123456' });
+
+  const exports = (id) => page.evaluate(async (id) => {
+    const v = document.getElementById(id);
+    return { svg: await v.toSVG(), obj: await v.toOBJ(), json: JSON.parse(await v.toJSON()) };
+  }, id);
+  const shown = await exports('c');
+  assert.match(shown.svg, /<path id="creases-convex" stroke="#00aa44" d="M/);
+  assert.doesNotMatch(shown.svg, /creases-concave/);
+  assert.match(shown.obj, /^o creases$/m);
+  assert.equal(shown.json.creases.length, c.count);
+  assert.doesNotMatch((await exports('d')).svg, /creases/, 'hidden creases are not in the SVG');
+
+  // The property reflects to the attribute and hides them.
+  await page.evaluate(() => (document.getElementById('c').creases = false));
+  assert.equal(await page.getAttribute('#c', 'creases'), 'false');
+  assert.deepEqual((await state('c')).visible, [false, false]);
+  assert.deepEqual(problems, []);
   await page.close();
 });

@@ -41,9 +41,16 @@ test('init, load, re-threshold, re-smooth, fields, exports: the stages each repl
   assert.deepEqual(filtered.ran, ['filter']);
   assert.equal(filtered.kept.length, result.lines.types.length, 'threshold 0 keeps every line');
   assert.equal(filtered.surface, undefined, 'no surface when it did not change');
-  const smoothed = (await send({ type: 'options', id: 1, job: 3, options: { smoothingSteps: 1 } })).at(-1);
+  assert.ok(result.creases.convex instanceof Uint8Array && result.creases.angles instanceof Float64Array, 'the first result carries the creases');
+  assert.equal(filtered.creases, undefined, 'no creases when their stage did not run');
+  // A crease angle change runs only the creases stage: creases travel, no lines.
+  const sharp = (await send({ type: 'options', id: 1, job: 3, options: { creaseAngle: 20 } })).at(-1);
+  assert.deepEqual(sharp.ran, ['creases']);
+  assert.equal(sharp.lines, undefined);
+  assert.equal(sharp.creases.offsets.length, sharp.stats.creases + 1);
+  const smoothed = (await send({ type: 'options', id: 1, job: 4, options: { smoothingSteps: 1 } })).at(-1);
   assert.equal(smoothed.ran[0], 'smoothing');
-  const [fields] = await send({ type: 'fields', id: 1, job: 3 });
+  const [fields] = await send({ type: 'fields', id: 1, job: 4 });
   assert.equal(fields.fields.kappaMax.length, mesh.positions.length / 3);
   const [obj] = await send({ type: 'export', id: 1, request: 1, format: 'obj' });
   assert.deepEqual([obj.type, obj.request, obj.format], ['export', 1, 'obj']);
@@ -192,7 +199,7 @@ test('client: a WASM trap restarts the worker once, says so once, and the next r
     Session: class {
       constructor() {
         this.inner = new real.Session();
-        for (const name of ['load', 'loadFile', 'setOptions', 'options', 'surface', 'lines', 'keptLines', 'fields', 'linesObj', 'linesJson', 'statsJson'])
+        for (const name of ['load', 'loadFile', 'setOptions', 'options', 'surface', 'lines', 'creases', 'keptLines', 'fields', 'linesObj', 'linesJson', 'statsJson'])
           this[name] = (...args) => this.inner[name](...args);
       }
       run(progress) {
@@ -277,6 +284,6 @@ test('a threshold change on a large mesh posts only the kept line ids (no coordi
   assert.ok(bytes < 4 * all + 2000, `${bytes} bytes posted for ${all} lines`);
   assert.ok(bytesPosted(loaded) > 20 * bytes, 'a load posts the lines themselves');
   // A smoothing change sends the new lines again.
-  const smoothed = (await send({ type: 'options', id: 1, job: 3, options: { smoothingSteps: 1 } })).at(-1);
+  const smoothed = (await send({ type: 'options', id: 1, job: 4, options: { smoothingSteps: 1 } })).at(-1);
   assert.ok(smoothed.lines && smoothed.kept.length <= smoothed.lines.types.length);
 });

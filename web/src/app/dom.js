@@ -37,6 +37,7 @@ export function showStats({ stats, ran, milliseconds }, mesh = {}) {
     `${stats.vertices.toLocaleString()} vertices, ${stats.triangles.toLocaleString()} triangles`,
     `ridges  ${stats.ridges} (length ${fmt(stats.ridgeLength)})`,
     `valleys ${stats.valleys} (length ${fmt(stats.valleyLength)})`,
+    `creases ${stats.creases ?? 0} (length ${fmt(stats.creaseLength)}, angle ${fmt(stats.creaseAngle)}°)`,
     `threshold ${fmt(stats.threshold)}, singular triangles ${stats.singularMax} max / ${stats.singularMin} min`,
     `ran: ${times} — ${milliseconds.toFixed(1)} ms in total`,
     mesh.loadMs === undefined ? '' : `read and repair ${mesh.loadMs.toFixed(0)} ms`,
@@ -44,8 +45,10 @@ export function showStats({ stats, ran, milliseconds }, mesh = {}) {
 }
 
 /** The legend: each line kind in its colour, struck through when hidden. */
-export function showLegend({ ridgeColor, valleyColor, showRidges, showValleys }) {
-  for (const [id, color, shown] of [['legend-ridge', ridgeColor, showRidges], ['legend-valley', valleyColor, showValleys]]) {
+export function showLegend({ ridgeColor, valleyColor, creaseColor, showRidges, showValleys, showCreases }, concaveColor) {
+  // The crease swatch: convex (the crease colour) | concave (its darker shade).
+  const crease = `linear-gradient(90deg, ${creaseColor} 50%, ${concaveColor} 50%)`;
+  for (const [id, color, shown] of [['legend-ridge', ridgeColor, showRidges], ['legend-valley', valleyColor, showValleys], ['legend-crease', crease, showCreases]]) {
     $(id).querySelector('.swatch').style.background = color;
     $(id).classList.toggle('off', !shown);
   }

@@ -28,8 +28,10 @@ export function createExports({ viewer, current, client, params }) {
   const style = () => ({
     ridges: params.showRidges,
     valleys: params.showValleys,
+    creases: params.showCreases,
     ridgeColor: params.ridgeColor,
     valleyColor: params.valleyColor,
+    creaseColor: params.creaseColor,
     lineWidth: params.lineWidth,
     background: `#${viewer.scene.background.getHexString()}`,
   });

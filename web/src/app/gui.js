@@ -36,9 +36,11 @@ export function defaultParams(table) {
     ...pipeline,
     showRidges: true,
     showValleys: true,
+    showCreases: true,
     lineWidth: 2.5,
     ridgeColor: '#d62d20',
     valleyColor: '#1f5fbf',
+    creaseColor: '#e08a00',
     dark: false,
     view: 'shaded',
     brush: false,
@@ -88,7 +90,7 @@ export function createGui(params, table, { onCompute, onDisplay, onFit, onOpen, 
   const unbounded = []; // controllers of parameters without a maximum: their slider follows the values used
   for (const p of pipelineParameters(table)) {
     // The three the paper's figures vary stay in view; the others fold away.
-    const folder = ['smoothingSteps', 'threshold', 'hausdorffBound', 'presmoothSteps'].includes(p.key) ? lines : more;
+    const folder = ['smoothingSteps', 'threshold', 'hausdorffBound', 'presmoothSteps', 'creaseAngle'].includes(p.key) ? lines : more;
     if (p.automatic) {
       folder.add(params, autoKey(p)).name(`automatic ${label(p)}`).onChange(onCompute).domElement.title = describeParameter(p);
     }
@@ -107,9 +109,11 @@ export function createGui(params, table, { onCompute, onDisplay, onFit, onOpen, 
   const display = gui.addFolder('Display');
   tip(display.add(params, 'showRidges').name('ridges'), 'Show the ridges: lines where the surface bends most sharply outward (crests)').onChange(onDisplay);
   tip(display.add(params, 'showValleys').name('valleys'), 'Show the valleys: lines where the surface bends most sharply inward (grooves)').onChange(onDisplay);
+  tip(display.add(params, 'showCreases').name('creases'), 'Show the creases: sharp edges of the mesh (convex in the crease colour, concave in a darker shade)').onChange(onDisplay);
   tip(display.add(params, 'lineWidth', 0.5, 8, 0.1).name('line width (px)'), 'Width of the drawn lines, in screen pixels').onChange(onDisplay);
   tip(display.addColor(params, 'ridgeColor').name('ridge colour'), 'Colour of the ridges, on the page and in the exports').onChange(onDisplay);
   tip(display.addColor(params, 'valleyColor').name('valley colour'), 'Colour of the valleys, on the page and in the exports').onChange(onDisplay);
+  tip(display.addColor(params, 'creaseColor').name('crease colour'), 'Colour of the convex creases (concave ones are a darker shade), on the page and in the exports').onChange(onDisplay);
   tip(display.add(params, 'view', VIEWS).name('surface'), 'What the surface shows: plain shading, a principal curvature κ or extremality (how fast κ changes along its direction), the triangles where the directions cannot be ordered consistently (singular), or the brushed smoothing weights').onChange(onDisplay);
   tip(display.add(params, 'dark').name('dark background'), 'Dark or light background').onChange(onDisplay);
   const brush = gui.addFolder('Smoothing brush (paper Fig. 6)');

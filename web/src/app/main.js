@@ -5,6 +5,7 @@ import { overallFraction, selectLines } from '../client/client.js';
 import { sampleMesh } from './sample.js';
 import { WeightBrush } from '../three/brush.js';
 import { Viewer } from '../three/viewer.js';
+import { concaveShade } from '../three/line-layer.js';
 import { setState, showError, showFile, showLegend, showNotes, showProgress, showStats } from './dom.js';
 import { installDrop } from './drop.js';
 import { createExports } from './exports.js';
@@ -48,12 +49,13 @@ const client = connection.session({
     const started = performance.now();
     if (result.linesChanged) viewer.setLines(result.lines, result.kept);
     else viewer.setKept(result.kept);
+    if (result.creasesChanged && result.creases) viewer.setCreases(result.creases);
     const drawMs = performance.now() - started; // main-thread work to show the result's lines
     const { lines, kept } = result;
     let selected = null;
     // What the exports save: the lines shown, selected on first use.
     app.shown = { name: app.mesh?.name, get lines() { return (selected ??= selectLines(lines, kept)); } };
-    app.lastResult = { name: app.mesh?.name, ran: result.ran, stats: result.stats, lineCount: kept.length, linesChanged: result.linesChanged, drawMs, milliseconds: result.milliseconds };
+    app.lastResult = { name: app.mesh?.name, ran: result.ran, stats: result.stats, lineCount: kept.length, linesChanged: result.linesChanged, creaseCount: result.creases?.convex.length ?? 0, drawMs, milliseconds: result.milliseconds };
     app.results.push(app.lastResult);
     gui.showUsed(result.stats, rescaleThreshold);
     rescaleThreshold = false;
@@ -100,10 +102,13 @@ function compute() {
 function applyDisplay() {
   viewer.lines.setShown(params.showRidges, params.showValleys);
   viewer.lines.setColors(params.ridgeColor, params.valleyColor);
+  const concave = `#${concaveShade(params.creaseColor).getHexString()}`;
+  viewer.creases.setShown(params.showCreases, params.showCreases);
+  viewer.creases.setColors(params.creaseColor, concave);
   viewer.lines.setWidth(params.lineWidth);
   viewer.setBackground(params.dark ? 'dark' : 'light');
   document.body.classList.toggle('dark', params.dark);
-  showLegend(params);
+  showLegend(params, concave);
   applyView();
 }
 

@@ -22,10 +22,13 @@ export { pickMainFile };
  * @typedef {{kind: 'files', files: NamedBytes[]} | {kind: 'url', url: string, name: string} |
  *           {kind: 'soup', name: string, positions: Float64Array | Float32Array, indices: Uint32Array}} Source
  * @typedef {import('../worker/protocol.js').Lines} Lines
+ * @typedef {import('../worker/protocol.js').Creases} Creases
  * @typedef {{ran: string[], stats: import('../worker/protocol.js').Stats, lines: Lines, kept: Uint32Array,
- *            linesChanged: boolean, milliseconds: number, surface?: import('../worker/protocol.js').Surface}} Result
+ *            linesChanged: boolean, creases: Creases | null, creasesChanged: boolean, milliseconds: number,
+ *            surface?: import('../worker/protocol.js').Surface}} Result
  *   lines: every faired line of the mesh (kept or not); kept: those that pass
- *   the filter; linesChanged: `lines` are new (false after a threshold change)
+ *   the filter; linesChanged: `lines` are new (false after a threshold change);
+ *   creases: the sharp edges at the current crease angle; creasesChanged: they are new
  * @typedef {{onProgress?: (stage: string, fraction: number) => void, onLoaded?: (loaded: LoadedReply) => void,
  *            onResult?: (result: Result) => void, onFields?: (fields: Fields) => void,
  *            onCancelled?: () => void, onError?: (error: {message: string, kind: string}) => void}} SessionHandlers
@@ -192,6 +195,8 @@ export class Session {
     this.name = '';
     /** @type {Lines | null} every faired line of the mesh the worker holds */
     this.lines = null;
+    /** @type {Creases | null} the creases of the mesh the worker holds */
+    this.creases = null;
     /** @type {PipelineOptions} */
     this.options = {};
     /** @type {PipelineOptions | null} options that arrived while a job ran: the latest win */
@@ -386,8 +391,13 @@ export class Session {
         this.running = 0;
         const linesChanged = Boolean(message.lines);
         if (message.lines) this.lines = message.lines;
+        const creasesChanged = Boolean(message.creases);
+        if (message.creases) this.creases = message.creases;
         const { ran, stats, kept, milliseconds, surface } = message;
-        if (this.lines) this.handlers.onResult?.({ ran, stats, lines: this.lines, kept, linesChanged, milliseconds, surface });
+        if (this.lines) {
+          const { lines, creases } = this;
+          this.handlers.onResult?.({ ran, stats, lines, kept, linesChanged, creases, creasesChanged, milliseconds, surface });
+        }
         if (this.pending) this.runPending(this.pending);
         break;
       }

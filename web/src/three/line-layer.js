@@ -1,14 +1,24 @@
-// Ridges and valleys as wide lines (LineSegments2), one object per type.
+// Ridges and valleys as wide lines (LineSegments2), one object per type;
+// a second layer draws the creases (convex and concave as its two types).
 // The geometry holds every faired line; a threshold change only shows or
 // hides line ranges (a per-segment flag the vertex shader reads), so it
 // uploads one byte per changed segment and rebuilds nothing.
-import { Group, InstancedBufferAttribute } from 'three';
+import { Color, Group, InstancedBufferAttribute } from 'three';
 import { LineMaterial } from 'three/examples/jsm/lines/LineMaterial.js';
 import { LineSegments2 } from 'three/examples/jsm/lines/LineSegments2.js';
 import { LineSegmentsGeometry } from 'three/examples/jsm/lines/LineSegmentsGeometry.js';
 
 export const RIDGE = 0;
 export const VALLEY = 1;
+/** In a crease layer (creaseLayer): type 0 convex, 1 concave. */
+export const CONVEX = 0;
+export const CONCAVE = 1;
+
+/** The concave creases' shade of the crease colour: darker, so the two kinds stay apart. */
+export const concaveShade = (color) => new Color(color).multiplyScalar(0.55);
+
+/** Session.creases() as Lines whose types are CONVEX / CONCAVE (for a LineLayer). */
+export const creasesAsLines = (creases) => ({ ...creases, types: Uint8Array.from(creases.convex, (c) => (c ? CONVEX : CONCAVE)) });
 
 /** Segments of line l: a closed line also joins its last point to its first. */
 const segmentCount = (lines, l) => {

@@ -4,7 +4,7 @@
 // a line point is visible when it is not behind the nearest surface at its
 // pixel (with a tolerance, since the lines lie on that surface).
 import { Color, MeshDepthMaterial, NoBlending, RGBADepthPacking, Vector3, WebGLRenderTarget } from 'three';
-import { RIDGE, VALLEY } from './line-layer.js';
+import { CONCAVE, CONVEX, RIDGE, VALLEY, concaveShade } from './line-layer.js';
 import { sharedRenderer } from './renderer.js';
 
 const point = new Vector3();
@@ -18,9 +18,10 @@ function surfaceDepth(view, width, height, renderer) {
   const target = new WebGLRenderTarget(width, height);
   const material = new MeshDepthMaterial({ depthPacking: RGBADepthPacking, blending: NoBlending });
   const { scene, camera } = view;
-  const saved = { background: scene.background, override: scene.overrideMaterial, lines: view.lines.group.visible, clear: renderer.getClearColor(new Color()), alpha: renderer.getClearAlpha() };
+  const saved = { background: scene.background, override: scene.overrideMaterial, lines: view.lines.group.visible, creases: view.creases?.group.visible, clear: renderer.getClearColor(new Color()), alpha: renderer.getClearAlpha() };
   Object.assign(scene, { background: null, overrideMaterial: material });
   view.lines.group.visible = false;
+  if (view.creases) view.creases.group.visible = false;
   renderer.setRenderTarget(target);
   renderer.setClearColor(0xffffff, 1);
   renderer.clear();
@@ -31,6 +32,7 @@ function surfaceDepth(view, width, height, renderer) {
   renderer.setClearColor(saved.clear, saved.alpha);
   Object.assign(scene, { background: saved.background, overrideMaterial: saved.override });
   view.lines.group.visible = saved.lines;
+  if (view.creases) view.creases.group.visible = saved.creases;
   target.dispose();
   material.dispose();
   const depth = new Float32Array(width * height);
@@ -175,11 +177,12 @@ function silhouetteChains(geometry, eye, project) {
 }
 
 /**
- * The SVG document of what the viewer shows. `style`: {ridges, valleys (shown),
- * ridgeColor, valleyColor, lineWidth (CSS px), background (CSS colour or
+ * The SVG document of what the viewer shows. `style`: {ridges, valleys, creases (shown),
+ * ridgeColor, valleyColor, creaseColor (convex; concave in its darker shade), lineWidth (CSS px), background (CSS colour or
  * 'transparent'), silhouette (colour, or null for none)}; `width`×`height`
  * in CSS pixels. `view` is a WidgetView or anything with its scene, camera,
- * surface and lines layers and origin (the app's Viewer), and `renderer` any
+ * surface and lines layers and origin (the app's Viewer) — its creases are
+ * `view.creaseLines` (creasesAsLines, set by setCreases) — and `renderer` any
  * WebGLRenderer (by default the widgets' shared one).
  */
 export function viewToSvg(view, lines, style, width, height, renderer = sharedRenderer()) {
@@ -197,6 +200,10 @@ export function viewToSvg(view, lines, style, width, height, renderer = sharedRe
   if (style.silhouette) add('silhouette', style.silhouette, 0.6, silhouetteChains(view.surface.mesh.geometry, view.camera.position, project));
   if (style.ridges) add('ridges', style.ridgeColor, 1, lineChains(lines, RIDGE, view.origin, project));
   if (style.valleys) add('valleys', style.valleyColor, 1, lineChains(lines, VALLEY, view.origin, project));
+  if (style.creases && view.creaseLines) {
+    add('creases-convex', style.creaseColor, 1, lineChains(view.creaseLines, CONVEX, view.origin, project));
+    add('creases-concave', `#${concaveShade(style.creaseColor).getHexString()}`, 1, lineChains(view.creaseLines, CONCAVE, view.origin, project));
+  }
   const background = style.background && style.background !== 'transparent'
     ? `  <rect width="100%" height="100%" fill="${escape(style.background)}"/>\n` : '';
   return `<?xml version="1.0" encoding="UTF-8"?>

@@ -13,7 +13,7 @@ import {
 } from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import { fitDistance } from './fit.js';
-import { LineLayer } from './line-layer.js';
+import { LineLayer, concaveShade, creasesAsLines } from './line-layer.js';
 import { SurfaceLayer } from './surface-layer.js';
 
 const BACKGROUND = { light: 0xf4f4f2, dark: 0x1d1f24 };
@@ -36,7 +36,8 @@ export class Viewer {
     this.controls.addEventListener('change', () => this.render());
     this.surface = new SurfaceLayer();
     this.lines = new LineLayer();
-    this.scene.add(this.surface.mesh, this.lines.group);
+    this.creases = new LineLayer({ ridgeColor: '#e08a00', valleyColor: concaveShade('#e08a00') });
+    this.scene.add(this.surface.mesh, this.lines.group, this.creases.group);
     this.origin = [0, 0, 0];
     this.setBackground('light');
 
@@ -75,6 +76,13 @@ export class Viewer {
     this.render();
   }
 
+  /** The creases (Session.creases()): all shown, convex and concave in two shades. */
+  setCreases(creases) {
+    this.creaseLines = creasesAsLines(creases);
+    this.creases.setLines(this.creaseLines, this.origin);
+    this.render();
+  }
+
   /** A threshold change: other lines shown, no geometry rebuilt. */
   setKept(kept) {
     this.lines.setKept(kept);
@@ -107,6 +115,7 @@ export class Viewer {
     this.camera.aspect = w / h;
     this.camera.updateProjectionMatrix();
     this.lines.setResolution(w, h); // line width in CSS pixels
+    this.creases.setResolution(w, h);
     this.render();
   }
 
@@ -124,6 +133,7 @@ export class Viewer {
     this.controls.dispose();
     this.surface.dispose();
     this.lines.dispose();
+    this.creases.dispose();
     this.renderer.dispose();
   }
 }

@@ -4,7 +4,7 @@
 import { Color, DirectionalLight, HemisphereLight, PerspectiveCamera, Scene, Spherical } from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import { fitDistance } from './fit.js';
-import { LineLayer } from './line-layer.js';
+import { LineLayer, creasesAsLines } from './line-layer.js';
 import { SurfaceLayer } from './surface-layer.js';
 import { forget, requestDraw } from './renderer.js';
 
@@ -24,7 +24,8 @@ export class WidgetView {
     this.camera.add(key);
     this.surface = new SurfaceLayer();
     this.lines = new LineLayer();
-    this.scene.add(this.surface.mesh, this.lines.group);
+    this.creases = new LineLayer(); // convex and concave creases (creasesAsLines)
+    this.scene.add(this.surface.mesh, this.lines.group, this.creases.group);
     this.origin = [0, 0, 0];
     this.radius = 1;
     this.orbit = { theta: 0, phi: (75 * Math.PI) / 180, radius: 1 };
@@ -55,6 +56,13 @@ export class WidgetView {
   /** Every faired line; `kept` (line indices) are shown. */
   setLines(lines, kept) {
     this.lines.setLines(lines, this.origin, kept);
+    this.draw();
+  }
+
+  /** The creases (Session.creases()), all shown. */
+  setCreases(creases) {
+    this.creaseLines = creasesAsLines(creases);
+    this.creases.setLines(this.creaseLines, this.origin);
     this.draw();
   }
 
@@ -97,6 +105,7 @@ export class WidgetView {
     this.camera.aspect = width / height;
     this.camera.updateProjectionMatrix();
     this.lines.setResolution(width, height);
+    this.creases.setResolution(width, height);
     this.draw();
   }
 
@@ -146,5 +155,6 @@ export class WidgetView {
     this.controls.dispose();
     this.surface.dispose();
     this.lines.dispose();
+    this.creases.dispose();
   }
 }

@@ -6,6 +6,7 @@ import { pipelineParameters } from '../client/parameters.js';
 import { ATTRIBUTES, defineParameterProperties, parameterProperties, parameterValue, parseOrbit, reflectAttributes, upgradeProperties } from './attributes.js';
 import { exportGlb, linesSummary, renderPng } from '../three/exports.js';
 import { viewToSvg } from '../three/svg.js';
+import { concaveShade } from '../three/line-layer.js';
 import { DISPLAY_DEFAULTS, fillShadowRoot } from './template.js';
 import { WidgetView } from '../three/widget-view.js';
 
@@ -143,8 +144,10 @@ export class CrestlineViewer extends HTMLElement {
     return {
       ridges: this.ridges,
       valleys: this.valleys,
+      creases: this.creases,
       ridgeColor: value('ridge-color'),
       valleyColor: value('valley-color'),
+      creaseColor: value('crease-color'),
       lineWidth: Number(value('line-width')) || DISPLAY_DEFAULTS['line-width'],
       background: value('background'),
     };
@@ -155,6 +158,10 @@ export class CrestlineViewer extends HTMLElement {
     this.view.lines.setShown(style.ridges, style.valleys);
     this.view.lines.setColors(style.ridgeColor, style.valleyColor);
     this.view.lines.setWidth(style.lineWidth);
+    // Convex creases in the crease colour, concave ones in its darker shade.
+    this.view.creases.setShown(style.creases, style.creases);
+    this.view.creases.setColors(style.creaseColor, concaveShade(style.creaseColor));
+    this.view.creases.setWidth(style.lineWidth);
     this.view.setBackground(style.background);
   }
 
@@ -217,7 +224,7 @@ export class CrestlineViewer extends HTMLElement {
     return this.selected;
   }
 
-  showResult({ surface, lines, kept, linesChanged, stats }) {
+  showResult({ surface, lines, kept, linesChanged, creases, creasesChanged, stats }) {
     if (surface) this.view.setSurface(surface);
     this.result = { lines, kept };
     this.selected = null;
@@ -226,6 +233,7 @@ export class CrestlineViewer extends HTMLElement {
     // A threshold change shows other lines of the same geometry.
     if (linesChanged || surface) this.view.setLines(lines, kept);
     else this.view.setKept(kept);
+    if (creases && (creasesChanged || surface)) this.view.setCreases(creases);
     this.progress(null);
     if (!this.shownLoad) {
       this.shownLoad = true;
@@ -290,19 +298,19 @@ export class CrestlineViewer extends HTMLElement {
     return renderPng(this.view, { cssWidth: width, cssHeight: height, ...options });
   }
 
-  /** GLB Blob: the surface and the shown lines (line primitives "ridges", "valleys"). */
+  /** GLB Blob: the surface and the shown ridges and valleys (line primitives "ridges", "valleys"). */
   async toGLB() {
     this.requireLines();
     return new Blob([await exportGlb(this.view, this.lines, this.displayStyle())], { type: 'model/gltf-binary' });
   }
 
-  /** The lines as OBJ polylines (the CLI's format). */
+  /** The lines as OBJ polylines, creases included (the CLI's format). */
   async toOBJ() {
     this.requireLines();
     return this.session.exportText('obj');
   }
 
-  /** The lines and stats as JSON text (the CLI's format). */
+  /** The lines, creases and stats as JSON text (the CLI's format). */
   async toJSON() {
     this.requireLines();
     return this.session.exportText('json');

@@ -64,6 +64,7 @@ export function fillShadowRoot(root) {
 export const DISPLAY_DEFAULTS = {
   'ridge-color': '#d62d20',
   'valley-color': '#1f5fbf',
+  'crease-color': '#e08a00',
   'line-width': 2,
   background: 'transparent',
 };

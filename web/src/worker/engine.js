@@ -11,7 +11,7 @@ import { pickMainFile, toUint8 } from './protocol.js';
  * @typedef {import('./protocol.js').PipelineOptions} PipelineOptions
  * @typedef {{error?: string, kind?: string, cancelled?: boolean, [key: string]: any}} SessionResult
  * @typedef {{load: Function, loadFile: Function, setOptions: Function, options: Function, run: Function,
- *            surface: Function, lines: Function, keptLines: Function, fields: Function, linesObj: Function, linesJson: Function, statsJson: Function, describe: Function,
+ *            surface: Function, lines: Function, creases: Function, keptLines: Function, fields: Function, linesObj: Function, linesJson: Function, statsJson: Function, describe: Function,
  *            delete: Function}} WasmSession
  * @typedef {{Session: new () => WasmSession}} CrestlineModule
  * @typedef {{name: string, vertices: number, triangles: number, notes: string[],
@@ -148,12 +148,14 @@ export class Engine {
    * set_options + run. `onProgress(stage, fraction)` returns false to cancel.
    * Returns every faired line (`lines`) when a stage before the filter ran
    * or `withLines` asks for them, and always which of them pass the filter
-   * (`kept`): a threshold change returns no lines.
+   * (`kept`): a threshold change returns no lines. The creases come
+   * (`creases`) after a load or when their stage ran; it runs alone when only
+   * the crease options changed.
    * @param {PipelineOptions} options
    * @param {(stage: string, fraction: number) => boolean} [onProgress]
    * @param {boolean} [withLines]
    * @returns {{cancelled: true} | {cancelled?: undefined, ran: string[], stats: Record<string, number>,
-   *            lines?: import('./protocol.js').Lines, kept: Uint32Array, milliseconds: number}}
+   *            lines?: import('./protocol.js').Lines, creases?: import('./protocol.js').Creases, kept: Uint32Array, milliseconds: number}}
    */
   run(options, onProgress, withLines = false) {
     const session = this.current();
@@ -164,9 +166,10 @@ export class Engine {
     if (result.kind === 'too large') this.dispose();
     check(result);
     if (result.cancelled) return { cancelled: true };
-    const linesChanged = withLines || result.ran.some((/** @type {string} */ stage) => stage !== 'filter');
+    const linesChanged = withLines || result.ran.some((/** @type {string} */ stage) => stage !== 'filter' && stage !== 'creases');
     const lines = linesChanged ? session.lines(true) : undefined;
-    return { ran: result.ran, stats: result.stats, lines, kept: session.keptLines(), milliseconds: performance.now() - start };
+    const creases = withLines || result.ran.includes('creases') ? session.creases() : undefined;
+    return { ran: result.ran, stats: result.stats, lines, creases, kept: session.keptLines(), milliseconds: performance.now() - start };
   }
 
   /** @returns {import('./protocol.js').Surface} */

@@ -78,8 +78,8 @@ export function createHandler({ startModule, post, canDecodeDraco = false }) {
     if (result.cancelled) return post({ type: 'cancelled', id, job });
     // The surface changes only after a load or when pre-smoothing ran.
     const surface = sendSurface || result.ran.includes('presmooth') ? engine.surface() : undefined;
-    const { ran, stats, lines, kept, milliseconds } = result;
-    post({ type: 'result', id, job, ran, stats, lines, kept, milliseconds, surface });
+    const { ran, stats, lines, creases, kept, milliseconds } = result;
+    post({ type: 'result', id, job, ran, stats, lines, creases, kept, milliseconds, surface });
   }
 
   /** @param {import('./engine.js').Loaded} loaded @param {number} id @param {number} job */

@@ -15,6 +15,10 @@
  *            strengths: Float64Array, lengths: Float64Array, closed: Uint8Array}} Lines
  *   every line's points (xyz) flat; line l is points offsets[l]..offsets[l+1]-1;
  *   types: 0 ridge, 1 valley
+ * @typedef {{points: Float64Array, offsets: Uint32Array, strengths: Float64Array, lengths: Float64Array,
+ *            closed: Uint8Array, convex: Uint8Array, angles: Float64Array}} Creases
+ *   the sharp edges (Session.creases()), laid out as Lines without types;
+ *   convex: 1 convex, 0 concave; angles: mean |dihedral| per line, degrees
  * @typedef {Record<string, number>} Stats  the CLI's --stats object
  * @typedef {{kappaMax: Float64Array, kappaMin: Float64Array, eMax: Float64Array, eMin: Float64Array,
  *            regularMax: Uint8Array, regularMin: Uint8Array}} Fields
@@ -51,7 +55,7 @@
  *            notes: string[], report: Record<string, number>, milliseconds: number}} LoadedReply
  *   milliseconds: reading + repair
  * @typedef {{type: 'result', id: number, job: number, ran: string[], stats: Stats, lines?: Lines,
- *            kept: Uint32Array, milliseconds: number, surface?: Surface}} ResultReply
+ *            creases?: Creases, kept: Uint32Array, milliseconds: number, surface?: Surface}} ResultReply
  *   lines: every faired line, after a load and whenever a stage before the
  *   filter ran (a threshold change sends none); kept: the indices of the
  *   lines that pass the filter; surface: after a load and whenever
@@ -71,7 +75,7 @@
  */
 
 /** Pipeline stages in order (core stage_name()). */
-export const STAGES = ['presmooth', 'curvature', 'extremality', 'regularity', 'smoothing', 'tracing', 'singular', 'polylines', 'fairing', 'filter'];
+export const STAGES = ['presmooth', 'curvature', 'extremality', 'regularity', 'smoothing', 'tracing', 'singular', 'polylines', 'fairing', 'filter', 'creases'];
 
 /**
  * Transferable buffers of a message payload (every typed array in it).
