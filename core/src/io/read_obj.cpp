@@ -144,6 +144,19 @@ std::string_view prepare_text(std::string_view text, std::string& storage) {
 
 bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
 
+// tinyobjloader accumulates a number's exponent in an int and overflows
+// (undefined behaviour) on ten digits; no double needs more than four.
+bool has_huge_exponent(std::string_view word) {
+  const size_t e = word.find_first_of("eE");
+  if (e == std::string_view::npos) return false;
+  size_t k = e + 1;
+  if (k < word.size() && (word[k] == '+' || word[k] == '-')) ++k;
+  while (k < word.size() && word[k] == '0') ++k;
+  size_t digits = 0;
+  for (; k < word.size() && word[k] >= '0' && word[k] <= '9'; ++k) ++digits;
+  return digits > 9;
+}
+
 // tinyobjloader reads indices with atoi, which wraps ("4294967299" became
 // 3, a 20-digit index anything), and takes a hexadecimal coordinate for 0.
 // Both are refused here, on the text it is given; `line_of` turns a byte
@@ -157,7 +170,10 @@ void check_numbers(const Input& in, std::string_view text, const LineOf& line_of
     while (i < end && is_blank(text[i])) ++i;
     const bool face = i + 1 < end && text[i] == 'f' && is_blank(text[i + 1]);
     const bool vertex = i + 1 < end && text[i] == 'v' && is_blank(text[i + 1]);
-    for (i += 1; (face || vertex) && i < end;) {
+    // Normals and texture coordinates are parsed (and dropped) too.
+    const bool attribute =
+        i + 2 < end && text[i] == 'v' && (text[i + 1] == 'n' || text[i + 1] == 't') && is_blank(text[i + 2]);
+    for (i += attribute ? 2 : 1; (face || vertex || attribute) && i < end;) {
       while (i < end && is_blank(text[i])) ++i;
       const size_t start = i;
       while (i < end && !is_blank(text[i])) ++i;
@@ -168,6 +184,11 @@ void check_numbers(const Input& in, std::string_view text, const LineOf& line_of
         fail(ErrorKind::InvalidInput, in,
              "the vertex on line " + std::to_string(line_of(start)) + " has the hexadecimal number " + quote(word) +
                  ", which OBJ does not allow.");
+      }
+      if (!face && has_huge_exponent(word)) {
+        fail(ErrorKind::InvalidInput, in,
+             "line " + std::to_string(line_of(start)) + " has the number " + quote(word) +
+                 ", whose exponent is out of range.");
       }
       if (!face) continue;
       const std::string_view index = word.substr(0, word.find('/'));
