@@ -22,5 +22,6 @@ EMSCRIPTEN_BINDINGS(crestline) {
       .function("linesObj", &Session::linesObj)
       .function("linesJson", &Session::linesJson)
       .function("statsJson", &Session::statsJson)
-      .function("linesSvg", &Session::linesSvg);
+      .function("linesSvg", &Session::linesSvg)
+      .function("linesGlb", &Session::linesGlb);
 }

@@ -3,6 +3,8 @@
 #include <emscripten/heap.h>
 #include <emscripten/val.h>
 
+#include <algorithm>
+#include <iterator>
 #include <new>
 #include <vector>
 
@@ -435,19 +437,91 @@ std::string Session::linesJson() const {
 
 std::string Session::statsJson() const { return pipeline_ ? io::stats_json(pipeline_->stats()) : std::string(); }
 
+namespace {
+
+const char* const kViewKeys[] = {"camera",      "ridges",      "valleys",      "creases",    "ridgeColor",
+                                 "valleyColor", "creaseColor", "concaveColor", "background", "silhouetteColor"};
+
+bool is_view_key(const std::string& key) {
+  return std::find(std::begin(kViewKeys), std::end(kViewKeys), key) != std::end(kViewKeys);
+}
+
+/// `o` without the drawing keys that are not parameters: the table's keys.
+val table_keys(const val& o) {
+  val rest = val::object();
+  const val keys = val::global("Object").call<val>("keys", o);
+  for (size_t i = 0, n = keys["length"].as<size_t>(); i < n; ++i) {
+    const std::string key = keys[i].as<std::string>();
+    if (!is_view_key(key)) rest.set(key, o[key]);
+  }
+  return rest;
+}
+
+/// A viewer's camera and style (kViewKeys) from `o` into `svg`.
+void apply_view_keys(const val& o, io::SvgOptions& svg) {
+  const val camera = o["camera"];
+  if (!camera.isUndefined() && !camera.isNull()) {
+    const std::vector<double> m = copy_in<double>(camera["matrix"]);
+    if (m.size() != 16) throw UsageError("camera.matrix must hold 16 numbers (column-major).");
+    io::SvgCamera c;
+    c.matrix = Eigen::Map<const Eigen::Matrix4d>(m.data());  // column-major, as three.js's Matrix4.elements
+    c.width = camera["width"].as<int>();
+    c.height = camera["height"].as<int>();
+    if (c.width < 1 || c.height < 1 || c.width > 16384 || c.height > 16384)
+      throw UsageError("camera.width and camera.height must be between 1 and 16384 pixels.");
+    svg.camera = c;
+  }
+  read(o, "ridges", svg.ridges);
+  read(o, "valleys", svg.valleys);
+  read(o, "creases", svg.creases);
+  read(o, "ridgeColor", svg.ridge_color);
+  read(o, "valleyColor", svg.valley_color);
+  read(o, "creaseColor", svg.crease_color);
+  read(o, "concaveColor", svg.concave_color);
+  read(o, "background", svg.background);
+  read(o, "silhouetteColor", svg.silhouette_color);
+}
+
+}  // namespace
+
 val Session::linesSvg(val o) const {
   if (!pipeline_) return error_value(error_kind_name(ErrorKind::InvalidInput), "no mesh is loaded");
-  Settings settings;
+  Settings settings = settings_;
   try {
-    std::vector<double> weights;
-    bool weights_given = false;
-    settings = o.isUndefined() || o.isNull() ? settings_ : with_options(settings_, o, &weights, &weights_given);
+    if (!o.isUndefined() && !o.isNull()) {
+      std::vector<double> weights;
+      bool weights_given = false;
+      settings = with_options(settings_, table_keys(o), &weights, &weights_given);
+      apply_view_keys(o, settings.svg);
+    }
   } catch (const UsageError& e) {
     return error_value("usage", e.what());
   }
   return guarded(triangles_, [&] {
     return val(
         io::write_lines_svg(pipeline_->all_kinds(), pipeline_->input_mesh(), pipeline_->topology(), settings.svg));
+  });
+}
+
+val Session::linesGlb(val o) const {
+  if (!pipeline_) return error_value(error_kind_name(ErrorKind::InvalidInput), "no mesh is loaded");
+  io::SvgOptions shown;  // only its ridges / valleys / creases flags
+  if (!o.isUndefined() && !o.isNull()) {
+    read(o, "ridges", shown.ridges);
+    read(o, "valleys", shown.valleys);
+    read(o, "creases", shown.creases);
+  }
+  return guarded(triangles_, [&] {
+    std::vector<Polyline> lines = pipeline_->all_kinds();
+    lines.erase(std::remove_if(lines.begin(), lines.end(),
+                               [&](const Polyline& l) {
+                                 return l.type == LineType::Ridge    ? !shown.ridges
+                                        : l.type == LineType::Valley ? !shown.valleys
+                                                                     : !shown.creases;
+                               }),
+                lines.end());
+    const std::vector<uint8_t> bytes = io::write_glb(&pipeline_->input_mesh(), lines);
+    return copy_out(bytes.data(), bytes.size());
   });
 }
 

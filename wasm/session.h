@@ -77,14 +77,25 @@ class Session {
   val fields() const;
   val stats() const;
   /// The filtered lines in the native CLI's formats (the shared writers):
-  /// OBJ, JSON with stats, the stats JSON alone, and SVG drawn with the
-  /// session's SVG parameters (view, svgWidth, strokeWidth, silhouette,
-  /// svgSurfaceTolerance), overridden by `options` with the same keys
-  /// (returns the text or {error}).
+  /// OBJ, JSON with stats, the stats JSON alone.
   std::string linesObj() const;
   std::string linesJson() const;
   std::string statsJson() const;
+  /// SVG (io::write_lines_svg, the CLI's writer) drawn with the session's SVG
+  /// parameters (view, svgWidth, strokeWidth, silhouette,
+  /// svgSurfaceTolerance), overridden by `options` with the same keys, plus
+  /// what a viewer shows: camera {matrix: 16 numbers, column-major, model →
+  /// clip (three.js projectionMatrix · matrixWorldInverse · the model's
+  /// matrixWorld), width, height (pixels)} instead of `view`; ridges,
+  /// valleys, creases (booleans: drawn or not); ridgeColor, valleyColor,
+  /// creaseColor, concaveColor, silhouetteColor, background (CSS colours).
+  /// Returns the text or {error, kind}.
   val linesSvg(val options) const;
+  /// GLB (io::write_glb, the CLI's `--with-mesh` writer): the surface and the
+  /// filtered lines, creases included, as a Uint8Array; `options` {ridges,
+  /// valleys, creases} (booleans, default true) leave groups out (an empty
+  /// node stays). Returns the bytes or {error, kind}.
+  val linesGlb(val options) const;
 
  private:
   /// Repairs `soup` and builds the Pipeline on it: the shared end of load()

@@ -1,11 +1,14 @@
 // The web app's Export folder in headless Chromium: each button downloads a
-// file named after the mesh (the built-in bunny), made by the element's
-// exporters (SVG, PNG, GLB) or the worker's core writers (OBJ, JSON).
-// Needs web/dist (web/build.sh).
+// file named after the mesh (the built-in bunny), made by the core's writers
+// in the worker (SVG of the viewer's camera, OBJ, JSON, GLB) or rendered (PNG).
+// The SVG of a generated box seen obliquely equals what the same writer in
+// node draws for the same camera and options. Needs web/dist (web/build.sh).
 import assert from 'node:assert/strict';
 import { readFile } from 'node:fs/promises';
 import { after, before, test } from 'node:test';
-import { openApp, sampleReady } from './app-page.mjs';
+import { loadCrestline } from '../../wasm/node.mjs';
+import { boxObj } from './box-obj.mjs';
+import { dropFiles, nextResult, openApp, sampleReady } from './app-page.mjs';
 
 let app, page;
 
@@ -33,8 +36,13 @@ test('SVG: the visible lines of the current view, with a viewBox', async () => {
   const { name, bytes } = await exported('SVG (visible lines)');
   assert.equal(name, 'bunny-lines.svg');
   const svg = bytes.toString('utf8');
-  assert.match(svg, /<svg[^>]* viewBox="0 0 \d+ \d+"/);
-  assert.match(svg, /<path id="(ridges|valleys)"/);
+  const css = await page.evaluate(() => {
+    const { width, height } = window.crestline.viewer.renderer.domElement.getBoundingClientRect();
+    return `${Math.round(width)}.00 ${Math.round(height)}.00`;
+  });
+  assert.match(svg, new RegExp(`<svg[^>]* viewBox="0 0 ${css}"`), 'the canvas size');
+  assert.match(svg, /<g id="ridges"[^>]*>\n<path d="M/);
+  assert.match(svg, /<g id="valleys"[^>]*>\n<path d="M/);
 });
 
 test('PNG at the chosen resolution (2× the canvas)', async () => {
@@ -70,6 +78,61 @@ test('GLB: mesh and lines', async () => {
   const { name, bytes } = await exported('GLB (mesh + lines)');
   assert.equal(name, 'bunny-lines.glb');
   assert.equal(bytes.subarray(0, 4).toString('latin1'), 'glTF');
+  assert.match(bytes.toString('latin1'), /"name":"surface"/);
   assert.match(bytes.toString('latin1'), /"name":"ridges"/);
   assert.deepEqual(app.pageErrors, []);
 });
+
+test('a box seen obliquely: SVG (creases, back edges hidden) and GLB equal the core writers in node for the same camera', async () => {
+  const text = boxObj();
+  const result = await nextResult(page, () => dropFiles(page, [{ name: 'box.obj', text }]));
+  assert.equal(result.stats.creases, 12);
+  // Look from the (+x, +y, +z) octant and record what the page asks the worker for.
+  const options = await page.evaluate(() => {
+    const { viewer, client } = window.crestline;
+    viewer.camera.position.set(2.2, 1.6, 2.6);
+    viewer.camera.lookAt(0, 0, 0);
+    const exportFile = client.exportFile.bind(client);
+    window.requested = [];
+    client.exportFile = (format, view) => (window.requested.push({ format, view }), exportFile(format, view));
+    return client.options;
+  });
+  const svg = (await exported('SVG (visible lines)')).bytes.toString('utf8');
+  const glb = (await exported('GLB (mesh + lines)')).bytes;
+  const requested = await page.evaluate(() => window.requested);
+  assert.deepEqual(requested.map((r) => r.format), ['svg', 'glb']);
+  assert.equal(requested[0].view.camera.matrix.length, 16);
+
+  const module = await loadCrestline();
+  const session = new module.Session();
+  try {
+    assert.ok(session.loadFile('box.obj', new TextEncoder().encode(text), [], {}).ok);
+    assert.ok(session.setOptions(Object.fromEntries(Object.entries(options).filter(([, v]) => v !== undefined))).ok);
+    assert.ok(session.run(() => true).ok);
+    assert.equal(svg, session.linesSvg(requested[0].view), 'the page SVG is the core writer\'s for that camera');
+    assert.deepEqual(new Uint8Array(glb), session.linesGlb(requested[1].view), 'the page GLB is the CLI\'s --with-mesh GLB');
+  } finally {
+    session.delete();
+  }
+  // 12 convex edges; seen from one octant, the 3 not bordering a visible face are hidden.
+  const group = /<g id="creases"[^>]*>\n([\s\S]*?)<\/g>/.exec(svg)?.[1] ?? '';
+  const paths = group.match(/<path class="convex" d="[^"]*"/g) ?? [];
+  const [, width, height] = /viewBox="0 0 ([\d.]+) ([\d.]+)"/.exec(svg).map(Number);
+  const points = [...group.matchAll(/(-?[\d.]+),(-?[\d.]+)/g)].map((m) => [Number(m[1]), Number(m[2])]);
+  assert.ok(points.every(([x, y]) => x >= 0 && y >= 0 && x <= width && y <= height), 'inside the frame');
+  const drawn = paths.reduce((sum, path) => sum + pathLength(path), 0);
+  const all = await page.evaluate(() => window.crestline.lastResult.stats.creaseLength);
+  console.log(`box: ${paths.length} crease paths, ${drawn.toFixed(0)} px drawn; crease length ${all.toFixed(2)}; ${paths.map(pathLength).map((x) => x.toFixed(0))}`);
+  // The far corner's 3 edges are hidden but for stubs of a few pixels where they meet the outline.
+  assert.equal(paths.filter((path) => pathLength(path) > 20).length, 9, 'visible crease edges');
+  assert.ok(paths.every((path) => pathLength(path) > 20 || pathLength(path) < 8), 'no partly hidden edge');
+  assert.match(glb.toString('latin1'), /"name":"creases"/);
+});
+
+/** Length in drawing pixels of an SVG path's polyline (M x,y L x,y x,y … [Z]). */
+function pathLength(path) {
+  const points = [...path.matchAll(/(-?[\d.]+),(-?[\d.]+)/g)].map((m) => [Number(m[1]), Number(m[2])]);
+  let sum = 0;
+  for (let k = 1; k < points.length; k++) sum += Math.hypot(points[k][0] - points[k - 1][0], points[k][1] - points[k - 1][1]);
+  return sum;
+}

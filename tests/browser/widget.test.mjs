@@ -143,15 +143,18 @@ test('a viewer from another origin loads a GLB, re-thresholds and exports', asyn
     const glbJson = JSON.parse(new TextDecoder().decode(new Uint8Array(await glb.arrayBuffer(), 20, new DataView(await glb.arrayBuffer()).getUint32(12, true))));
     return { svg: await v.toSVG(), outlined: await v.toSVG({ silhouette: '#222222' }), obj: await v.toOBJ(), json: JSON.parse(await v.toJSON()), png: [png.type, png.size], glb: glbJson.meshes.map((m) => m.name ?? m.primitives[0].mode), label: v.shadowRoot.querySelector('canvas').getAttribute('aria-label') };
   });
-  assert.match(exported.svg, /<path id="(ridges|valleys)" stroke="#[0-9a-f]{6}" d="M[\d.]+ [\d.]+L/);
-  assert.match(exported.svg, /viewBox="0 0 480 320"/);
+  // The core's SVG writer, with the widget's camera and size.
+  assert.match(exported.svg, /<g id="(ridges|valleys)" fill="none" stroke="#[0-9a-f]{6}" stroke-width="[\d.]+"[^>]*>\n<path d="M[\d.]+,[\d.]+ L/);
+  assert.match(exported.svg, /viewBox="0 0 480\.00 320\.00"/);
   assert.doesNotMatch(exported.svg, /silhouette/);
-  assert.match(exported.outlined, /<path id="silhouette" stroke="#222222" stroke-width="[\d.]+" d="M/);
+  assert.match(exported.outlined, /<g id="silhouette" fill="none" stroke="#222222" stroke-width="[\d.]+"[^>]*>\n<path d="M/);
   assert.match(exported.obj, /^v /m);
   assert.equal(exported.json.ridges.length + exported.json.valleys.length, total(second.detail.counts));
   assert.equal(exported.png[0], 'image/png');
   assert.ok(exported.png[1] > 1000);
+  // The CLI's --with-mesh GLB: the surface, then a mesh per shown group.
   assert.ok(exported.glb.length >= 2, `GLB meshes: ${exported.glb}`);
+  assert.equal(exported.glb[0], 'surface');
   assert.equal(exported.label, 'A fan disk');
   if (process.env.CRESTLINE_SHOTS) {
     writeFileSync(join(ROOT, 'test-results/widget.svg'), exported.svg);
@@ -372,8 +375,8 @@ test('creases: shown in crease-color (attribute over --crestline-crease-color), 
     return { svg: await v.toSVG(), obj: await v.toOBJ(), json: JSON.parse(await v.toJSON()) };
   }, id);
   const shown = await exports('c');
-  assert.match(shown.svg, /<path id="creases-convex" stroke="#00aa44" d="M/);
-  assert.doesNotMatch(shown.svg, /creases-concave/);
+  assert.match(shown.svg, /<g id="creases" fill="none" stroke="#00aa44"[^>]*>\n<path class="convex" d="M/);
+  assert.doesNotMatch(shown.svg, /class="concave"/);
   assert.match(shown.obj, /^o creases$/m);
   assert.equal(shown.json.creases.length, c.count);
   assert.doesNotMatch((await exports('d')).svg, /creases/, 'hidden creases are not in the SVG');

@@ -48,20 +48,69 @@ constexpr double kSupersample = 2;   // depth pixels per drawing pixel…
 constexpr double kMaxRaster = 8192;  // …up to this many on the longer side (memory)
 constexpr double kMarginFraction = 0.02;
 
-/// Maps world points to drawing coordinates (x right, y down) and depth.
+/// Maps world points to drawing coordinates (x right, y down) and a depth
+/// key that is affine in the drawing (so it can be interpolated across a
+/// triangle) and grows toward the viewer.
 struct Projection {
   Camera camera;
   double u_min = 0, v_max = 0, scale = 1, margin = 0;
   double depth_origin = 0;       // depth is stored as float: measure it from the model
   double width = 0, height = 0;  // of the drawing, in drawing pixels
+  // With an SvgCamera: the drawing is its frame; parts outside it are hidden.
+  bool framed = false;
+  bool perspective = false;  // key 1/w (w: distance in front of the eye); else key = depth
+  Eigen::Matrix4d matrix = Eigen::Matrix4d::Identity();
+  double depth_scale = 1;  // orthographic camera: model units per unit of clip z
+  double lateral = 1;      // model units per unit of NDC y (× w in perspective)
 
   Vec3 operator()(const Vec3& p) const {
-    return {(p.dot(camera.right) - u_min) * scale + margin, (v_max - p.dot(camera.up)) * scale + margin,
-            p.dot(camera.toward) - depth_origin};
+    if (!framed)
+      return {(p.dot(camera.right) - u_min) * scale + margin, (v_max - p.dot(camera.up)) * scale + margin,
+              p.dot(camera.toward) - depth_origin};
+    const Eigen::Vector4d c = matrix * p.homogeneous();
+    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+    // Behind the eye or outside the near/far planes: never drawn, never hides.
+    if (!(c.w() > 0) || c.z() < -c.w() || c.z() > c.w()) return Vec3::Constant(nan);
+    const double x = (c.x() / c.w() + 1) * 0.5 * width, y = (1 - c.y() / c.w()) * 0.5 * height;
+    return {x, y, perspective ? 1.0 / c.w() : -c.z() * depth_scale - depth_origin};
+  }
+
+  /// Distance from the viewer (up to a constant) of a depth key, model units.
+  double distance(double key) const { return perspective ? 1.0 / key : -key; }
+
+  /// Whether a triangle at `a` with this normal faces the viewer.
+  bool faces(const Vec3& normal, const Vec3& a) const {
+    if (!framed) return normal.dot(camera.toward) > 0;
+    if (!perspective) return normal.dot(-matrix.row(2).head<3>().transpose()) > 0;
+    // The eye: where clip x, y and w vanish.
+    Eigen::Matrix3d rows;
+    rows << matrix.row(0).head<3>(), matrix.row(1).head<3>(), matrix.row(3).head<3>();
+    const Vec3 eye = rows.partialPivLu().solve(-Vec3(matrix(0, 3), matrix(1, 3), matrix(3, 3)));
+    return normal.dot(eye - a) > 0;
   }
 };
 
+Projection camera_projection(const Mesh& surface, const SvgCamera& camera) {
+  Projection proj;
+  proj.framed = true;
+  proj.matrix = camera.matrix;
+  proj.width = std::max(1, camera.width);
+  proj.height = std::max(1, camera.height);
+  proj.perspective = camera.matrix.row(3) != Eigen::RowVector4d(0, 0, 0, 1);
+  const double z_norm = camera.matrix.row(2).head<3>().norm();
+  proj.depth_scale = z_norm > 0 ? 1.0 / z_norm : 1.0;
+  const double y_norm = camera.matrix.row(1).head<3>().norm();
+  proj.lateral = y_norm > 0 ? 1.0 / y_norm : 1.0;
+  if (!proj.perspective) {
+    double key_min = std::numeric_limits<double>::infinity();
+    for (const Vec3& p : surface.positions) key_min = std::min(key_min, proj(p).z());
+    if (std::isfinite(key_min)) proj.depth_origin = key_min;
+  }
+  return proj;
+}
+
 Projection make_projection(const std::vector<Polyline>& lines, const Mesh& surface, const SvgOptions& options) {
+  if (options.camera) return camera_projection(surface, *options.camera);
   Projection proj;
   proj.camera = camera_for(options.view);
   constexpr double inf = std::numeric_limits<double>::infinity();
@@ -93,7 +142,8 @@ Projection make_projection(const std::vector<Polyline>& lines, const Mesh& surfa
 /// Largest depth (nearest surface) per depth pixel; -inf where empty.
 class DepthBuffer {
  public:
-  DepthBuffer(const Mesh& surface, const Projection& proj, double surface_tolerance) {
+  DepthBuffer(const Mesh& surface, const Projection& proj, double surface_tolerance)
+      : framed_(proj.framed), perspective_(proj.perspective) {
     factor_ = std::min(kSupersample, kMaxRaster / std::max({proj.width, proj.height, 1.0}));
     width_ = static_cast<int>(std::ceil(proj.width * factor_));
     height_ = static_cast<int>(std::ceil(proj.height * factor_));
@@ -111,9 +161,17 @@ class DepthBuffer {
     // The lines lie ON the surface: accept samples behind it by ~2 depth
     // pixels or the lines' own distance from the surface, whichever is
     // larger, plus a small fraction of the depth range (float depth).
-    const double range = d_max > d_min ? d_max - d_min : 0.0;
     const double off_surface = surface_tolerance * mean_edge_length(surface);
-    tolerance_ = std::max(2.0 / (proj.scale * factor_), off_surface) + 1e-3 * range;
+    if (!proj.framed) {
+      const double range = d_max > d_min ? d_max - d_min : 0.0;
+      tolerance_ = std::max(2.0 / (proj.scale * factor_), off_surface) + 1e-3 * range;
+      return;
+    }
+    // A camera: the same in model units, a depth pixel measured at the far side.
+    const double near = proj.distance(d_max), far = proj.distance(d_min);  // larger keys are nearer
+    const double range = d_max > d_min ? far - near : 0.0;
+    const double pixel = 2.0 / (proj.height * factor_) * proj.lateral * (proj.perspective ? far : 1.0);
+    tolerance_ = std::max(2 * pixel, off_surface) + 1e-3 * range;
   }
 
   /// `q` in drawing coordinates with depth. Compared with the farthest of the
@@ -122,14 +180,20 @@ class DepthBuffer {
   bool visible(const Vec3& q) const {
     if (!q.allFinite()) return false;  // never draw (or index with) NaN
     const double x = q.x() * factor_ - 0.5, y = q.y() * factor_ - 0.5;
+    if (framed_ && (x < -0.5 || y < -0.5 || x >= width_ - 0.5 || y >= height_ - 0.5)) return false;
     const int i0 = static_cast<int>(std::floor(x)), j0 = static_cast<int>(std::floor(y));
     float farthest = std::numeric_limits<float>::infinity();
     for (int j = j0; j <= j0 + 1; ++j)
       for (int i = i0; i <= i0 + 1; ++i) {
-        if (i < 0 || j < 0 || i >= width_ || j >= height_) return true;
+        if (i < 0 || j < 0 || i >= width_ || j >= height_) {
+          if (framed_) continue;  // the frame's edge: its inner pixels decide
+          return true;
+        }
         farthest = std::min(farthest, depth_[static_cast<size_t>(j) * width_ + i]);
       }
-    return q.z() >= farthest - tolerance_;
+    if (!perspective_) return q.z() >= farthest - tolerance_;
+    // Keys are 1/distance: compare distances; an empty pixel hides nothing.
+    return farthest == -std::numeric_limits<float>::infinity() || 1.0 / q.z() <= 1.0 / farthest + tolerance_;
   }
 
   /// Depth pixels per drawing pixel.
@@ -161,6 +225,7 @@ class DepthBuffer {
     }
   }
 
+  bool framed_ = false, perspective_ = false;
   double factor_ = kSupersample;
   int width_ = 0, height_ = 0;
   std::vector<float> depth_;
@@ -248,11 +313,23 @@ void append_path_data(std::string& out, const Run& run) {
   if (run.closed) out += " Z";
 }
 
+/// An attribute value: colours may come from a page's CSS.
+std::string escaped(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    if (c == '&' || c == '<' || c == '>' || c == '"')
+      out += "&#" + std::to_string(static_cast<int>(c)) + ';';
+    else
+      out += c;
+  }
+  return out;
+}
+
 void open_group(std::string& out, const char* id, const std::string& color, double width) {
   out += "<g id=\"";
   out += id;
   out += "\" fill=\"none\" stroke=\"";
-  out += color;
+  out += escaped(color);
   out += "\" stroke-width=\"";
   append_coord(out, width);
   out += "\" stroke-linecap=\"round\" stroke-linejoin=\"round\">\n";
@@ -319,7 +396,7 @@ std::vector<Run> silhouette_runs(const Mesh& surface, const Topology& topology, 
     const Triangle& tri = surface.triangles[t];
     const Vec3& a = surface.positions[tri[0]];
     const Vec3 normal = (surface.positions[tri[1]] - a).cross(surface.positions[tri[2]] - a);
-    front[t] = normal.dot(proj.camera.toward) > 0;
+    front[t] = proj.faces(normal, a);
   }
   for (size_t e = 0; e < topology.edges.size(); ++e) {
     const auto& [t0, t1] = topology.edge_triangles[e];
@@ -352,11 +429,13 @@ std::string write_lines_svg(const std::vector<Polyline>& lines, const Mesh& surf
   append_coord(width, proj.width);
   append_coord(height, proj.height);
   out += " width=\"" + width + "\" height=\"" + height + "\" viewBox=\"0 0 " + width + ' ' + height + "\">\n";
+  if (!options.background.empty())
+    out += "<rect width=\"100%\" height=\"100%\" fill=\"" + escaped(options.background) + "\"/>\n";
 
   if (options.silhouette) {
     // One path with a subpath per visible edge piece: thousands of tiny
     // elements would bloat the file for no visual gain.
-    open_group(out, "silhouette", "#555555", 0.6 * options.stroke_width);
+    open_group(out, "silhouette", options.silhouette_color, 0.6 * options.stroke_width);
     std::string data;
     for (const Run& run : silhouette_runs(surface, topology, proj, depth)) {
       if (!data.empty()) data += ' ';
@@ -370,11 +449,16 @@ std::string write_lines_svg(const std::vector<Polyline>& lines, const Mesh& surf
     LineType type;
     const char* id;
     const std::string& color;
-  } groups[] = {{LineType::Ridge, "ridges", options.ridge_color},
-                {LineType::Valley, "valleys", options.valley_color},
-                {LineType::Crease, "creases", options.crease_color}};
+    bool shown;
+  } groups[] = {{LineType::Ridge, "ridges", options.ridge_color, options.ridges},
+                {LineType::Valley, "valleys", options.valley_color, options.valleys},
+                {LineType::Crease, "creases", options.crease_color, options.creases}};
+  const std::string concave = options.concave_color.empty() || options.concave_color == options.crease_color
+                                  ? "<path class=\"concave\" d=\""
+                                  : "<path class=\"concave\" stroke=\"" + escaped(options.concave_color) + "\" d=\"";
   std::vector<Vec3> projected;
   for (const auto& group : groups) {
+    if (!group.shown) continue;
     // Ridges and valleys always have their group; creases only when there are any.
     const bool crease = group.type == LineType::Crease;
     if (crease &&
@@ -386,7 +470,7 @@ std::string write_lines_svg(const std::vector<Polyline>& lines, const Mesh& surf
       projected.clear();
       for (const Vec3& p : line.points) projected.push_back(proj(p));
       for (const Run& run : visible_runs(projected, line.closed, depth)) {
-        out += crease ? (line.convex ? "<path class=\"convex\" d=\"" : "<path class=\"concave\" d=\"") : "<path d=\"";
+        out += crease ? (line.convex ? "<path class=\"convex\" d=\"" : concave) : "<path d=\"";
         append_path_data(out, run);
         out += "\"/>\n";
       }

@@ -1,4 +1,5 @@
 // SVG writer: hidden-line removal against the surface, views, groups.
+#include <Eigen/Core>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
@@ -305,4 +306,104 @@ TEST_CASE("SVG: creases in group \"creases\", each path classed convex or concav
   // Without creases there is no such group.
   CHECK(svg_of({test_line(LineType::Ridge, {{-0.5, 0, 0.1}, {0.5, 0, 0.1}})}, plane()).find("creases") ==
         std::string::npos);
+}
+
+namespace {
+
+/// A three.js-style perspective camera at (0, 0, distance) looking along -z,
+/// vertical field of view `fov_y` (radians), as projection · view.
+Eigen::Matrix4d perspective_camera(double distance, double fov_y, double aspect, double near, double far) {
+  const double f = 1 / std::tan(fov_y / 2);
+  Eigen::Matrix4d projection;
+  projection << f / aspect, 0, 0, 0, 0, f, 0, 0, 0, 0, (far + near) / (near - far), 2 * far * near / (near - far), 0, 0,
+      -1, 0;
+  Eigen::Matrix4d view = Eigen::Matrix4d::Identity();
+  view(2, 3) = -distance;
+  return projection * view;
+}
+
+std::string camera_svg(const std::vector<Polyline>& lines, const Mesh& surface, const Eigen::Matrix4d& matrix,
+                       bool silhouette = false) {
+  SvgOptions options;
+  options.camera = crestline::io::SvgCamera{matrix, 400, 300};
+  options.silhouette = silhouette;
+  return crestline::io::write_lines_svg(lines, surface, options);
+}
+
+}  // namespace
+
+TEST_CASE("SVG with a camera: perspective projection, hidden parts and the frame", "[io][svg][camera]") {
+  const double fov = kPi / 4, f = 1 / std::tan(fov / 2), aspect = 400.0 / 300.0;
+  const Eigen::Matrix4d camera = perspective_camera(5, fov, aspect, 0.1, 100);
+  const auto front = test_line(LineType::Ridge, {{-0.5, 0.2, 0.1}, {0.5, 0.2, 0.1}});
+  const auto behind = test_line(LineType::Valley, {{-0.5, -0.2, -0.1}, {0.5, -0.2, -0.1}});
+  const std::string svg = camera_svg({front, behind}, plane(), camera);
+  CHECK(svg.find("viewBox=\"0 0 400.00 300.00\"") != std::string::npos);
+  const auto drawn = paths_in(svg, "ridges");
+  REQUIRE(drawn.size() == 1);
+  REQUIRE(drawn[0].points.size() == 2);
+  // Pinhole projection at distance 4.9: x = (f/aspect · X/4.9 + 1)/2 · 400, y = (1 - f · Y/4.9)/2 · 300.
+  CHECK(drawn[0].points[0].first == Approx((f / aspect * -0.5 / 4.9 + 1) / 2 * 400).margin(0.01));
+  CHECK(drawn[0].points[0].second == Approx((1 - f * 0.2 / 4.9) / 2 * 300).margin(0.01));
+  CHECK(drawn[0].points[1].first == Approx((f / aspect * 0.5 / 4.9 + 1) / 2 * 400).margin(0.01));
+  CHECK(paths_in(svg, "valleys").empty());
+
+  SECTION("from behind the plane the other line shows") {
+    Eigen::Matrix4d turn = Eigen::Matrix4d::Identity();  // half a turn about y
+    turn(0, 0) = turn(2, 2) = -1;
+    const std::string back = camera_svg({front, behind}, plane(), camera * turn);
+    CHECK(paths_in(back, "ridges").empty());
+    CHECK(paths_in(back, "valleys").size() == 1);
+  }
+  SECTION("a line leaving the frame is cut at its edge") {
+    const auto wide = test_line(LineType::Ridge, {{-50, 0, 0.1}, {0.3, 0, 0.1}});
+    const auto cut = paths_in(camera_svg({wide}, plane(), camera), "ridges");
+    REQUIRE(cut.size() == 1);
+    CHECK(cut[0].points.front().first >= 0);
+    CHECK(cut[0].points.front().first <= 1.0);
+  }
+  SECTION("a line behind the eye is not drawn") {
+    const auto past = test_line(LineType::Ridge, {{-0.5, 0, 6}, {0.5, 0, 6}});
+    CHECK(paths_in(camera_svg({past}, plane(), camera), "ridges").empty());
+  }
+}
+
+TEST_CASE("SVG with a camera: a sphere's equator and silhouette in perspective", "[io][svg][camera]") {
+  const Mesh sphere = uv_sphere(16, 48);
+  std::vector<Vec3> equator;
+  for (int s = 0; s < 48; ++s) equator.push_back(sphere.positions[1 + 7 * 48 + s]);
+  const auto ring = test_line(LineType::Ridge, equator, true);
+  const double fov = kPi / 4, f = 1 / std::tan(fov / 2);
+  const std::string svg = camera_svg({ring}, sphere, perspective_camera(4, fov, 400.0 / 300.0, 0.1, 100), true);
+  // Only the near half of the ring: one open run, roughly from limb to limb.
+  const auto drawn = paths_in(svg, "ridges");
+  REQUIRE(drawn.size() == 1);
+  CHECK_FALSE(drawn[0].closed);
+  // The limb seen from distance 4 lies at angle asin(1/4) off the axis.
+  const double limb = std::tan(std::asin(0.25)) * f * 150;  // drawing pixels from the centre (150 = half the height)
+  double x_min = 1e9, x_max = -1e9;
+  for (const auto& p : drawn[0].points) x_min = std::min(x_min, p.first), x_max = std::max(x_max, p.first);
+  CHECK(x_max - x_min == Approx(2 * limb).epsilon(0.05));
+  // The outline: a closed curve of about that radius around the centre.
+  const auto outline = paths_in(svg, "silhouette");
+  REQUIRE(!outline.empty());
+  CHECK(total_length(outline) == Approx(2 * kPi * limb).epsilon(0.05));
+}
+
+TEST_CASE("SVG: which groups are drawn, their colours, a background", "[io][svg]") {
+  auto convex = test_line(LineType::Crease, {{-0.5, 0.5, 0.1}, {0.5, 0.5, 0.1}});
+  convex.convex = true;
+  const auto concave = test_line(LineType::Crease, {{-0.5, -0.5, 0.1}, {0.5, -0.5, 0.1}});
+  const auto ridge = test_line(LineType::Ridge, {{-0.5, 0, 0.1}, {0.5, 0, 0.1}});
+  SvgOptions options;
+  options.ridges = false;
+  options.concave_color = "#111111";
+  options.background = "#f0f0f0\"<";
+  const std::string svg = crestline::io::write_lines_svg({convex, concave, ridge}, plane(), options);
+  CHECK(svg.find("id=\"ridges\"") == std::string::npos);
+  CHECK(svg.find("id=\"valleys\"") != std::string::npos);
+  CHECK(svg.find("<path class=\"concave\" stroke=\"#111111\" d=\"M") != std::string::npos);
+  CHECK(svg.find("<rect width=\"100%\" height=\"100%\" fill=\"#f0f0f0&#34;&#60;\"/>") != std::string::npos);
+  options.creases = false;
+  CHECK(crestline::io::write_lines_svg({convex, concave}, plane(), options).find("creases") == std::string::npos);
 }

@@ -1,8 +1,8 @@
-// The panel's Export folder: files of what the app shows, made by the
-// exporters of ../three (shared with the element) from the app's Viewer and by the worker
-// (the core writers' OBJ and JSON text), downloaded as <mesh>-lines.<ext>.
-import { exportGlb, renderPng } from '../three/exports.js';
-import { viewToSvg } from '../three/svg.js';
+// The panel's Export folder: files of what the app shows, downloaded as
+// <mesh>-lines.<ext>: PNG rendered from the app's Viewer (../three, shared
+// with the element), the others by the core's writers in the worker (OBJ,
+// JSON, GLB, and SVG of the Viewer's camera).
+import { renderPng, svgView } from '../three/exports.js';
 
 /** "feline.obj" → "feline", "bunny (built-in sample)" → "bunny". */
 export function baseName(name) {
@@ -45,10 +45,10 @@ export function createExports({ viewer, current, client, params }) {
     return result;
   };
   const makers = {
-    async svg({ lines }) {
+    async svg() {
       const { width, height } = cssSize();
       const svgStyle = { ...style(), silhouette: params.exportSilhouette ? '#3a3a3a' : null };
-      return new Blob([viewToSvg(viewer, lines, svgStyle, width, height, viewer.renderer)], { type: 'image/svg+xml' });
+      return new Blob([await client.exportFile('svg', svgView(viewer, svgStyle, width, height))], { type: 'image/svg+xml' });
     },
     async png() {
       const { width, height } = cssSize();
@@ -61,8 +61,9 @@ export function createExports({ viewer, current, client, params }) {
     async json() {
       return new Blob([await client.exportText('json')], { type: 'application/json' });
     },
-    async glb({ lines }) {
-      return new Blob([await exportGlb(viewer, lines, style())], { type: 'model/gltf-binary' });
+    async glb() {
+      const { ridges, valleys, creases } = style();
+      return new Blob([await client.exportFile('glb', { ridges, valleys, creases })], { type: 'model/gltf-binary' });
     },
   };
   return {

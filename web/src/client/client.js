@@ -297,10 +297,23 @@ export class Session {
    * @returns {Promise<string>}
    */
   exportText(format) {
+    return /** @type {Promise<string>} */ (this.exportFile(format));
+  }
+
+  /**
+   * A file of the current lines by the CLI's writers (in the worker): the
+   * text of 'obj', 'json', 'stats' and 'svg', the bytes of 'glb'. `view`:
+   * for 'svg' the camera and style (Session.linesSvg's keys, e.g. from
+   * ../three/exports.js svgView), for 'glb' which groups are shown.
+   * @param {import('../worker/protocol.js').ExportFormat} format
+   * @param {import('../worker/protocol.js').ExportView} [view]
+   * @returns {Promise<string | Uint8Array>}
+   */
+  exportFile(format, view) {
     const request = this.nextRequest++;
     return new Promise((resolve, reject) => {
       this.requests.set(request, { resolve, reject });
-      this.connection.post({ type: 'export', id: this.id, request, format });
+      this.connection.post({ type: 'export', id: this.id, request, format, view });
     });
   }
 
@@ -372,7 +385,7 @@ export class Session {
     if ('request' in message && message.request !== undefined && this.requests.has(message.request)) {
       const pending = /** @type {{resolve: (value: any) => void, reject: (error: Error) => void}} */ (this.requests.get(message.request));
       this.requests.delete(message.request);
-      if (message.type === 'export') pending.resolve(message.text);
+      if (message.type === 'export') pending.resolve(message.text ?? message.bytes);
       else if (message.type === 'error') pending.reject(new Error(message.message));
       return;
     }

@@ -1,8 +1,11 @@
-// What the element hands out besides SVG: the `lines` event's summary, PNG
-// renderings at a chosen size, and GLB with the surface and the lines.
-import { BufferAttribute, BufferGeometry, Group, LineBasicMaterial, LineSegments, Mesh } from 'three';
-import { RIDGE, VALLEY, segmentPositions } from './line-layer.js';
+// What the page and the element hand out from a view: the `lines` event's
+// summary, PNG renderings at a chosen size, and the camera and style of the
+// view for the core's SVG writer (the worker draws it: client exportFile('svg')).
+import { Matrix4 } from 'three';
+import { RIDGE, VALLEY, concaveShade } from './line-layer.js';
 import { renderInto, sharedRenderer } from './renderer.js';
+
+const translation = new Matrix4();
 
 /** {counts, lengths, stats} of a result: per type, the number and total length of the kept lines. */
 export function linesSummary(lines, kept, stats) {
@@ -49,32 +52,37 @@ export async function renderPng(view, { cssWidth, cssHeight, width, height }) {
 }
 
 /**
- * GLB (ArrayBuffer) of the surface the lines lie on and the lines shown, as
- * line primitives named "ridges" and "valleys", in the model's coordinates.
- * The exporter is loaded on first use.
+ * Session.linesSvg's keys for what `view` shows at `width`×`height` CSS
+ * pixels: its camera as a matrix from model coordinates to clip space (the
+ * surface and lines are drawn centred on `view.origin`) and the display
+ * `style` {ridges, valleys, creases (shown), ridgeColor, valleyColor,
+ * creaseColor (convex; concave in its darker shade), lineWidth (CSS px),
+ * background (CSS colour or 'transparent'), silhouette (colour, or null for
+ * none)}. `view` is a WidgetView or the app's Viewer.
+ * @returns {import('../worker/protocol.js').ExportView}
  */
-export async function exportGlb(view, lines, style) {
-  const { GLTFExporter } = await import('three/examples/jsm/exporters/GLTFExporter.js');
-  const root = new Group();
-  root.name = 'crestline';
-  root.position.fromArray(view.origin);
-  const surface = new Mesh(view.surface.mesh.geometry, view.surface.material);
-  surface.name = 'surface';
-  root.add(surface);
-  const made = [];
-  for (const [type, name, shown, color] of [[RIDGE, 'ridges', style.ridges, style.ridgeColor], [VALLEY, 'valleys', style.valleys, style.valleyColor]]) {
-    const positions = segmentPositions(lines, type, view.origin);
-    if (!shown || !positions.length) continue;
-    const geometry = new BufferGeometry().setAttribute('position', new BufferAttribute(positions, 3));
-    const material = new LineBasicMaterial({ color });
-    const object = new LineSegments(geometry, material);
-    object.name = name;
-    root.add(object);
-    made.push(geometry, material);
-  }
-  try {
-    return await new GLTFExporter().parseAsync(root, { binary: true });
-  } finally {
-    for (const resource of made) resource.dispose();
-  }
+export function svgView(view, style, width, height) {
+  const { camera } = view;
+  camera.updateMatrixWorld();
+  view.surface.mesh.updateMatrixWorld();
+  const [x, y, z] = view.origin;
+  const matrix = new Matrix4()
+    .multiplyMatrices(camera.projectionMatrix, camera.matrixWorldInverse)
+    .multiply(view.surface.mesh.matrixWorld)
+    .multiply(translation.makeTranslation(-x, -y, -z));
+  const out = {
+    camera: { matrix: Array.from(matrix.elements), width, height },
+    ridges: Boolean(style.ridges),
+    valleys: Boolean(style.valleys),
+    creases: Boolean(style.creases),
+    ridgeColor: String(style.ridgeColor),
+    valleyColor: String(style.valleyColor),
+    creaseColor: String(style.creaseColor),
+    concaveColor: `#${concaveShade(style.creaseColor).getHexString()}`,
+    strokeWidth: style.lineWidth,
+    silhouette: Boolean(style.silhouette),
+    background: style.background && style.background !== 'transparent' ? String(style.background) : '',
+  };
+  if (style.silhouette) out.silhouetteColor = String(style.silhouette);
+  return out;
 }

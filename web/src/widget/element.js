@@ -4,8 +4,7 @@ import { sharedConnection } from '../client/browser.js';
 import { overallFraction, selectLines } from '../client/client.js';
 import { pipelineParameters } from '../client/parameters.js';
 import { ATTRIBUTES, defineParameterProperties, parameterProperties, parameterValue, parseOrbit, reflectAttributes, upgradeProperties } from './attributes.js';
-import { exportGlb, linesSummary, renderPng } from '../three/exports.js';
-import { viewToSvg } from '../three/svg.js';
+import { linesSummary, renderPng, svgView } from '../three/exports.js';
 import { concaveShade } from '../three/line-layer.js';
 import { DISPLAY_DEFAULTS, fillShadowRoot } from './template.js';
 import { WidgetView } from '../three/widget-view.js';
@@ -288,7 +287,7 @@ export class CrestlineViewer extends HTMLElement {
     const { width, height } = this.getBoundingClientRect();
     const css = getComputedStyle(this).getPropertyValue('--crestline-silhouette-color').trim();
     const style = { ...this.displayStyle(), silhouette: silhouette === true ? css || '#3a3a3a' : silhouette || null };
-    return viewToSvg(this.view, this.lines, style, Math.max(1, Math.round(width)), Math.max(1, Math.round(height)));
+    return /** @type {Promise<string>} */ (this.session.exportFile('svg', svgView(this.view, style, Math.max(1, Math.round(width)), Math.max(1, Math.round(height)))));
   }
 
   /** PNG of the current view; {width, height} in pixels (default: the element's size × devicePixelRatio). */
@@ -298,10 +297,11 @@ export class CrestlineViewer extends HTMLElement {
     return renderPng(this.view, { cssWidth: width, cssHeight: height, ...options });
   }
 
-  /** GLB Blob: the surface and the shown ridges and valleys (line primitives "ridges", "valleys"). */
+  /** GLB Blob by the CLI's writer: the surface and the shown lines (nodes "surface", "ridges", "valleys", "creases"). */
   async toGLB() {
     this.requireLines();
-    return new Blob([await exportGlb(this.view, this.lines, this.displayStyle())], { type: 'model/gltf-binary' });
+    const { ridges, valleys, creases } = this.displayStyle();
+    return new Blob([await this.session.exportFile('glb', { ridges, valleys, creases })], { type: 'model/gltf-binary' });
   }
 
   /** The lines as OBJ polylines, creases included (the CLI's format). */

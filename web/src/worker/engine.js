@@ -11,7 +11,7 @@ import { pickMainFile, toUint8 } from './protocol.js';
  * @typedef {import('./protocol.js').PipelineOptions} PipelineOptions
  * @typedef {{error?: string, kind?: string, cancelled?: boolean, [key: string]: any}} SessionResult
  * @typedef {{load: Function, loadFile: Function, setOptions: Function, options: Function, run: Function,
- *            surface: Function, lines: Function, creases: Function, keptLines: Function, fields: Function, linesObj: Function, linesJson: Function, statsJson: Function, describe: Function,
+ *            surface: Function, lines: Function, creases: Function, keptLines: Function, fields: Function, linesObj: Function, linesJson: Function, statsJson: Function, linesSvg: Function, linesGlb: Function, describe: Function,
  *            delete: Function}} WasmSession
  * @typedef {{Session: new () => WasmSession}} CrestlineModule
  * @typedef {{name: string, vertices: number, triangles: number, notes: string[],
@@ -182,9 +182,23 @@ export class Engine {
     return this.current().fields();
   }
 
-  /** The CLI's text: 'obj' (polylines), 'json' (lines and stats) or 'stats' (its --stats object). @param {string} format */
-  exportText(format) {
+  /**
+   * A file of the current lines by the CLI's writers: 'obj' (polylines),
+   * 'json' (lines and stats), 'stats' (its --stats object), 'svg' (the
+   * lines seen by `view.camera`, hidden parts cut) or 'glb' (the surface
+   * and the lines, as bytes). `view`: Session.linesSvg's keys for 'svg',
+   * {ridges, valleys, creases} (shown or not) for 'glb'.
+   * @param {import('./protocol.js').ExportFormat} format
+   * @param {import('./protocol.js').ExportView} [view]
+   * @returns {string | Uint8Array}
+   */
+  exportFile(format, view = {}) {
     const session = this.current();
+    if (format === 'svg' || format === 'glb') {
+      const out = format === 'svg' ? session.linesSvg(view) : session.linesGlb(view);
+      if (typeof out !== 'string' && !(out instanceof Uint8Array)) check(out);
+      return out;
+    }
     if (format === 'stats') return session.statsJson();
     return format === 'json' ? session.linesJson() : session.linesObj();
   }

@@ -127,7 +127,9 @@ export function createHandler({ startModule, post, canDecodeDraco = false }) {
       }
       case 'export': {
         const engine = await engineFor(message.id);
-        return post({ type: 'export', id: message.id, request: message.request, format: message.format, text: engine.exportText(message.format) });
+        const file = engine.exportFile(message.format, message.view);
+        const body = typeof file === 'string' ? { text: file } : { bytes: file };
+        return post({ type: 'export', id: message.id, request: message.request, format: message.format, ...body });
       }
     }
   }

@@ -38,8 +38,15 @@
  * @typedef {{type: 'options', id: number, job: number, options: PipelineOptions}} OptionsMessage
  *   set_options + run: only dirty stages re-run
  * @typedef {{type: 'fields', id: number, job: number}} FieldsMessage
- * @typedef {{type: 'export', id: number, request: number, format: 'obj' | 'json' | 'stats'}} ExportMessage
- *   the CLI's text: OBJ polylines, JSON lines and stats, or the --stats object
+ * @typedef {'obj' | 'json' | 'stats' | 'svg' | 'glb'} ExportFormat
+ * @typedef {{camera?: {matrix: ArrayLike<number>, width: number, height: number}, ridges?: boolean, valleys?: boolean,
+ *            creases?: boolean, ridgeColor?: string, valleyColor?: string, creaseColor?: string, concaveColor?: string,
+ *            silhouetteColor?: string, background?: string, [key: string]: unknown}} ExportView
+ *   Session.linesSvg's keys (the SVG parameters, a viewer's camera: model → clip,
+ *   column-major, and style); 'glb' reads only ridges, valleys, creases
+ * @typedef {{type: 'export', id: number, request: number, format: ExportFormat, view?: ExportView}} ExportMessage
+ *   a file by the CLI's writers: OBJ polylines, JSON lines and stats, the --stats
+ *   object, SVG of the view, GLB with the surface
  * @typedef {{type: 'dispose', id: number}} DisposeMessage
  * @typedef {{type: 'describe', request: number}} DescribeMessage  the parameter table
  * @typedef {InitMessage | OpenMessage | LoadMessage | OptionsMessage | FieldsMessage | ExportMessage | DisposeMessage |
@@ -61,7 +68,8 @@
  *   lines that pass the filter; surface: after a load and whenever
  *   pre-smoothing ran
  * @typedef {{type: 'fields', id: number, job: number, fields: Fields}} FieldsReply
- * @typedef {{type: 'export', id: number, request: number, format: string, text: string}} ExportReply
+ * @typedef {{type: 'export', id: number, request: number, format: string, text?: string, bytes?: Uint8Array}} ExportReply
+ *   text for every format but 'glb', which sends bytes
  * @typedef {{type: 'described', request: number, table: import('../client/parameters.js').Parameter[]}} DescribedReply
  * @typedef {{type: 'cancelled', id: number, job: number}} CancelledReply
  * @typedef {{type: 'lost', id: number, job: number}} LostReply

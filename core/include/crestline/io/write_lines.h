@@ -1,7 +1,9 @@
 #pragma once
 // Output formats for feature lines. Each returns the file's text; the
 // caller writes it (the core never touches the filesystem in a stage).
+#include <Eigen/Core>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,6 +42,17 @@ std::string stats_json(const PipelineStats& stats);
 
 enum class View { Front, Back, Left, Right, Top, Bottom };
 
+/// A camera for the SVG drawing instead of a fixed View: what a viewer shows.
+struct SvgCamera {
+  /// Model coordinates → clip space, for column vectors (clip = matrix · [p, 1]),
+  /// OpenGL's convention: visible where -w ≤ x, y, z ≤ w, y up. A perspective
+  /// matrix (last row not (0,0,0,1)) or an orthographic one, e.g. a three.js
+  /// camera's projectionMatrix · matrixWorldInverse · the object's matrixWorld.
+  /// The view part must not scale: depths are compared in model units.
+  Eigen::Matrix4d matrix = Eigen::Matrix4d::Identity();
+  int width = 1000, height = 1000;  // pixels of the drawing, the camera's frame
+};
+
 struct SvgOptions {
   View view = View::Front;
   int width = 1000;  // pixels of the longer side; the other follows the aspect ratio
@@ -47,7 +60,14 @@ struct SvgOptions {
   std::string ridge_color = "#c0392b";
   std::string valley_color = "#2471a3";
   std::string crease_color = "#222222";  // group "creases", each path class "convex" or "concave"
+  std::string concave_color;             // concave creases get their own stroke; empty: crease_color
   bool silhouette = false;               // also draw the surface's outline (group "silhouette")
+  std::string silhouette_color = "#555555";
+  bool ridges = true, valleys = true, creases = true;  // which groups are drawn
+  std::string background;                              // a rectangle under the lines; empty: none
+  /// With a camera, `view` and `width` are not used: the drawing is the
+  /// camera's frame and parts outside it are cut.
+  std::optional<SvgCamera> camera;
   /// How far (in mean edge lengths of `surface`) a line may lie off the
   /// surface and still count as on it: faired lines move up to
   /// FairingOptions::hausdorff_bound, and chords between crossings on curved
