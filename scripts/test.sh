@@ -9,10 +9,13 @@ bash scripts/setup.sh
 bash scripts/build.sh
 status=0
 for suite in scripts/check-format.sh tests/run-lint.sh tests/run-tidy.sh tests/run-native.sh tests/run-node.sh tests/run-browser.sh tests/run-sanitize.sh fuzz/smoke.sh; do
-  if [ -f "$suite" ]; then
-    echo "== $suite"
-    bash "$suite" || status=1
+  echo "== $suite"
+  if [ ! -f "$suite" ]; then
+    echo "test: $suite is missing" >&2
+    status=1
+    continue
   fi
+  bash "$suite" || status=1
 done
 # Benchmarks are not tests: run the smallest one once so the driver keeps
 # working, and assert nothing about its times.
