@@ -104,10 +104,10 @@ class Pipeline {
 
   const Mesh& input_mesh() const { return input_; }
   /// The mesh after optional pre-smoothing, in the input's coordinates.
-  const Mesh& surface() const { return surface_; }
+  const Mesh& surface() const { return presmoothed_ ? surface_ : input_; }
   /// The same in the working frame: all curvature lives on it, and traced()
   /// lies on its edges.
-  const Mesh& working_surface() const { return working_surface_; }
+  const Mesh& working_surface() const { return presmoothed_ ? working_surface_ : local_input_; }
   const ComponentFrames& frames() const { return frames_; }
   const Topology& topology() const { return topology_; }
   const Curvature& curvature() const { return curvature_; }
@@ -135,9 +135,9 @@ class Pipeline {
   Stage first_dirty_ = Stage::Presmooth;
   Mesh input_;
   ComponentFrames frames_;
-  Mesh local_input_;  // input_ in the working frame
-  Mesh working_surface_;
-  Mesh surface_;
+  Mesh local_input_;      // input_ in the working frame
+  Mesh working_surface_;  // pre-smoothed only; else local_input_ serves
+  Mesh surface_;          // pre-smoothed only; else input_ serves
   Topology topology_;
   double mean_edge_ = 0;
   std::vector<double> noise_levels_;  // per component
