@@ -9,8 +9,8 @@
 import { closeSync, fstatSync, openSync, readFileSync, readSync, realpathSync } from 'node:fs';
 import { createRequire } from 'node:module';
 import { dirname, isAbsolute, join, relative } from 'node:path';
-import { MeshoptDecoder } from 'meshoptimizer';
 import { decompressGltf } from './gltf-decompress.mjs';
+import { gltfDecoders } from './node.mjs';
 
 const require = createRequire(import.meta.url);
 const MAX_COMPANION_BYTES = 2 ** 31;
@@ -50,12 +50,6 @@ function resolveCompanion(gltfPath, uri) {
   }
 }
 
-/** The decoders for compressed glTF, ready before main() runs (its calls into them are synchronous). */
-async function decoders() {
-  const [draco] = await Promise.all([require('draco3d').createDecoderModule({}), MeshoptDecoder.ready]);
-  return { draco, meshopt: MeshoptDecoder };
-}
-
 /** Module hooks called from cli/main.cpp (read_input) for a compressed glTF. */
 function decompressHooks(io) {
   let pending = new Uint8Array(0);
@@ -82,7 +76,8 @@ try {
     thisProgram: 'crestline',
     // Node 20's fetch cannot load a file path: hand over the bytes.
     wasmBinary: readFileSync(new URL('./dist/crestline-cli.wasm', import.meta.url)),
-    ...decompressHooks(await decoders()),
+    // The decoders are ready before main() runs: its calls into them are synchronous.
+    ...decompressHooks(await gltfDecoders()),
   });
   process.exitCode = module.callMain(process.argv.slice(2));
 } catch (error) {

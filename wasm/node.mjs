@@ -5,17 +5,9 @@
 import { readFileSync } from 'node:fs';
 import { createRequire } from 'node:module';
 import { fileURLToPath } from 'node:url';
+import { MeshoptDecoder } from 'meshoptimizer/decoder';
 
 const dist = new URL('./dist/', import.meta.url);
-
-// Node runs web/src/worker too (wasm/cli.mjs, tests): three's FileLoader, which
-// reads a .gltf's companion files, reports progress with a DOM event node lacks.
-globalThis.ProgressEvent ??= class ProgressEvent extends Event {
-  constructor(type, init = {}) {
-    super(type);
-    Object.assign(this, init);
-  }
-};
 
 export async function loadCrestline() {
   globalThis.__dirname ??= fileURLToPath(dist);
@@ -30,6 +22,12 @@ export async function loadCrestline() {
     for (const listener of process.listeners(event)) if (!kept.includes(listener)) process.off(event, listener);
   }
   return module;
+}
+
+/** The npm Draco and meshopt decoders for wasm/gltf-decompress.mjs, ready (the page's worker starts the same builds). */
+export async function gltfDecoders() {
+  const [draco] = await Promise.all([createRequire(import.meta.url)('draco3d').createDecoderModule({}), MeshoptDecoder.ready]);
+  return { draco, meshopt: MeshoptDecoder };
 }
 
 /** The factory itself, for engine.createEngine. */

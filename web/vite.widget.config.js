@@ -2,7 +2,7 @@
 // web/dist/crestline-viewer.js, with its worker (crestline-viewer-worker.js)
 // and crestline.wasm beside it as separate files, plus embed.html. Not Vite's
 // library mode, which would inline the .wasm. Runs after the app build (same
-// outDir, not emptied). three's DRACOLoader brings its decoder along (assets/).
+// outDir, not emptied). The worker brings npm draco3d's decoder along (assets/).
 import { readFileSync } from 'node:fs';
 import { dirname, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -41,7 +41,7 @@ export default defineConfig({
     rollupOptions: {
       input: { 'crestline-viewer': resolve(here, 'src/widget/index.js') },
       preserveEntrySignatures: 'exports-only',
-      // One file: the GLB exporter's dynamic import stays inside it.
+      // One file.
       output: { ...output('[name].js'), codeSplitting: false },
     },
   },

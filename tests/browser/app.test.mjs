@@ -161,7 +161,7 @@ test('concave L-shaped octagons (OBJ polygons): the C++ reader in the page gives
   assert.equal(obj, readFileSync(output, 'utf8'));
 });
 
-test('Draco GLB (pmndrs bunny): decoded by three.js, lines match the native CLI', { skip: noMeshes }, async () => {
+test('Draco GLB (pmndrs bunny): decompressed in the worker by the npm decoders, lines match the native CLI', { skip: noMeshes }, async () => {
   const result = await nextResult(() => drop(['glb/pmndrs-bunny-draco.glb']));
   assert.equal(result.name, 'pmndrs-bunny-draco.glb');
   await checkAgainstNative('glb/pmndrs-bunny-draco.glb', result);

@@ -1,14 +1,19 @@
 // The app under a strict Content-Security-Policy: no 'unsafe-eval' (only
 // 'wasm-unsafe-eval', which compiling WebAssembly needs), so any eval or
 // new Function in the shipped bundle, the Emscripten glue or the worker
-// would be refused and reported. Needs web/dist (web/build.sh).
+// would be refused and reported. Draco and meshopt GLBs dropped on it are
+// decompressed in the worker by the npm decoders (as wasm/cli.mjs does) and
+// give the native CLI's lines. Needs web/dist (web/build.sh).
 import assert from 'node:assert/strict';
-import { existsSync, readdirSync, readFileSync } from 'node:fs';
+import { execFileSync } from 'node:child_process';
+import { existsSync, mkdtempSync, readdirSync, readFileSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { after, before, test } from 'node:test';
+import { dropFiles, nextResult } from './app-page.mjs';
 import { launch } from './browser.mjs';
 import { serve } from './server.mjs';
-import { ROOT } from '../node/helpers.mjs';
+import { MESHES, NATIVE_CLI, ROOT, haveMeshes, haveNativeCli } from '../node/helpers.mjs';
 
 const CSP = [
   "default-src 'self'",
@@ -26,7 +31,7 @@ const pageErrors = [];
 
 before(async () => {
   assert.ok(existsSync(join(ROOT, 'web/dist/index.html')), 'web/dist is missing: run web/build.sh');
-  server = await serve({ '/': join(ROOT, 'web/dist') }, { 'Content-Security-Policy': CSP });
+  server = await serve({ ...(haveMeshes ? { '/meshes/': MESHES } : {}), '/': join(ROOT, 'web/dist') }, { 'Content-Security-Policy': CSP });
   browser = await launch();
   page = await browser.newPage({ viewport: { width: 800, height: 600 } });
   page.on('pageerror', (error) => pageErrors.push(error.message));
@@ -71,6 +76,26 @@ test('the app computes the sample bunny under a strict CSP', async () => {
   assert.equal(await page.textContent('#error'), '', 'the page shows an error');
   const result = await page.evaluate(() => window.crestline.lastResult);
   assert.ok(result.lineCount > 0, 'the bunny has lines');
+  assert.deepEqual(await page.evaluate(() => window.__cspViolations ?? []), []);
+  assert.deepEqual(violations, []);
+  assert.deepEqual(pageErrors, []);
+});
+
+const noCompressed = (!haveMeshes && `SKIPPED: ${MESHES} is absent`) || (!haveNativeCli && `SKIPPED: ${NATIVE_CLI} is not built`);
+
+test('Draco and meshopt GLBs: decompressed in the worker under the strict CSP, the native CLI\'s lines', { skip: noCompressed }, async () => {
+  const dir = mkdtempSync(join(tmpdir(), 'crestline-csp-'));
+  try {
+    for (const file of ['glb/pmndrs-bunny-draco.glb', 'glb/pirate-meshopt.glb']) {
+      const result = await nextResult(page, () => dropFiles(page, [file]));
+      const native = JSON.parse(execFileSync(NATIVE_CLI, [join(MESHES, file), '-o', join(dir, 'lines.obj'), '--stats', '-q'], { encoding: 'utf8' }));
+      console.log(`${file}: page ${result.stats.ridges} ridges, ${result.stats.valleys} valleys; native ${native.ridges}, ${native.valleys}`);
+      assert.deepEqual([result.stats.triangles, result.stats.ridges, result.stats.valleys], [native.triangles, native.ridges, native.valleys], file);
+      assert.ok(native.triangles > 1000, `${file}: ${native.triangles} triangles`);
+    }
+  } finally {
+    rmSync(dir, { recursive: true, force: true });
+  }
   assert.deepEqual(await page.evaluate(() => window.__cspViolations ?? []), []);
   assert.deepEqual(violations, []);
   assert.deepEqual(pageErrors, []);

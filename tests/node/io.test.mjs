@@ -4,7 +4,8 @@
 // does. Every mesh of ../shared/meshes (robust/ included; large/ with
 // CRESTLINE_LARGE_MESHES=1) must give the same line counts and the same
 // lines (OBJ text byte for byte), or the same first sentence of its error.
-// Draco glTF cannot be decoded in node (the browser test drops one).
+// Draco and meshopt glTF included: the worker decompresses them with the npm
+// decoders (wasm/gltf-decompress.mjs), the native CLI with Debian's libraries.
 // Skips visibly without the mesh folder or the native CLI.
 import assert from 'node:assert/strict';
 import { execFile } from 'node:child_process';
@@ -12,7 +13,7 @@ import { mkdtempSync, readFileSync, readdirSync, rmSync, writeFileSync } from 'n
 import { tmpdir } from 'node:os';
 import { basename, dirname, extname, join, relative } from 'node:path';
 import { after, describe, it, test } from 'node:test';
-import { loadCrestline } from '../../wasm/node.mjs';
+import { gltfDecoders, loadCrestline } from '../../wasm/node.mjs';
 import { createHandler } from '../../web/src/worker/handler.js';
 import { concaveOctagonObj } from './concave-octagons.mjs';
 import { MESHES, NATIVE_CLI, haveMeshes, haveNativeCli, parseLinesObj } from './helpers.mjs';
@@ -47,7 +48,7 @@ const firstSentence = (message) => message.split(/(?<=\.)\s/)[0];
 
 /** One worker for the whole file, as the page has: sessions by id. */
 const messages = [];
-const handler = createHandler({ startModule: loadCrestline, post: (m) => messages.push(m) });
+const handler = createHandler({ startModule: loadCrestline, post: (m) => messages.push(m), startDecoders: gltfDecoders });
 let nextId = 1;
 
 /** The page's outcome for dropped `files` ([{name, bytes}]): {ok, obj, loaded} or {ok: false, message}. */
@@ -88,7 +89,6 @@ function assertSame(name, nat, pg) {
   assert.equal(pg.obj, nat.obj, `${both}\n  the lines differ`);
 }
 
-const isDraco = (path) => /draco/i.test(path);
 const why = !haveMeshes ? `SKIPPED: ${MESHES} is absent` : !haveNativeCli ? `SKIPPED: ${NATIVE_CLI} is not built (set CRESTLINE_NATIVE_CLI)` : false;
 
 describe('the page reads every shared mesh as the native CLI does', { skip: why }, () => {
@@ -96,7 +96,7 @@ describe('the page reads every shared mesh as the native CLI does', { skip: why 
   if (haveMeshes && !large) it('large/ (set CRESTLINE_LARGE_MESHES=1)', { skip: 'SKIPPED: large meshes take minutes' }, () => {});
   for (const input of files) {
     const name = relative(MESHES, input);
-    it(name, { skip: isDraco(input) && 'SKIPPED: Draco decodes in the browser only (tests/browser)' }, async () => {
+    it(name, async () => {
       const [nat, pg] = await Promise.all([native(input), page(dropped(input))]);
       assertSame(name, nat, pg);
     });
@@ -126,10 +126,19 @@ test('unreadable and unsupported files: one sentence naming the file, as the CLI
   }
 });
 
-test('compressed glTF in node: meshopt decodes (three.js) into the surface of its plain twin', { skip: !haveMeshes && `SKIPPED: ${MESHES} is absent` }, async () => {
-  const [meshopt, plain] = await Promise.all([page([fileOf(join(MESHES, 'glb/BoxMeshopt.glb'))]), page([fileOf(join(MESHES, 'glb/Box.glb'))])]);
-  assert.deepEqual([meshopt.loaded.vertices, meshopt.loaded.triangles], [plain.loaded.vertices, plain.loaded.triangles]);
-  assert.equal(meshopt.loaded.triangles, 12);
-  const draco = await page([fileOf(join(MESHES, 'glb/Box-draco.glb'))]);
-  assert.match(draco.message, /^Box-draco\.glb: is Draco-compressed/);
+test('compressed glTF: meshopt and Draco decode (npm decoders) into the surface of their plain twin', { skip: !haveMeshes && `SKIPPED: ${MESHES} is absent` }, async () => {
+  const [meshopt, draco, plain] = await Promise.all(['BoxMeshopt', 'Box-draco', 'Box'].map((n) => page([fileOf(join(MESHES, `glb/${n}.glb`))])));
+  assert.equal(plain.loaded.triangles, 12);
+  for (const decoded of [meshopt, draco]) {
+    assert.ok(decoded.ok, decoded.message);
+    assert.deepEqual([decoded.loaded.vertices, decoded.loaded.triangles], [plain.loaded.vertices, plain.loaded.triangles]);
+  }
+});
+
+test('a handler without decoders gives the readers\' sentence for compressed glTF', { skip: !haveMeshes && `SKIPPED: ${MESHES} is absent` }, async () => {
+  const bare = createHandler({ startModule: loadCrestline, post: (m) => messages.push(m) });
+  const from = messages.length;
+  await bare.handle({ type: 'open', id: 9999, job: 1, files: [fileOf(join(MESHES, 'glb/Box-draco.glb'))], options: {} });
+  const error = messages.slice(from).find((m) => m.type === 'error');
+  assert.match(error?.message ?? '', /^Box-draco\.glb: the mesh is compressed with KHR_draco_mesh_compression/);
 });

@@ -13,9 +13,7 @@ import { PICKER_ACCEPT, ignoredSentence, selectFiles } from './files.js';
 import { pipelineParameters } from '../client/parameters.js';
 import { autoKey, createGui, defaultParams, pipelineOptions } from './gui.js';
 
-// Three.js's Draco decoder, served from draco/ beside the app (vite.config.js).
-const dracoPath = new URL(`${import.meta.env.BASE_URL}draco/`, location.href).href;
-const connection = sharedConnection({ dracoPath });
+const connection = sharedConnection();
 // The parameter table of the core: the panel's controls and defaults.
 const table = await connection.describe();
 const params = defaultParams(table);

@@ -22,11 +22,8 @@ export function startBrowserWorker() {
 /** @type {Connection | null} */
 let shared = null;
 
-/**
- * The page's connection, shared by every viewer on it.
- * @param {{dracoPath?: string}} [settings]
- */
-export function sharedConnection(settings) {
-  shared ??= new Connection(startBrowserWorker, settings);
+/** The page's connection, shared by every viewer on it. */
+export function sharedConnection() {
+  shared ??= new Connection(startBrowserWorker);
   return shared;
 }

@@ -83,13 +83,9 @@ export function selectLines(lines, kept) {
 const copyFiles = (files) => files.map(({ name, bytes }) => ({ name, bytes: bytes.slice(0) }));
 
 export class Connection {
-  /**
-   * @param {() => WorkerLike} startWorker
-   * @param {{dracoPath?: string}} [settings] dracoPath: where three's Draco decoder files are served
-   */
-  constructor(startWorker, { dracoPath } = {}) {
+  /** @param {() => WorkerLike} startWorker */
+  constructor(startWorker) {
     this.startWorker = startWorker;
-    this.dracoPath = dracoPath;
     /** @type {Map<number, Session>} */
     this.sessions = new Map();
     this.nextId = 1;
@@ -220,7 +216,7 @@ export class Session {
 
   /** @param {Source} source @param {PipelineOptions} options */
   sendSource(source, options) {
-    if (source.kind === 'files') return this.send({ type: 'open', files: copyFiles(source.files), dracoPath: this.connection.dracoPath, options });
+    if (source.kind === 'files') return this.send({ type: 'open', files: copyFiles(source.files), options });
     if (source.kind === 'url') return this.send({ type: 'open', url: source.url, options });
     return this.send({ type: 'load', name: source.name, positions: source.positions.slice(), indices: source.indices.slice(), options });
   }

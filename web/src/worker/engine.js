@@ -2,8 +2,9 @@
 // One session's work as plain methods over the WASM module (a Session: one
 // repaired mesh and its Pipeline), so node tests and handler.js call them
 // directly. Files are read by the C++ readers (Session.loadFile), as in the
-// native CLI; only compressed glTF is decoded here first (compressed-gltf.js).
-import { decodeCompressedGltf } from './compressed-gltf.js';
+// native CLI; a Draco/meshopt glTF is first rewritten into a plain GLB by
+// wasm/gltf-decompress.mjs with the npm decoders, exactly as wasm/cli.mjs does.
+import { decompressGltf } from '../../../wasm/gltf-decompress.mjs';
 import { pickMainFile, toUint8 } from './protocol.js';
 
 /**
@@ -16,6 +17,8 @@ import { pickMainFile, toUint8 } from './protocol.js';
  * @typedef {{Session: new () => WasmSession}} CrestlineModule
  * @typedef {{name: string, vertices: number, triangles: number, notes: string[],
  *            report: Record<string, number>, milliseconds: number}} Loaded
+ * @typedef {{draco: any, meshopt: any}} GltfDecoders
+ *   npm draco3d's decoder module (createDecoderModule) and meshoptimizer's MeshoptDecoder, ready
  */
 
 /** A failure with one sentence for the page; `named`: it already names the file. */
@@ -61,18 +64,27 @@ function setOnly(options = {}) {
   return Object.fromEntries(Object.entries(options).filter(([, value]) => value !== undefined));
 }
 
+const baseName = (/** @type {string} */ path) => path.split(/[\\/]/).pop() ?? path;
+
 /**
- * three.js's decoding of a compressed glTF, its failures as one sentence naming the file.
- * @param {NamedBytes} main @param {NamedBytes[]} companions @param {{dracoLoader?: any}} decoders
+ * The plain GLB of a Draco/meshopt glTF (wasm/gltf-decompress.mjs), its
+ * failures as one sentence naming the file, as the WASM CLI says them.
+ * @param {NamedBytes} main @param {NamedBytes[]} companions @param {GltfDecoders} decoders
  */
-async function decodeOrExplain(main, companions, decoders) {
+function decompress(main, companions, decoders) {
+  const byName = new Map(companions.map((f) => [baseName(f.name), toUint8(f.bytes)]));
+  /** @param {string} uri */
+  const resource = (uri) => {
+    const bytes = byName.get(baseName(decodeURIComponent(uri)));
+    if (!bytes) throw new Error(`the buffer ${uri.length > 60 ? `${uri.slice(0, 60)}…` : uri} cannot be found beside the model.`);
+    return bytes;
+  };
   try {
-    return await decodeCompressedGltf(main, companions, decoders);
+    const plain = decompressGltf(toUint8(main.bytes), { ...decoders, resource });
+    if (!plain) throw new Error('the file cannot be decompressed.');
+    return plain;
   } catch (error) {
-    const text = String(/** @type {Error} */ (error)?.message ?? error);
-    if (!decoders.dracoLoader && /DRACOLoader/.test(text))
-      throw new EngineError(`${main.name}: is Draco-compressed, which only the browser app and the native CLI decode.`, 'unsupported', true);
-    throw new EngineError(`${main.name}: cannot be decoded (${text.replace(/^THREE\.\w+:\s*/, '').split('\n')[0].replace(/\.$/, '')}).`, 'invalid input', true);
+    throw new EngineError(named(main.name, String(/** @type {Error} */ (error)?.message ?? error)), 'invalid input', true);
   }
 }
 
@@ -86,13 +98,13 @@ export class Engine {
 
   /**
    * Reads dropped or fetched files with the C++ readers (a .gltf's buffers
-   * are its companions); compressed glTF is decoded by three.js first.
-   * Errors name the file.
+   * are its companions); a Draco/meshopt glTF is decompressed first, with
+   * the decoders `decoders()` gives (started on first use). Errors name the file.
    * @param {NamedBytes[]} files
-   * @param {{dracoLoader?: any}} [decoders]
+   * @param {() => Promise<GltfDecoders>} [decoders]
    * @returns {Promise<Loaded>}
    */
-  async open(files, decoders = {}) {
+  async open(files, decoders) {
     const main = pickMainFile(files);
     const companions = files.filter((f) => f !== main).map((f) => ({ name: f.name, bytes: toUint8(f.bytes) }));
     const start = performance.now();
@@ -100,9 +112,9 @@ export class Engine {
     try {
       /** @type {SessionResult} */
       let loaded = session.loadFile(main.name, toUint8(main.bytes), companions, {});
-      if (loaded.kind === 'unsupported' && /is compressed with/.test(loaded.error ?? '')) {
-        const soup = await decodeOrExplain(main, companions, decoders);
-        loaded = session.load(soup.positions, soup.indices, {});
+      if (loaded.kind === 'unsupported' && /is compressed with/.test(loaded.error ?? '') && decoders) {
+        const plain = decompress(main, companions, await decoders());
+        loaded = session.loadFile(main.name, plain, [], {});
       }
       check(loaded, main.name);
       return this.adopt(session, main.name, loaded, start);

@@ -4,7 +4,6 @@
 // it message by message; worker.js wires it to `self`. One WASM module
 // serves every session (viewer) of this worker, one Engine per session id.
 // Messages: protocol.js.
-import { DRACOLoader } from 'three/examples/jsm/loaders/DRACOLoader.js';
 import { Engine, EngineError } from './engine.js';
 import { fetchFiles } from './fetch-files.js';
 
@@ -14,20 +13,14 @@ import { fetchFiles } from './fetch-files.js';
  * @typedef {import('./engine.js').CrestlineModule} CrestlineModule
  */
 
-/** three's Draco loader (its decoder is fetched on first use). @param {string | undefined} path */
-function dracoLoaderFor(path) {
-  const loader = new DRACOLoader();
-  if (path) loader.setDecoderPath(path);
-  return loader;
-}
-
 /**
  * @param {{startModule: () => Promise<CrestlineModule>, post: (message: Reply) => void,
- *          canDecodeDraco?: boolean}} io
- *   post sends a message (transferring its typed arrays); canDecodeDraco:
- *   three's DRACOLoader works here (browsers, not node)
+ *          startDecoders?: () => Promise<import('./engine.js').GltfDecoders>}} io
+ *   post sends a message (transferring its typed arrays); startDecoders: the
+ *   npm Draco and meshopt decoders, started when a compressed glTF first
+ *   arrives (without them such a file gets the readers' sentence)
  */
-export function createHandler({ startModule, post, canDecodeDraco = false }) {
+export function createHandler({ startModule, post, startDecoders }) {
   /** @type {Promise<CrestlineModule> | null} */
   let starting = null;
   /** @type {Map<number, Engine>} */
@@ -36,8 +29,10 @@ export function createHandler({ startModule, post, canDecodeDraco = false }) {
   const latest = new Map();
   /** @type {Int32Array | null} */
   let cancelFlag = null;
-  /** @type {DRACOLoader | null} */
-  let dracoLoader = null;
+  /** @type {Promise<import('./engine.js').GltfDecoders> | null} */
+  let decoding = null;
+  // A decoder that failed to start is tried again with the next file.
+  const decoders = startDecoders && (() => (decoding ??= startDecoders().catch((error) => ((decoding = null), Promise.reject(error)))));
   /** @type {Promise<unknown>} */
   let queue = Promise.resolve();
   /** @type {Map<Request, Promise<import('./protocol.js').NamedBytes[]>>} the fetches of 'open' messages with a URL, started as they arrive */
@@ -101,8 +96,6 @@ export function createHandler({ startModule, post, canDecodeDraco = false }) {
         const files = message.files ?? (await fetchedFiles.get(message));
         fetchedFiles.delete(message);
         if (!files || latest.get(id) !== job) return;
-        if (canDecodeDraco) dracoLoader ??= dracoLoaderFor(message.dracoPath);
-        const decoders = canDecodeDraco ? { dracoLoader } : {};
         postLoaded(await engine.open(files, decoders), id, job);
         return run(engine, message, true);
       }

@@ -31,7 +31,7 @@
  *   node): the page stores the job to cancel in [1], then its session id in
  *   [0]; the pipeline stops at its next progress report
  * @typedef {{type: 'open', id: number, job: number, files?: NamedBytes[], url?: string,
- *            dracoPath?: string, options: PipelineOptions}} OpenMessage
+ *            options: PipelineOptions}} OpenMessage
  *   read files (or fetch `url` and a .gltf's buffers) with the C++ readers, then run
  * @typedef {{type: 'load', id: number, job: number, name: string, positions: Float64Array | Float32Array,
  *            indices: Uint32Array, options: PipelineOptions}} LoadMessage  a triangle soup, then run
