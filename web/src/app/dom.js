@@ -1,39 +1,43 @@
-// The page's text: file name, progress, the one-sentence error, stats.
+// The page's text, all drawn from the one page state (page-state.js): the
+// header, the label over a previous mesh, progress, the one-sentence error,
+// notes, stats.
+import { headerOf, phaseOf, viewLabelOf } from './page-state.js';
+
 const $ = (id) => document.getElementById(id);
 
-export function setState(state) {
-  document.body.dataset.state = state;
-}
-
-export function showFile(text) {
-  $('file').firstChild.textContent = `${text} — drop another mesh or `;
-}
-
-export function showProgress(stage, fraction) {
-  $('progress').hidden = stage === null;
-  if (stage === null) return;
-  $('progress-bar').value = fraction;
-  $('progress-text').textContent = stage;
-}
-
-/** One clear sentence, or null to clear. */
-export function showError(message) {
-  $('error').hidden = !message;
-  $('error').textContent = message ?? '';
-}
-
-export function showNotes(notes) {
-  $('notes').textContent = notes.join(' ');
+/** Draws every view of `state` except the 3D picture (main.js). @param {import('./page-state.js').PageState} state */
+export function render(state) {
+  const phase = phaseOf(state);
+  document.body.dataset.state = phase;
+  const header = headerOf(state);
+  $('file').firstChild.textContent = header ? `${header} — drop another mesh or ` : 'Drop a mesh anywhere (glTF/GLB with its .bin, OBJ, PLY, STL, OFF) or ';
+  const label = viewLabelOf(state);
+  $('view-label').hidden = !label;
+  $('view-label').textContent = label;
+  document.body.classList.toggle('previous', Boolean(label));
+  const progress = phase === 'loading' || phase === 'computing' ? state.progress ?? { stage: 'waiting', fraction: 0 } : null;
+  $('progress').hidden = !progress;
+  if (progress) {
+    $('progress-bar').value = progress.fraction;
+    $('progress-text').textContent = progress.stage;
+  }
+  $('error').hidden = !state.error;
+  $('error').textContent = state.error ?? '';
+  $('notes').textContent = state.notes.join(' ');
+  const { shown } = state;
+  if (shown?.result) showStats(shown.result, shown);
+  else $('stats').textContent = '';
 }
 
 const fmt = (x, digits = 3) => (Number.isFinite(x) ? Number(x.toPrecision(digits)).toString() : '–');
 
 /** Pipeline statistics; `mesh` adds the time to read the file and to repair the mesh. */
-export function showStats({ stats, ran, milliseconds }, mesh = {}) {
+function showStats({ stats, ran, milliseconds }, mesh = {}) {
   const times = ran
     .map((stage) => `${stage} ${(1000 * (stats.seconds[stage] ?? 0)).toFixed(1)} ms`)
     .join(', ');
   $('stats').textContent = [
+    mesh.name,
     `${stats.vertices.toLocaleString()} vertices, ${stats.triangles.toLocaleString()} triangles`,
     `ridges  ${stats.ridges} (length ${fmt(stats.ridgeLength)})`,
     `valleys ${stats.valleys} (length ${fmt(stats.valleyLength)})`,

@@ -21,7 +21,8 @@ function download(blob, fileName) {
 
 /**
  * The exports of the app. `viewer`: the app's Viewer; `current()` returns
- * {name, lines} of the result shown (or null); `client`: the client Session;
+ * {name, lines} of the result shown (or throws why there is none); `client`:
+ * what makes the core writers' files (exportText, exportFile);
  * `params`: the panel's values (display style, png scale, svg silhouette).
  */
 export function createExports({ viewer, current, client, params }) {
@@ -41,7 +42,7 @@ export function createExports({ viewer, current, client, params }) {
   };
   const shown = () => {
     const result = current();
-    if (!result?.lines || client.busy) throw new Error('Nothing to export yet: wait for the lines.');
+    if (!result?.lines) throw new Error('Nothing to export yet: wait for the lines.');
     return result;
   };
   const makers = {
@@ -67,12 +68,13 @@ export function createExports({ viewer, current, client, params }) {
     },
   };
   return {
-    /** Makes and downloads one export ('svg', 'png', 'obj', 'json', 'glb'). */
+    /** Makes and downloads one export ('svg', 'png', 'obj', 'json', 'glb'); returns {blob, fileName}. */
     async save(format) {
       const result = shown();
       const blob = await makers[format](result);
-      download(blob, `${baseName(result.name)}-lines.${format}`);
-      return blob;
+      const fileName = `${baseName(result.name)}-lines.${format}`;
+      download(blob, fileName);
+      return { blob, fileName };
     },
   };
 }

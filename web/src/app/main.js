@@ -6,7 +6,8 @@ import { sampleMesh } from './sample.js';
 import { WeightBrush } from '../three/brush.js';
 import { Viewer } from '../three/viewer.js';
 import { concaveShade } from '../three/line-layer.js';
-import { setState, showError, showFile, showLegend, showNotes, showProgress, showStats } from './dom.js';
+import { render as renderDom, showLegend } from './dom.js';
+import { emptyState, exportSource } from './page-state.js';
 import { installDrop } from './drop.js';
 import { createExports } from './exports.js';
 import { PICKER_ACCEPT, ignoredSentence, selectFiles } from './files.js';
@@ -22,79 +23,186 @@ const app = (window.crestline = { results: [], params, parameters: table, lastRe
 
 const viewer = new Viewer(document.getElementById('view'), {
   onContextLost: () => fail('The WebGL context was lost (the GPU was reset or ran out of memory); the view returns when the browser restores it.'),
-  onContextRestored: () => showError(null),
+  onContextRestored: () => fail(null),
 });
 
 const brush = new WeightBrush(viewer, { onStroke: () => compute() });
-/** What the worker gets: the panel's values and the brushed weights (a copy: it is transferred). */
-const currentOptions = () => ({ ...pipelineOptions(params, table), vertexWeights: brush.current()?.slice() ?? null });
 
+/** The one page state (page-state.js); `render()` draws it. */
+const state = emptyState();
+const render = () => renderDom(state);
 let rescaleThreshold = false;
 
-const client = connection.session({
-  onProgress: (stage, fraction) => showProgress(stage, overallFraction(stage, fraction)),
-  onLoaded: ({ name, vertices, triangles, notes, milliseconds }) => {
-    app.mesh = { name, vertices, triangles, loadMs: milliseconds }; // reading (C++) and repair
-    showFile(`${name}: ${triangles.toLocaleString()} triangles`);
-    showNotes([app.ignored, ...notes].filter(Boolean));
-  },
-  onResult: (result) => {
-    if (result.surface) {
-      viewer.setSurface(result.surface, { fit: !app.surfaceShown });
-      app.surfaceShown = true;
-      brush.reset(result.surface.positions.length / 3);
-    }
-    const started = performance.now();
-    if (result.linesChanged) viewer.setLines(result.lines, result.kept);
-    else viewer.setKept(result.kept);
-    if (result.creasesChanged && result.creases) viewer.setCreases(result.creases);
-    const drawMs = performance.now() - started; // main-thread work to show the result's lines
-    const { lines, kept } = result;
-    let selected = null;
-    // What the exports save: the lines shown, selected on first use.
-    app.shown = { name: app.mesh?.name, get lines() { return (selected ??= selectLines(lines, kept)); } };
-    app.lastResult = { name: app.mesh?.name, ran: result.ran, stats: result.stats, lineCount: kept.length, linesChanged: result.linesChanged, creaseCount: result.creases?.convex.length ?? 0, drawMs, milliseconds: result.milliseconds };
-    app.results.push(app.lastResult);
-    gui.showUsed(result.stats, rescaleThreshold);
-    rescaleThreshold = false;
-    showStats(result, app.mesh);
-    showProgress(null);
-    showError(null); // a good result supersedes an earlier failure
-    const upstream = ['presmooth', 'curvature', 'extremality', 'regularity', 'smoothing'];
-    if (result.ran.some((s) => upstream.includes(s))) app.fields = null;
-    if (!client.busy) {
-      setState('ready');
-      applyView();
-    }
-  },
-  onFields: (fields) => {
-    app.fields = fields;
-    applyView();
-  },
-  onCancelled: () => {
-    showProgress(null);
-    setState('ready');
-    showNotes(['Cancelled: change a parameter to compute again.']);
-  },
-  // A file that could not be read never replaced the worker's mesh, which stays usable.
-  onError: ({ message }) => {
-    fail(message);
-    if (app.previous && client.hasMesh) Object.assign(app, app.previous);
-    app.previous = null;
-  },
+/** The session a parameter change goes to: the file loading, else the one shown. */
+const active = () => state.loading?.session ?? state.shown?.session ?? null;
+/** What the worker gets: the panel's values and the brushed weights of the shown mesh (a copy: it is transferred). */
+const currentOptions = () => ({
+  ...pipelineOptions(params, table),
+  vertexWeights: state.loading ? null : brush.current()?.slice() ?? null,
 });
 
+/** A client session whose replies update the page only while it is the loading or the shown one. */
+function newSession() {
+  const session = connection.session({
+    onProgress: (stage, fraction) => {
+      if (session !== active()) return;
+      state.progress = { stage, fraction: overallFraction(stage, fraction) };
+      render();
+      app.hooks.progress?.(stage);
+    },
+    onLoaded: ({ vertices, triangles, notes, milliseconds }) => {
+      if (session !== state.loading?.session) return;
+      Object.assign(state.loading, { vertices, triangles, loadMs: milliseconds, notes: [...state.loading.notes, ...notes] });
+      state.notes = state.loading.notes;
+      render();
+      app.hooks.loaded?.();
+    },
+    onResult: (result) => received(session, result),
+    onFields: (fields) => {
+      if (session !== state.shown?.session) return;
+      app.fields = fields;
+      applyView();
+    },
+    onCancelled: () => cancelled(session),
+    onError: (error) => failed(session, error),
+  });
+  return session;
+}
+
+/**
+ * A session neither loading nor shown: its job is asked to stop and it is
+ * freed (no worker restart: the worker stops it at its next progress check,
+ * after the read if it is still reading, and keeps the shown mesh).
+ */
+function forget(session) {
+  session.cancel();
+  if (exporting.has(session)) retired.add(session); // an export still waits for it
+  else session.dispose();
+}
+/** Sessions with exports on their way (how many), and those to free after them. */
+const exporting = new Map();
+const retired = new Set();
+
+/** A result: the loading file becomes the shown mesh (the previous one is freed), or the shown mesh's lines change. */
+function received(session, result) {
+  if (session === state.loading?.session) {
+    const loaded = state.loading;
+    delete loaded.restore;
+    if (state.shown) forget(state.shown.session);
+    state.shown = loaded;
+    state.loading = null;
+    viewer.setSurface(result.surface, { fit: true });
+    brush.reset(result.surface.positions.length / 3);
+    app.fields = null;
+  } else if (session === state.shown?.session) {
+    if (result.surface) viewer.setSurface(result.surface, { fit: false });
+  } else {
+    return forget(session);
+  }
+  const shown = /** @type {import('./page-state.js').MeshState} */ (state.shown);
+  const started = performance.now();
+  if (result.linesChanged) viewer.setLines(result.lines, result.kept);
+  else viewer.setKept(result.kept);
+  if (result.creasesChanged && result.creases) viewer.setCreases(result.creases);
+  const drawMs = performance.now() - started; // main-thread work to show the result's lines
+  shown.result = result;
+  shown.stale = false;
+  // The options that made these lines (unknown while newer ones wait behind them).
+  if (!session.pending) shown.options = { ...session.options };
+  const { lines, kept } = result;
+  let selected = null;
+  // What the exports save: the lines shown, selected on first use.
+  app.shown = { name: shown.name, get lines() { return (selected ??= selectLines(lines, kept)); } };
+  app.mesh = { name: shown.name, vertices: shown.vertices, triangles: shown.triangles, loadMs: shown.loadMs };
+  app.lastResult = { name: shown.name, ran: result.ran, stats: result.stats, lineCount: kept.length, linesChanged: result.linesChanged, creaseCount: result.creases?.convex.length ?? 0, drawMs, milliseconds: result.milliseconds };
+  app.results.push(app.lastResult);
+  gui.showUsed(result.stats, rescaleThreshold);
+  rescaleThreshold = false;
+  state.error = null; // a good result supersedes an earlier failure
+  state.progress = null;
+  const upstream = ['presmooth', 'curvature', 'extremality', 'regularity', 'smoothing'];
+  if (result.ran.some((s) => upstream.includes(s))) app.fields = null;
+  render();
+  if (!session.busy) applyView();
+  shown.waiting?.splice(0).forEach((resolve) => resolve());
+}
+
+/** The panel shows `options` (the values that made the lines shown). */
+function showOptions(options) {
+  if (!options) return;
+  for (const p of pipelineParameters(table)) {
+    const value = options[p.key];
+    if (value === undefined) continue;
+    if (p.automatic) params[autoKey(p)] = value === 'auto';
+    if (value !== 'auto') params[p.key] = value;
+  }
+  gui.gui.controllersRecursive().forEach((c) => c.updateDisplay());
+  if (state.shown?.result) gui.showUsed(state.shown.result.stats, false);
+}
+
+/** Cancel: a loading file is dropped at once (the previous mesh is whole); the shown mesh keeps the lines it had. */
+function cancel() {
+  if (state.loading) {
+    const { session, name, restore } = state.loading;
+    forget(session);
+    state.loading = null;
+    state.progress = null;
+    state.notes = [state.shown ? `Cancelled ${name}: back to ${state.shown.name}.` : `Cancelled ${name}.`];
+    showOptions(restore);
+    render();
+    applyView();
+  } else if (state.shown?.session.busy) {
+    state.shown.session.cancel();
+  }
+}
+
+function cancelled(session) {
+  if (session !== state.shown?.session) return forget(session);
+  // The worker may hold a half-run pipeline: an OBJ/JSON export re-runs first.
+  state.shown.stale = true;
+  state.progress = null;
+  state.notes = ['Cancelled: the lines shown are those of the values in the panel.'];
+  showOptions(state.shown.options);
+  render();
+  applyView();
+}
+
+function failed(session, { message }) {
+  if (session === state.loading?.session) {
+    // A file that cannot be read or computed: the previous mesh stays whole.
+    showOptions(state.loading.restore);
+    forget(session);
+    state.loading = null;
+  } else if (session === state.shown?.session) {
+    state.shown.stale = true;
+  } else {
+    return forget(session);
+  }
+  state.progress = null;
+  fail(message);
+}
+
+/** The one-sentence error line; null clears it. */
 function fail(message) {
-  showProgress(null);
-  showError(message);
-  setState('error');
+  state.error = message;
+  render();
+}
+
+/** The worker holds the shown mesh's lines exactly (after a cancel or a restart it runs them again). */
+function current(shown) {
+  if (!shown.stale && shown.session.hasMesh) return Promise.resolve();
+  const done = new Promise((resolve) => (shown.waiting ??= []).push(resolve));
+  shown.session.setOptions({ ...(shown.options ?? currentOptions()), vertexWeights: brush.current()?.slice() ?? null });
+  render();
+  return done;
 }
 
 /** Runs with the panel's options (the client queues them behind a running job). */
 function compute() {
-  if (!app.mesh) return;
-  setState('busy');
-  client.setOptions(currentOptions());
+  const session = active();
+  if (!session) return;
+  session.setOptions(currentOptions());
+  render();
 }
 
 function applyDisplay() {
@@ -113,14 +221,15 @@ function applyDisplay() {
 /** Colour map or singular-triangle overlay; fetches fields from the worker when needed. */
 function applyView() {
   const view = params.view;
+  const session = state.shown?.session;
   if (view === 'weights' && brush.weights) {
     viewer.surface.setSingular(null);
     viewer.surface.setColors(brush.weights.map((w) => w - 1));
-  } else if (view === 'shaded' || view === 'weights' || !app.mesh) {
+  } else if (view === 'shaded' || view === 'weights' || !session) {
     viewer.surface.setColors(null);
     viewer.surface.setSingular(null);
   } else if (!app.fields) {
-    if (!client.busy) client.requestFields();
+    if (!session.busy && !state.shown?.stale) session.requestFields();
     return;
   } else if (view.startsWith('singular')) {
     viewer.surface.setColors(null);
@@ -135,7 +244,36 @@ function applyView() {
   viewer.render();
 }
 
-const exporter = createExports({ viewer, client, params, current: () => app.shown });
+/** The core writers' exports come from the worker's copy of the shown mesh. */
+const workerExports = {
+  async exportFile(format, view) {
+    const source = exportSource(state);
+    if ('refusal' in source) throw new Error(source.refusal);
+    const { session } = source.shown;
+    exporting.set(session, (exporting.get(session) ?? 0) + 1);
+    try {
+      await current(source.shown);
+      return await session.exportFile(format, view);
+    } finally {
+      exporting.set(session, exporting.get(session) - 1);
+      if (!exporting.get(session)) exporting.delete(session);
+      if (!exporting.has(session) && retired.delete(session)) session.dispose();
+    }
+  },
+  exportText(format) {
+    return this.exportFile(format);
+  },
+};
+const exporter = createExports({
+  viewer,
+  client: workerExports,
+  params,
+  current: () => {
+    const source = exportSource(state);
+    if ('refusal' in source) throw new Error(source.refusal);
+    return app.shown;
+  },
+});
 
 const picker = /** @type {HTMLInputElement} */ (document.getElementById('picker'));
 picker.accept = PICKER_ACCEPT;
@@ -158,24 +296,27 @@ const gui = createGui(params, table, {
   onExport: (format) => app.save(format),
 });
 
-/** A new mesh: state reset, then `send` starts the worker on it. */
-function startMesh(name, send) {
-  app.previous = { mesh: app.mesh, surfaceShown: true };
-  showError(null);
-  showNotes([]);
-  app.ignored = null;
-  setState('busy');
-  app.fields = null;
-  app.surfaceShown = false; // the next surface is framed
-  app.mesh = { name };
+/** A new file: its own session, shown once its lines are ready; `send` starts the worker on it. */
+function startMesh(name, send, notes = []) {
+  let restore = state.shown?.options ?? null;
+  if (state.loading) {
+    // A newer file replaces the one loading.
+    restore = state.loading.restore;
+    forget(state.loading.session);
+  }
+  const session = newSession();
+  state.loading = { session, name, notes, restore };
+  state.error = null;
+  state.notes = notes;
+  state.progress = { stage: 'read', fraction: 0 };
   rescaleThreshold = true;
-  brush.weights = null; // a new mesh starts homogeneous
-  send({ ...pipelineOptions(params, table), vertexWeights: null });
+  send(session, { ...pipelineOptions(params, table), vertexWeights: null }); // a new mesh starts homogeneous
+  render();
 }
 
 /** The built-in sample, already a soup. */
 function loadSoup(soup) {
-  startMesh(soup.name, (options) => client.load(soup, options));
+  startMesh(soup.name, (session, options) => session.load(soup, options));
 }
 
 /** Dropped or picked files: read by the C++ readers in the worker, so the page never blocks. */
@@ -184,9 +325,8 @@ async function openFiles(fileList) {
   try {
     const all = await Promise.all(fileList.map(async (f) => ({ name: f.name, bytes: await f.arrayBuffer() })));
     const { read: files, ignored } = selectFiles(all);
-    startMesh(files[0].name, (options) => client.open(files, options));
-    app.ignored = ignoredSentence(files[0].name, ignored);
-    showNotes([app.ignored].filter(Boolean));
+    const ignoredNote = ignoredSentence(files[0].name, ignored);
+    startMesh(files[0].name, (session, options) => session.open(files, options), ignoredNote ? [ignoredNote] : []);
   } catch (error) {
     fail(`${fileList[0].name}: could not be read (${error.message}).`);
   }
@@ -194,14 +334,24 @@ async function openFiles(fileList) {
 
 // Test hooks: change parameters as the panel would.
 app.viewer = viewer;
-app.client = client;
+app.state = state;
+/** Called on the loading file's progress and 'loaded' (tests cancel there). */
+app.hooks = { progress: null, loaded: null };
+Object.defineProperty(app, 'client', { get: () => state.shown?.session ?? state.loading?.session ?? null });
 app.gui = gui.gui;
-/** Makes and downloads an export (the panel's buttons); failures show on the page. */
+app.cancel = cancel;
+/** Makes and downloads an export (the panel's buttons); failures show on the page, a success clears them. */
 app.save = (format) =>
-  exporter.save(format).catch((error) => {
-    showError(`Export ${format.toUpperCase()}: ${error.message}`);
-    return null;
-  });
+  exporter.save(format).then(
+    (saved) => {
+      if (state.error) fail(null); // the next action that succeeds clears an error
+      return saved;
+    },
+    (error) => {
+      fail(`Export ${format.toUpperCase()}: ${error.message}`);
+      return null;
+    },
+  );
 app.brush = brush;
 app.update = (partial) => {
   Object.assign(params, partial);
@@ -222,6 +372,6 @@ picker.addEventListener('change', () => {
   picker.value = ''; // the same file can be picked again
 });
 document.getElementById('open').addEventListener('click', () => picker.click());
-document.getElementById('cancel').addEventListener('click', () => client.cancel());
+document.getElementById('cancel').addEventListener('click', cancel);
 applyDisplay();
 loadSoup(sampleMesh());
