@@ -90,6 +90,9 @@ test('a box seen obliquely: SVG (creases, back edges hidden) and GLB equal the c
   // Look from the (+x, +y, +z) octant and record what the page asks the worker for.
   const options = await page.evaluate(() => {
     const { viewer, client } = window.crestline;
+    // The whole canvas, centred (the page frames into the part its panels leave free).
+    viewer.covers = () => [];
+    viewer.applyFrame();
     viewer.camera.position.set(2.2, 1.6, 2.6);
     viewer.camera.lookAt(0, 0, 0);
     const exportFile = client.exportFile.bind(client);

@@ -3,7 +3,7 @@
 // of view, so the portrait canvas shows the whole model. Needs web/dist.
 import assert from 'node:assert/strict';
 import { after, before, test } from 'node:test';
-import { openApp, sampleReady } from './app-page.mjs';
+import { assertUncovered, framing, openApp, sampleReady } from './app-page.mjs';
 
 let app, page;
 
@@ -68,6 +68,10 @@ test('390×844: the framed model\'s projected bounding box lies inside the canva
     gui.controllersRecursive().find((c) => c.property === 'fit').$button.click();
   });
   assertInside(await projectedBox());
+});
+
+test('390×844: the model is clear of the info strip and the collapsed panel', async () => {
+  assertUncovered(await framing(page));
 });
 
 test('no uncaught errors in the page', () => {

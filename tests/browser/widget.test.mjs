@@ -347,6 +347,32 @@ test('lazy loading waits for the viewport; keyboard orbit; reduced motion stops 
   await page.close();
 });
 
+test('up-axis: the polar angle of camera-orbit is measured from Y (default) or Z', async () => {
+  const { page, problems } = await openPage('up.html', `
+    <crestline-viewer id="y" src="/pages/sine.glb" camera-orbit="0deg 30deg 100%"></crestline-viewer>
+    <crestline-viewer id="z" src="/pages/sine.glb" camera-orbit="0deg 30deg 100%" up-axis="z"></crestline-viewer>`);
+  await waitForEvents(page, 'y', 'lines', 1);
+  await waitForEvents(page, 'z', 'lines', 1);
+  const view = (id) => page.evaluate((id) => {
+    const { camera, controls } = document.getElementById(id).view;
+    return { direction: camera.position.clone().sub(controls.target).normalize().toArray(), up: camera.up.toArray() };
+  }, id);
+  const near = (a, b, what) => assert.ok(a.every((x, i) => Math.abs(x - b[i]) < 1e-6), `${what}: ${a} ≠ ${b}`);
+  const [sin, cos] = [Math.sin(Math.PI / 6), Math.cos(Math.PI / 6)];
+  const y = await view('y');
+  near(y.direction, [0, cos, sin], 'Y up: 30° from +Y, towards +Z');
+  near(y.up, [0, 1, 0], 'Y up');
+  const z = await view('z');
+  near(z.direction, [0, -sin, cos], 'Z up: 30° from +Z, towards −Y');
+  near(z.up, [0, 0, 1], 'Z up');
+  assert.equal(await page.evaluate(() => document.getElementById('z').upAxis), 'z');
+  await page.evaluate(() => (document.getElementById('z').upAxis = 'y'));
+  await page.waitForFunction(() => document.getElementById('z').view.camera.up.y === 1);
+  near((await view('z')).direction, [0, cos, sin], 'back to Y up');
+  assert.deepEqual(problems, []);
+  await page.close();
+});
+
 test('creases: shown in crease-color (attribute over --crestline-crease-color), creases="false" hides them, in toSVG/toOBJ/toJSON', async () => {
   const { page, problems } = await openPage('creases.html', `
     <crestline-viewer id="c" src="/pages/box.obj" crease-color="#00aa44" style="width:400px;height:300px;--crestline-crease-color:#aa0000"></crestline-viewer>

@@ -2,6 +2,7 @@
 // header, the label over a previous mesh, progress, the one-sentence error,
 // notes, stats.
 import { headerOf, phaseOf, viewLabelOf } from './page-state.js';
+import { colormapGradient } from '../three/colormap.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -56,4 +57,18 @@ export function showLegend({ ridgeColor, valleyColor, creaseColor, showRidges, s
     $(id).querySelector('.swatch').style.background = color;
     $(id).classList.toggle('off', !shown);
   }
+}
+
+/**
+ * The colour scale of a colour map, or null to hide it: `name` (with its
+ * unit), the value the colours saturate at, `positive`: the map runs 0…max.
+ * @param {{name: string, scale: number, positive: boolean} | null} map
+ */
+export function showScale(map) {
+  $('scale').hidden = !map;
+  if (!map) return;
+  $('scale-name').textContent = map.name;
+  $('scale-min').textContent = map.positive ? '0' : `−${fmt(map.scale)}`;
+  $('scale-max').textContent = `${map.positive ? '' : '+'}${fmt(map.scale)}`;
+  $('scale-bar').style.background = colormapGradient(map.positive);
 }

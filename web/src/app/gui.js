@@ -4,6 +4,7 @@
 // params object.
 import GUI from 'lil-gui';
 import { describeParameter, label, pipelineParameters } from '../client/parameters.js';
+import { VIEW_PRESETS } from '../three/fit.js';
 
 export const VIEWS = {
   shaded: 'shaded',
@@ -48,6 +49,8 @@ export function defaultParams(table) {
     brushValue: 0,
     pngScale: 2,
     exportSilhouette: false,
+    preset: 'front',
+    upAxis: 'y',
   };
 }
 
@@ -82,7 +85,7 @@ const tip = (controller, text) => {
 /** Slider step: whole numbers for integers, else about a thousandth of the range. */
 const stepOf = (p, max) => (p.kind === 'integer' ? 1 : Math.min(0.01, (max - p.min) / 1000));
 
-export function createGui(params, table, { onCompute, onDisplay, onFit, onOpen, onBrush, onClearWeights, onExport }) {
+export function createGui(params, table, { onCompute, onDisplay, onFit, onCamera, onOpen, onBrush, onClearWeights, onExport }) {
   const gui = new GUI({ title: 'Crestline' });
   const lines = gui.addFolder('Feature lines');
   const more = lines.addFolder('More parameters');
@@ -126,7 +129,11 @@ export function createGui(params, table, { onCompute, onDisplay, onFit, onOpen, 
   tip(exports.add(params, 'exportSilhouette').name('SVG: silhouette'), 'Add the model’s outline to the SVG export');
   tip(exports.add(params, 'pngScale', PNG_SCALES).name('PNG resolution'), 'Size of the PNG export, as a multiple of the canvas');
   for (const [format, label] of Object.entries(EXPORTS)) tip(exports.add({ [format]: () => onExport(format) }, format).name(label), `Download the ${EXPORT_TIPS[format]}`);
-  tip(gui.add({ fit: onFit }, 'fit').name('fit to view'), 'Frame the whole model in the view');
+  const camera = gui.addFolder('Camera');
+  tip(camera.add(params, 'preset', VIEW_PRESETS).name('view from'), 'Look at the model from the front, back, left, right, top, bottom or at an angle (iso), relative to its up axis').onChange(onCamera);
+  tip(camera.add(params, 'upAxis', { 'Y up (glTF)': 'y', 'Z up (CAD, scans)': 'z' }).name('up axis'), 'Which axis of the file points up: glTF says Y; many CAD and scanned models use Z (seen from the top with Y)').onChange(onCamera);
+  camera.close();
+  tip(gui.add({ fit: onFit }, 'fit').name('fit to view'), 'Frame the whole model in the part of the view the panels leave free');
   tip(gui.add({ open: onOpen }, 'open').name('open mesh…'), 'Open a mesh file: glTF/GLB (with its .bin), OBJ, PLY, STL or OFF');
 
   return {

@@ -6,7 +6,7 @@ import { sampleMesh } from './sample.js';
 import { WeightBrush } from '../three/brush.js';
 import { Viewer } from '../three/viewer.js';
 import { concaveShade } from '../three/line-layer.js';
-import { render as renderDom, showLegend } from './dom.js';
+import { render as renderDom, showLegend, showScale } from './dom.js';
 import { emptyState, exportSource } from './page-state.js';
 import { installDrop } from './drop.js';
 import { createExports } from './exports.js';
@@ -85,13 +85,15 @@ const retired = new Set();
 
 /** A result: the loading file becomes the shown mesh (the previous one is freed), or the shown mesh's lines change. */
 function received(session, result) {
+  let promoted = false;
   if (session === state.loading?.session) {
     const loaded = state.loading;
     delete loaded.restore;
     if (state.shown) forget(state.shown.session);
     state.shown = loaded;
     state.loading = null;
-    viewer.setSurface(result.surface, { fit: true });
+    viewer.setSurface(result.surface, { fit: false });
+    promoted = true;
     brush.reset(result.surface.positions.length / 3);
     app.fields = null;
   } else if (session === state.shown?.session) {
@@ -123,6 +125,7 @@ function received(session, result) {
   const upstream = ['presmooth', 'curvature', 'extremality', 'regularity', 'smoothing'];
   if (result.ran.some((s) => upstream.includes(s))) app.fields = null;
   render();
+  if (promoted) viewer.fitView(); // once the info box shows the new mesh: framing avoids it
   if (!session.busy) applyView();
   shown.waiting?.splice(0).forEach((resolve) => resolve());
 }
@@ -218,13 +221,23 @@ function applyDisplay() {
   applyView();
 }
 
+/** What each colour map shows, with its unit (the model's length unit L). */
+const SCALE_NAMES = {
+  kappaMax: 'κ max (1/L)',
+  kappaMin: 'κ min (1/L)',
+  eMax: '|e max| (1/L²)',
+  eMin: '|e min| (1/L²)',
+  weights: 'smoothing weight − 1',
+};
+
 /** Colour map or singular-triangle overlay; fetches fields from the worker when needed. */
 function applyView() {
   const view = params.view;
   const session = state.shown?.session;
+  let map = null;
   if (view === 'weights' && brush.weights) {
     viewer.surface.setSingular(null);
-    viewer.surface.setColors(brush.weights.map((w) => w - 1));
+    map = { scale: viewer.surface.setColors(brush.weights.map((w) => w - 1)), positive: false };
   } else if (view === 'shaded' || view === 'weights' || !session) {
     viewer.surface.setColors(null);
     viewer.surface.setSingular(null);
@@ -239,9 +252,18 @@ function applyView() {
     // An extremality's sign follows the arbitrary sign of its direction
     // (core/…/extremality.h): only |e| means something on its own.
     const values = app.fields[view];
-    viewer.surface.setColors(view.startsWith('e') ? values.map(Math.abs) : values);
+    const positive = view.startsWith('e');
+    map = { scale: viewer.surface.setColors(positive ? values.map(Math.abs) : values), positive };
   }
+  showScale(map && { ...map, name: SCALE_NAMES[view] });
   viewer.render();
+}
+
+/** The view preset and up axis of the panel. */
+function applyCamera() {
+  viewer.preset = params.preset;
+  if (viewer.upAxis !== params.upAxis) viewer.setUpAxis(params.upAxis);
+  else viewer.fitView();
 }
 
 /** The core writers' exports come from the worker's copy of the shown mesh. */
@@ -281,6 +303,7 @@ const gui = createGui(params, table, {
   onCompute: compute,
   onDisplay: applyDisplay,
   onFit: () => viewer.fitView(),
+  onCamera: applyCamera,
   onOpen: () => picker.click(),
   onBrush: () => {
     brush.setEnabled(params.brush);
@@ -358,9 +381,20 @@ app.update = (partial) => {
   gui.gui.controllersRecursive().forEach((c) => c.updateDisplay());
   const pipelineKeys = pipelineParameters(table).flatMap((p) => [p.key, autoKey(p)]);
   if (Object.keys(partial).some((k) => pipelineKeys.includes(k))) compute();
+  else if ('preset' in partial || 'upAxis' in partial) applyCamera();
   else applyDisplay();
 };
 
+// Framing avoids the info box and the panel; opening or closing them moves the model's centre.
+viewer.covers = () => {
+  const canvas = viewer.renderer.domElement.getBoundingClientRect();
+  return [document.getElementById('hud'), gui.gui.domElement].map((element) => {
+    const r = element.getBoundingClientRect();
+    return { left: r.left - canvas.left, top: r.top - canvas.top, right: r.right - canvas.left, bottom: r.bottom - canvas.top };
+  });
+};
+gui.gui.onOpenClose(() => viewer.applyFrame());
+document.getElementById('details').addEventListener('toggle', () => viewer.applyFrame());
 // Phones: the panel starts collapsed and the statistics folded away.
 if (matchMedia('(max-width: 599px)').matches) {
   gui.gui.close();

@@ -14,8 +14,8 @@ export function robustScale(values) {
   return sample[Math.floor(0.95 * (sample.length - 1))] || 1;
 }
 
-export function divergingColors(values, out = new Float32Array(values.length * 3)) {
-  const scale = robustScale(values);
+/** Colours of `values`, saturated at ±`scale` (by default robustScale(values)); the page's colour scale shows the same scale. */
+export function divergingColors(values, out = new Float32Array(values.length * 3), scale = robustScale(values)) {
   for (let i = 0; i < values.length; i++) {
     const t = Math.max(-1, Math.min(1, (values[i] || 0) / scale));
     const [from, to] = t < 0 ? [WHITE, BLUE] : [WHITE, RED];
@@ -23,4 +23,10 @@ export function divergingColors(values, out = new Float32Array(values.length * 3
     for (let k = 0; k < 3; k++) out[3 * i + k] = from[k] + (to[k] - from[k]) * a;
   }
   return out;
+}
+
+/** The map as a CSS gradient from −1 (or 0 with `positive`) to +1, for a colour scale. */
+export function colormapGradient(positive = false) {
+  const css = (c) => `rgb(${c.map((x) => Math.round(255 * x)).join(' ')})`;
+  return positive ? `linear-gradient(90deg, ${css(WHITE)}, ${css(RED)})` : `linear-gradient(90deg, ${css(BLUE)}, ${css(WHITE)}, ${css(RED)})`;
 }

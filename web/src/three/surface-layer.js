@@ -1,7 +1,7 @@
 // The shaded surface. Polygon offset pushes it back in depth so the feature
 // lines lying exactly on it win the depth test without showing through it.
 import { BufferAttribute, BufferGeometry, DoubleSide, Mesh, MeshStandardMaterial } from 'three';
-import { divergingColors } from './colormap.js';
+import { divergingColors, robustScale } from './colormap.js';
 
 export class SurfaceLayer {
   constructor() {
@@ -42,11 +42,12 @@ export class SurfaceLayer {
     this.setSingular(null);
   }
 
-  /** Per-vertex scalar field shown as a colour map, or null for plain shading. */
+  /** Per-vertex scalar field shown as a colour map, or null for plain shading; returns the value the colours saturate at. */
   setColors(values) {
     const geometry = this.mesh.geometry;
+    const scale = values ? robustScale(values) : 0;
     if (values) {
-      geometry.setAttribute('color', new BufferAttribute(divergingColors(values), 3));
+      geometry.setAttribute('color', new BufferAttribute(divergingColors(values, undefined, scale), 3));
       this.material.color.set(0xffffff);
     } else {
       geometry.deleteAttribute('color');
@@ -54,6 +55,7 @@ export class SurfaceLayer {
     }
     this.material.vertexColors = !!values;
     this.material.needsUpdate = true;
+    return scale;
   }
 
   /** Highlights the triangles whose mask value is 0 (singular), or hides the overlay. */

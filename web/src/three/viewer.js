@@ -12,7 +12,7 @@ import {
   WebGLRenderer,
 } from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
-import { fitDistance } from './fit.js';
+import { fitDistance, presetDirection, setUpAxis, uncoveredRect } from './fit.js';
 import { LineLayer, concaveShade, creasesAsLines } from './line-layer.js';
 import { SurfaceLayer } from './surface-layer.js';
 
@@ -39,6 +39,10 @@ export class Viewer {
     this.creases = new LineLayer({ ridgeColor: '#e08a00', valleyColor: concaveShade('#e08a00') });
     this.scene.add(this.surface.mesh, this.lines.group, this.creases.group);
     this.origin = [0, 0, 0];
+    /** The canvas's rectangles that the page covers (panels), in CSS pixels of the canvas: framing avoids them. */
+    this.covers = () => [];
+    this.upAxis = 'y';
+    this.preset = 'front';
     this.setBackground('light');
 
     const canvas = this.renderer.domElement;
@@ -89,18 +93,52 @@ export class Viewer {
     this.render();
   }
 
+  /** The canvas's uncovered rectangle, in CSS pixels. */
+  uncovered() {
+    const { clientWidth: w, clientHeight: h } = this.container;
+    return uncoveredRect(w, h, this.covers());
+  }
+
+  /** Shifts the projection so that the orbit centre is the centre of the uncovered rectangle. */
+  applyFrame() {
+    const { clientWidth: w, clientHeight: h } = this.container;
+    if (!w || !h) return;
+    const r = this.uncovered();
+    const [x, y] = [w / 2 - (r.left + r.right) / 2, h / 2 - (r.top + r.bottom) / 2];
+    if (x || y) this.camera.setViewOffset(w, h, x, y, w, h);
+    else this.camera.clearViewOffset();
+    this.camera.updateProjectionMatrix();
+    this.render();
+  }
+
+  /** Frames the model in the uncovered rectangle, seen from the current preset. */
   fitView() {
     const geometry = this.surface.mesh.geometry;
     const sphere = geometry.boundingSphere ?? new Sphere(new Vector3(), 1);
     const radius = sphere.radius || 1;
-    const distance = fitDistance(this.camera, radius);
+    const { clientWidth: w, clientHeight: h } = this.container;
+    const r = this.uncovered();
+    const area = w && h ? { width: (r.right - r.left) / w, height: (r.bottom - r.top) / h } : undefined;
+    const distance = fitDistance(this.camera, radius, area);
     this.camera.near = distance / 100;
     this.camera.far = distance * 10;
-    this.camera.position.copy(sphere.center).add(new Vector3(0, 0, distance * 1.05));
-    this.camera.updateProjectionMatrix();
+    this.camera.position.copy(sphere.center).addScaledVector(presetDirection(this.preset, this.upAxis), distance * 1.05);
     this.controls.target.copy(sphere.center);
     this.controls.update();
-    this.render();
+    this.applyFrame();
+  }
+
+  /** A view preset: 'front', 'back', 'left', 'right', 'top', 'bottom' or 'iso' (relative to the up axis). */
+  setPreset(preset) {
+    this.preset = preset;
+    this.fitView();
+  }
+
+  /** 'y' or 'z': the model's up direction; the view is framed again from the front. */
+  setUpAxis(up) {
+    this.upAxis = up;
+    setUpAxis(this.camera, this.controls, up);
+    this.fitView();
   }
 
   setBackground(mode) {
@@ -113,7 +151,7 @@ export class Viewer {
     if (!w || !h) return;
     this.renderer.setSize(w, h, false);
     this.camera.aspect = w / h;
-    this.camera.updateProjectionMatrix();
+    this.applyFrame();
     this.lines.setResolution(w, h); // line width in CSS pixels
     this.creases.setResolution(w, h);
     this.render();

@@ -1,9 +1,9 @@
 // One <crestline-viewer>'s scene: camera, lights, the surface and line layers,
 // orbit controls on the element's own 2D canvas. Drawing goes
 // through the shared renderer (renderer.js).
-import { Color, DirectionalLight, HemisphereLight, PerspectiveCamera, Scene, Spherical } from 'three';
+import { Color, DirectionalLight, HemisphereLight, PerspectiveCamera, Quaternion, Scene, Spherical } from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
-import { fitDistance } from './fit.js';
+import { UP_AXES, fitDistance, setUpAxis } from './fit.js';
 import { LineLayer, creasesAsLines } from './line-layer.js';
 import { SurfaceLayer } from './surface-layer.js';
 import { forget, requestDraw } from './renderer.js';
@@ -72,9 +72,15 @@ export class WidgetView {
     this.draw();
   }
 
-  /** {theta, phi} in radians around the model's centre, radius as a factor of the framing distance. */
-  setOrbit(orbit) {
+  /**
+   * {theta, phi} in radians around the model's centre, radius as a factor of
+   * the framing distance; `up` ('y' or 'z'): the model's up axis, which the
+   * polar angle is measured from.
+   */
+  setOrbit(orbit, up = 'y') {
     this.orbit = orbit;
+    this.up = up;
+    setUpAxis(this.camera, this.controls, up);
     this.applyOrbit();
   }
 
@@ -85,7 +91,9 @@ export class WidgetView {
     this.camera.far = fit * 20;
     this.camera.updateProjectionMatrix();
     this.controls.target.set(0, 0, 0);
-    this.camera.position.setFromSpherical(new Spherical(distance, this.orbit.phi, this.orbit.theta));
+    // Spherical coordinates about Y, turned so that Y becomes the model's up axis.
+    const toModel = new Quaternion().setFromUnitVectors(UP_AXES.y, UP_AXES[this.up ?? 'y']);
+    this.camera.position.setFromSpherical(new Spherical(distance, this.orbit.phi, this.orbit.theta)).applyQuaternion(toModel);
     this.controls.minDistance = fit * 0.2;
     this.controls.maxDistance = fit * 10;
     this.controls.update();

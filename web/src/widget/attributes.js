@@ -30,6 +30,7 @@ export const ATTRIBUTES = {
   'line-width': { ...number(null), kind: 'display' },
   background: { ...text(null), kind: 'display' },
   'camera-orbit': { ...text('0deg 75deg 100%'), kind: 'orbit' },
+  'up-axis': { ...oneOf(['y', 'z']), kind: 'orbit' },
   'auto-rotate': { ...presence, kind: 'motion' },
   interaction: { ...oneOf(['orbit', 'none']), kind: 'interaction' },
   loading: { ...oneOf(['eager', 'lazy']), kind: 'loading' },

@@ -118,7 +118,7 @@ export class CrestlineViewer extends HTMLElement {
     const canvas = this.parts.canvas;
     if (changes.has('label')) canvas.setAttribute('aria-label', this.alt || 'A 3D model with its ridge and valley lines');
     if (changes.has('display')) this.applyDisplay();
-    if (changes.has('orbit')) this.view.setOrbit(parseOrbit(this.cameraOrbit));
+    if (changes.has('orbit')) this.view.setOrbit(parseOrbit(this.cameraOrbit), this.upAxis);
     if (changes.has('motion')) this.view.setAutoRotate(this.autoRotate && !reducedMotion?.matches);
     if (changes.has('interaction')) {
       const orbit = this.interaction === 'orbit';
