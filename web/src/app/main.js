@@ -13,6 +13,7 @@ import { createExports } from './exports.js';
 import { PICKER_ACCEPT, ignoredSentence, selectFiles } from './files.js';
 import { pipelineParameters } from '../client/parameters.js';
 import { autoKey, createGui, defaultParams, pipelineOptions } from './gui.js';
+import { parseLink } from './link.js';
 
 const connection = sharedConnection();
 // The parameter table of the core: the panel's controls and defaults.
@@ -342,6 +343,15 @@ function loadSoup(soup) {
   startMesh(soup.name, (session, options) => session.load(soup, options));
 }
 
+/** The mesh of the page's link (#src=URL&…), fetched and read by the worker like a dropped file. */
+function openLink(link) {
+  Object.assign(params, link.settings);
+  gui.gui.controllersRecursive().forEach((c) => c.updateDisplay());
+  if (link.settings.upAxis) applyCamera();
+  if (!link.url) return fail(`${link.name}: is not a URL the page can fetch.`);
+  startMesh(link.name, (session, options) => session.openUrl(link.url, link.name, options));
+}
+
 /** Dropped or picked files: read by the C++ readers in the worker, so the page never blocks. */
 async function openFiles(fileList) {
   if (!fileList.length) return;
@@ -408,4 +418,11 @@ picker.addEventListener('change', () => {
 document.getElementById('open').addEventListener('click', () => picker.click());
 document.getElementById('cancel').addEventListener('click', cancel);
 applyDisplay();
-loadSoup(sampleMesh());
+// The link's mesh, or the built-in sample.
+const link = parseLink(location.hash, table, location.href);
+if (link) openLink(link);
+else loadSoup(sampleMesh());
+addEventListener('hashchange', () => {
+  const next = parseLink(location.hash, table, location.href);
+  if (next) openLink(next);
+});

@@ -1,0 +1,71 @@
+// Open by link (issue 17): index.html#src=URL&threshold=…&smoothing-steps=…&up-axis=…
+// loads the mesh with those settings, fetched by the worker like a dropped
+// file is read; a missing file and a server that refuses cross-origin requests
+// give one sentence naming the file; a new fragment opens the next mesh.
+// Needs web/dist (web/build.sh).
+import assert from 'node:assert/strict';
+import { mkdtempSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { after, before, test } from 'node:test';
+import { openApp } from './app-page.mjs';
+import { boxObj } from './box-obj.mjs';
+import { serve } from './server.mjs';
+
+let app, page, pages, other;
+
+before(async () => {
+  pages = mkdtempSync(join(tmpdir(), 'crestline-link-'));
+  writeFileSync(join(pages, 'box.obj'), boxObj());
+  writeFileSync(join(pages, 'tetra.obj'), 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n');
+  // Another origin that sends no CORS headers.
+  other = await serve({ '/': pages });
+  app = await openApp({ '/pages/': pages }, {}, '/#src=pages/box.obj&threshold=2.5&smoothing-steps=4&up-axis=z');
+  ({ page } = app);
+});
+
+after(async () => {
+  await app?.close();
+  other?.close();
+  if (pages) rmSync(pages, { recursive: true, force: true });
+});
+
+const settled = () => page.waitForFunction(() => ['ready', 'error'].includes(document.body.dataset.state), null, { timeout: 60000 });
+
+test('#src= with parameters: the linked mesh, computed with them, Z up', async () => {
+  await page.waitForFunction(() => window.crestline?.lastResult, null, { timeout: 60000 });
+  await settled();
+  const { result, params, up } = await page.evaluate(() => ({ result: window.crestline.lastResult, params: window.crestline.params, up: window.crestline.viewer.camera.up.toArray() }));
+  assert.equal(result.name, 'box.obj');
+  assert.equal(result.stats.triangles, 6912);
+  assert.equal(result.stats.threshold, 2.5);
+  assert.equal(params.smoothingSteps, 4);
+  assert.equal(params.autoThreshold, false);
+  assert.deepEqual(up, [0, 0, 1]);
+  assert.equal(await page.textContent('#error'), '');
+});
+
+test('a missing file and a server without CORS: one sentence naming the file; the page keeps its mesh', async () => {
+  await page.evaluate(() => (location.hash = '#src=pages/missing.obj'));
+  await page.waitForFunction(() => document.body.dataset.state === 'error', null, { timeout: 30000 });
+  assert.equal(await page.textContent('#error'), 'missing.obj: could not be fetched (HTTP 404 Not Found).');
+  assert.match(await page.textContent('#file'), /^box\.obj: 6,912 triangles/);
+  await page.evaluate((url) => (location.hash = `#src=${url}`), `http://127.0.0.1:${other.address().port}/tetra.obj`);
+  await page.waitForFunction(() => /tetra/.test(document.getElementById('error').textContent), null, { timeout: 30000 });
+  assert.equal(await page.textContent('#error'), 'tetra.obj: could not be fetched (network error, or the server does not allow cross-origin requests).');
+});
+
+test('a new fragment opens the next mesh', async () => {
+  const count = await page.evaluate(() => window.crestline.results.length);
+  await page.evaluate(() => (location.hash = '#src=pages/tetra.obj'));
+  await page.waitForFunction((n) => window.crestline.results.length > n, count, { timeout: 30000 });
+  await settled();
+  const result = await page.evaluate(() => window.crestline.lastResult);
+  assert.equal(result.name, 'tetra.obj');
+  assert.equal(result.stats.triangles, 4);
+  assert.equal(await page.textContent('#error'), '');
+});
+
+test('no uncaught errors in the page', () => {
+  assert.deepEqual(app.pageErrors, []);
+});
