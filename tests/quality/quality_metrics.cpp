@@ -1,7 +1,10 @@
 #include "quality_metrics.h"
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <unordered_map>
@@ -61,12 +64,47 @@ std::vector<TruthSample> truth_samples(const Surface& s, LineType type, double h
   return out;
 }
 
+// The segments of one type's true curves, for exact distances.
+class TruthSegments {
+ public:
+  TruthSegments(const Surface& s, LineType type, double reach) : reach_(reach), grid_(reach) {
+    for (const TrueCurve& c : s.curves) {
+      if (c.type != type) continue;
+      const size_t n = c.points.size(), count = c.closed ? n : n - 1;
+      for (size_t i = 0; i < count; ++i) {
+        const Vec3 &a = c.points[i], &b = c.points[(i + 1) % n];
+        grid_.add(0.5 * (a + b), static_cast<uint32_t>(segments_.size()));
+        segments_.push_back({a, b});
+      }
+    }
+  }
+  /// Distance from p to the nearest segment whose midpoint lies within
+  /// `reach` (far beyond the tolerance); +∞ if none.
+  double distance(const Vec3& p) const {
+    double best = std::numeric_limits<double>::infinity();
+    grid_.near(p, reach_, [&](uint32_t i) {
+      const Vec3 &a = segments_[i][0], &b = segments_[i][1], d = b - a;
+      const double t = std::clamp((p - a).dot(d) / std::max(d.squaredNorm(), 1e-300), 0.0, 1.0);
+      best = std::min(best, (a + t * d - p).norm());
+    });
+    return best;
+  }
+
+ private:
+  double reach_;
+  PointGrid grid_;
+  std::vector<std::array<Vec3, 2>> segments_;
+};
+
 TypeScore score_type(const Surface& s, LineType type, const std::vector<Polyline>& lines, double h) {
   TypeScore score;
   const double tol = kTolerance * h;
   const std::vector<TruthSample> truth = truth_samples(s, type, h, score.true_curves);
   PointGrid truth_grid(tol);
   for (uint32_t i = 0; i < truth.size(); ++i) truth_grid.add(truth[i].point, i);
+  // Truth segments are far shorter than h: a reach of tol + h finds the
+  // nearest one of every point within tol.
+  const TruthSegments segments(s, type, tol + h);
 
   PointGrid line_grid(tol);
   // (line, piece) → extracted length of the line running along the piece.
@@ -86,11 +124,15 @@ TypeScore score_type(const Surface& s, LineType type, const std::vector<Polyline
         near = true;
         if (truth[i].piece >= 0) pieces[truth[i].piece] = true;
       });
-      if (near) near_length += q.length;
+      if (near) {
+        near_length += q.length;
+        score.offset_integral += q.length * segments.distance(q.point) / h;
+      }
       for (const auto& [piece, yes] : pieces) along[{l, piece}] += q.length;
     }
     score.lines += scored;
   }
+  score.near_length = near_length;
   if (score.extracted_length > 0) score.precision = near_length / score.extracted_length;
 
   double covered = 0;

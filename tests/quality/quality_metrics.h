@@ -36,6 +36,13 @@ struct TypeScore {
   /// tolerance), per true curve that has any: 1 is perfect.
   double fragments = 0;
   int lines = 0;  // extracted lines with any scored length
+  /// Position (issue 13): the extracted length within tolerance of a true
+  /// curve of this type, and the integral over it of the distance to the
+  /// nearest true curve (exact, to the truth's dense polyline), in mean edges.
+  double near_length = 0;
+  double offset_integral = 0;
+  /// Mean distance of the extracted lines from the true ones, in mean edges (0 if none near).
+  double offset() const { return near_length > 0 ? offset_integral / near_length : 0.0; }
 };
 
 struct Score {
@@ -47,6 +54,12 @@ struct Score {
   double seconds = 0;
   /// Valleys on a convex surface are all spurious.
   int spurious_valleys() const { return convex ? valley.lines : 0; }
+  /// Mean distance of ridges and valleys from their true curves, in mean
+  /// edges, weighted by length; −1 when no line lies near a true one.
+  double offset() const {
+    const double length = ridge.near_length + valley.near_length;
+    return length > 0 ? (ridge.offset_integral + valley.offset_integral) / length : -1.0;
+  }
 };
 
 Score score_lines(const Surface& surface, const std::vector<Polyline>& lines, double mean_edge);

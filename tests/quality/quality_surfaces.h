@@ -37,8 +37,23 @@ struct Surface {
 /// everywhere), a checkerboard (valences 4 and 8), or random diagonals with
 /// tangential jitter of 0.3 cells. The sphere-based shapes are always
 /// irregular; for them `Irregular` adds jitter.
-enum class Triangulation { Uniform, Alternating, Irregular };
+///
+/// Delaunay triangulations (issue 13, delaunay.h), with about as many
+/// vertices as the grids:
+/// - `AnisoAlong`, `AnisoAcross`: 3:1 triangles (a sheared lattice of
+///   spacing 3a × a) whose long sides run along, or across, the true lines —
+///   tilted by 0.12 rad so that no edge runs exactly along one. The ripple
+///   uses a polar lattice (long along, or across, its circles); the
+///   superquadric latitude rings (long along the circles of latitude, or
+///   along the meridians), so 8 of its 12 edges get the named kind and 4 the
+///   other; the cosine product's two families get one kind each.
+/// - `Graded`: jittered points whose spacing grows threefold across the
+///   domain (along x; on the superquadric from the south pole to the north).
+/// The torus (a control) gets grids of 3:1 cells or the irregular grid.
+enum class Triangulation { Uniform, Alternating, Irregular, AnisoAlong, AnisoAcross, Graded };
 const char* triangulation_name(Triangulation t);
+/// Every triangulation above, in order.
+std::vector<Triangulation> triangulations();
 
 struct SurfaceParams {
   /// Grid cells per unit length (the surfaces are a few units across).

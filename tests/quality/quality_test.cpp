@@ -18,6 +18,65 @@ struct Case {
   double noise;
 };
 
+// Where the defaults miss issue 9's targets (seed 1, measured; README "Line
+// quality"): each is held to floors a little below its measured values, so
+// it cannot get worse unnoticed; every other case must meet the targets.
+struct KnownMiss {
+  const char* surface;
+  Triangulation triangulation;
+  double noise;
+  double coverage, precision, fragments;  // floors, floors, ceiling
+};
+const KnownMiss kKnownMisses[] = {
+    {"sine", Triangulation::Graded, 0.00, 0.86, 0.97, 1.5},
+    {"sine", Triangulation::Graded, 0.10, 0.86, 0.90, 1.5},
+    {"sine", Triangulation::Graded, 0.25, 0.86, 0.95, 1.5},
+    {"sine", Triangulation::Graded, 0.50, 0.70, 0.88, 1.5},
+    {"cos-product", Triangulation::Alternating, 0.50, 0.90, 0.92, 1.5},
+    {"cos-product", Triangulation::AnisoAlong, 0.50, 0.78, 0.92, 1.5},
+    {"cos-product", Triangulation::AnisoAcross, 0.50, 0.73, 0.88, 1.5},
+    {"cos-product", Triangulation::Graded, 0.50, 0.78, 0.80, 1.5},
+    {"ripple", Triangulation::AnisoAlong, 0.50, 0.86, 0.96, 1.5},
+    {"ripple", Triangulation::AnisoAcross, 0.50, 0.88, 0.95, 1.5},
+    {"ripple", Triangulation::Graded, 0.50, 0.83, 0.82, 1.7},
+    {"paraboloid", Triangulation::Uniform, 0.50, 0.87, 0.60, 1.5},
+    {"paraboloid", Triangulation::Alternating, 0.50, 0.97, 0.74, 1.5},
+    {"paraboloid", Triangulation::Irregular, 0.50, 0.97, 0.68, 1.5},
+    {"paraboloid", Triangulation::AnisoAlong, 0.50, 0.90, 0.67, 1.5},
+    {"paraboloid", Triangulation::AnisoAcross, 0.50, 0.92, 0.86, 1.5},
+    {"paraboloid", Triangulation::Graded, 0.25, 0.76, 0.54, 1.5},
+    {"paraboloid", Triangulation::Graded, 0.50, 0.65, 0.16, 1.5},
+};
+
+const KnownMiss* known_miss(const Case& c) {
+  for (const KnownMiss& m : kKnownMisses)
+    if (c.surface == m.surface && c.triangulation == m.triangulation && c.noise == m.noise) return &m;
+  return nullptr;
+}
+
+// Mean distance of the lines from the true ones at σ = 0 (issue 13's goal:
+// 0.05 mean edges), where it is missed: bounds a little above the measured values.
+struct KnownOffset {
+  const char* surface;
+  Triangulation triangulation;
+  double offset;
+};
+const KnownOffset kKnownOffsets[] = {
+    {"sine", Triangulation::Irregular, 0.09},          {"cos-product", Triangulation::Alternating, 0.18},
+    {"cos-product", Triangulation::Irregular, 0.18},   {"cos-product", Triangulation::Graded, 0.07},
+    {"ripple", Triangulation::Uniform, 0.09},          {"ripple", Triangulation::Alternating, 0.16},
+    {"ripple", Triangulation::Irregular, 0.12},        {"ripple", Triangulation::AnisoAlong, 0.11},
+    {"ripple", Triangulation::AnisoAcross, 0.07},      {"ripple", Triangulation::Graded, 0.11},
+    {"paraboloid", Triangulation::Irregular, 0.17},    {"paraboloid", Triangulation::Graded, 0.11},
+    {"superquadric", Triangulation::AnisoAlong, 0.07}, {"superquadric", Triangulation::Graded, 0.07},
+};
+
+double offset_bound(const Case& c) {
+  for (const KnownOffset& k : kKnownOffsets)
+    if (c.surface == k.surface && c.triangulation == k.triangulation) return k.offset;
+  return 0.05;
+}
+
 void check_targets(const std::vector<Case>& cases, const PipelineOptions& options) {
   for (const Case& c : cases) {
     SurfaceParams params;
@@ -28,7 +87,21 @@ void check_targets(const std::vector<Case>& cases, const PipelineOptions& option
                    << score.ridge.coverage << ", precision " << score.ridge.precision << ", fragments "
                    << score.ridge.fragments << "; valley coverage " << score.valley.coverage << ", precision "
                    << score.valley.precision << ", fragments " << score.valley.fragments);
-    CHECK(target_failures(score) == "");
+    if (const KnownMiss* miss = known_miss(c)) {
+      for (const TypeScore* t : {&score.ridge, &score.valley}) {
+        CHECK(t->coverage >= miss->coverage);
+        CHECK(t->precision >= miss->precision);
+        CHECK(t->fragments <= miss->fragments);
+      }
+      CHECK(score.spurious_valleys() == 0);
+    } else {
+      CHECK(target_failures(score) == "");
+    }
+    if (c.noise == 0) {
+      INFO("offset " << score.offset() << " mean edges");
+      CHECK(score.offset() >= 0);
+      CHECK(score.offset() <= offset_bound(c));
+    }
   }
 }
 
@@ -59,22 +132,33 @@ TEST_CASE("the metrics score the truth itself as perfect, and nothing as nothing
       CHECK(t->precision == Approx(1.0));
       if (t->true_curves > 0) CHECK(t->fragments <= 1.0);
     }
+    CHECK(perfect.offset() < 1e-9);
     const Score empty = score_lines(s, {}, h);
     if (empty.ridge.true_curves > 0) CHECK(empty.ridge.coverage == 0);
+    CHECK(empty.offset() == -1);
   }
+  // The sine's true lines are level (constant z): lifted by 0.3 h they lie
+  // exactly 0.3 mean edges from the truth.
+  const Surface sine = make_surface("sine", {});
+  const double h = mean_edge_length(repair_mesh(sine.soup).mesh);
+  std::vector<Polyline> lifted = truth_as_lines(sine);
+  for (Polyline& l : lifted)
+    for (Vec3& q : l.points) q.z() += 0.3 * h;
+  CHECK(score_lines(sine, lifted, h).offset() == Approx(0.3).epsilon(1e-6));
 }
 
-// Every scored surface, every mesh kind, every noise level of the issue, with
-// the defaults (automatic pre-smoothing, smoothing and threshold): 45 runs,
-// about 2 s. The report's --seeds 3 meets them too (135 runs).
-TEST_CASE("defaults meet the targets on every surface, mesh kind and noise level", "[quality][noise]") {
+// Every scored surface, every meshing, every noise level of issues 9 and 13,
+// with the defaults (automatic pre-smoothing, smoothing and threshold): 120
+// runs, about 10 s.
+TEST_CASE("defaults meet the targets on every surface, meshing and noise level but the known misses",
+          "[quality][noise]") {
   std::vector<Case> cases;
   for (const std::string& name : surface_names()) {
     if (make_surface(name, {}).control) continue;
-    for (Triangulation t : {Triangulation::Uniform, Triangulation::Alternating, Triangulation::Irregular})
-      for (double noise : {0.0, 0.1, 0.25}) cases.push_back({name, t, noise});
+    for (Triangulation t : triangulations())
+      for (double noise : {0.0, 0.1, 0.25, 0.5}) cases.push_back({name, t, noise});
   }
-  REQUIRE(cases.size() == 45);
+  REQUIRE(cases.size() == 120);
   check_targets(cases, {});
 }
 
