@@ -1,9 +1,11 @@
 // A CAD-like mesh for the crease tests: a box with sharp, convex edges only.
 
-/** A 2×1×1 box, each face split into 24×24 quads (two triangles each): 12 convex edges of 24 segments. */
-export function boxObj() {
-  const n = 24;
-  const size = [2, 1, 1];
+/**
+ * A box, by default 2×1×1 with each face split into 24×24 quads (two
+ * triangles each): 12 convex edges of 24 segments. `size` and `n` make
+ * others (a thin slab for the brush test).
+ */
+export function boxObj({ size = [2, 1, 1], n = 24 } = {}) {
   const vertices = new Map();
   const lines = [];
   const vertex = (p) => {

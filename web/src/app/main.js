@@ -3,7 +3,7 @@
 import { sharedConnection } from '../client/browser.js';
 import { overallFraction, selectLines } from '../client/client.js';
 import { sampleMesh } from './sample.js';
-import { WeightBrush } from '../three/brush.js';
+import { WEIGHT_SCALE, WeightBrush } from '../three/brush.js';
 import { Viewer } from '../three/viewer.js';
 import { concaveShade } from '../three/line-layer.js';
 import { render as renderDom, showLegend, showScale } from './dom.js';
@@ -238,7 +238,7 @@ function applyView() {
   let map = null;
   if (view === 'weights' && brush.weights) {
     viewer.surface.setSingular(null);
-    map = { scale: viewer.surface.setColors(brush.weights.map((w) => w - 1)), positive: false };
+    map = { scale: viewer.surface.setColors(brush.weights.map((w) => w - 1), WEIGHT_SCALE), positive: false };
   } else if (view === 'shaded' || view === 'weights' || !session) {
     viewer.surface.setColors(null);
     viewer.surface.setSingular(null);
@@ -258,6 +258,15 @@ function applyView() {
   }
   showScale(map && { ...map, name: SCALE_NAMES[view] });
   viewer.render();
+}
+
+/** The brush settings of the panel; painting shows the weights. */
+function applyBrush() {
+  brush.setEnabled(params.brush);
+  if (params.brush && state.shown) brush.surfaceIndex(); // built now rather than at the first stroke
+  brush.radius = params.brushRadius;
+  brush.value = params.brushValue;
+  if (params.brush && params.view !== 'weights') app.update({ view: 'weights' });
 }
 
 /** The view preset and up axis of the panel. */
@@ -306,12 +315,7 @@ const gui = createGui(params, table, {
   onFit: () => viewer.fitView(),
   onCamera: applyCamera,
   onOpen: () => picker.click(),
-  onBrush: () => {
-    brush.setEnabled(params.brush);
-    brush.radius = params.brushRadius;
-    brush.value = params.brushValue;
-    if (params.brush && params.view !== 'weights') app.update({ view: 'weights' });
-  },
+  onBrush: applyBrush,
   onClearWeights: () => {
     brush.clear();
     applyView();
@@ -392,6 +396,7 @@ app.update = (partial) => {
   const pipelineKeys = pipelineParameters(table).flatMap((p) => [p.key, autoKey(p)]);
   if (Object.keys(partial).some((k) => pipelineKeys.includes(k))) compute();
   else if ('preset' in partial || 'upAxis' in partial) applyCamera();
+  else if (['brush', 'brushRadius', 'brushValue'].some((k) => k in partial)) applyBrush();
   else applyDisplay();
 };
 

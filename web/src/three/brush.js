@@ -2,11 +2,17 @@
 // per-vertex smoothing strength on the surface (1 = the global time step,
 // 0 = frozen, >1 = stronger). A stroke ends on pointer-up; the app then
 // re-runs the pipeline from the smoothing stage with the new weights.
-import { Raycaster, Vector2, Vector3 } from 'three';
+// A pointer move picks through a BVH, measures the radius along the surface
+// (surface-index.js: a thin part's far side is not painted) and recolours
+// only the vertices it touched.
+import { Raycaster, Vector2 } from 'three';
+import { SurfaceIndex } from './surface-index.js';
 
 const raycaster = new Raycaster();
 const pointer = new Vector2();
-const hit = new Vector3();
+
+/** The weights' colour map saturates at ±1 around the normal weight 1 (0 = frozen, 2 = twice). */
+export const WEIGHT_SCALE = 1;
 
 export class WeightBrush {
   /** @param {import('./viewer.js').Viewer} viewer  @param {{onStroke: (weights) => void}} handlers */
@@ -28,6 +34,18 @@ export class WeightBrush {
   /** Weights for a surface of `count` vertices, reset to 1 when the mesh changed. */
   reset(count) {
     if (this.weights?.length !== count) this.weights = new Float64Array(count).fill(1);
+    this.index = null; // built again for the new surface on first use
+  }
+
+  /** The picking and distance structure of the surface shown (built on first use: ~1 s for a million triangles). */
+  surfaceIndex() {
+    const geometry = this.viewer.surface.mesh.geometry;
+    if (this.index?.geometry !== geometry) {
+      this.index = new SurfaceIndex(geometry.getAttribute('position').array, geometry.index.array);
+      this.index.geometry = geometry;
+      this.touched = new Uint32Array(1024);
+    }
+    return this.index;
   }
 
   clear() {
@@ -57,28 +75,41 @@ export class WeightBrush {
     if (this.changed) this.onStroke(this.weights);
   }
 
+  /** One pointer position: paints within the radius (along the surface) of the point hit; returns the vertices touched. */
   paintAt(event) {
     const { viewer } = this;
     const rect = viewer.renderer.domElement.getBoundingClientRect();
     pointer.set(((event.clientX - rect.left) / rect.width) * 2 - 1, -((event.clientY - rect.top) / rect.height) * 2 + 1);
     raycaster.setFromCamera(pointer, viewer.camera);
-    const [first] = raycaster.intersectObject(viewer.surface.mesh, false);
-    if (!first) return;
-    hit.copy(first.point);
-    const geometry = viewer.surface.mesh.geometry;
-    const positions = geometry.getAttribute('position').array;
+    return this.paintRay(raycaster.ray.origin, raycaster.ray.direction);
+  }
+
+  /** Paints where the ray (in the surface's coordinates) hits; returns how many vertices changed. */
+  paintRay(origin, direction) {
+    const index = this.surfaceIndex();
+    const hit = index.raycast(origin, direction);
+    if (!hit) return 0;
+    const geometry = this.viewer.surface.mesh.geometry;
     const radius = this.radius * geometry.boundingSphere.radius;
-    for (let v = 0; v < this.weights.length; v++) {
-      const dx = positions[3 * v] - hit.x, dy = positions[3 * v + 1] - hit.y, dz = positions[3 * v + 2] - hit.z;
-      const d2 = dx * dx + dy * dy + dz * dz;
-      if (d2 > radius * radius) continue;
+    let count = 0;
+    index.within(hit.triangle, hit.point, radius, (v, d) => {
       // Smooth falloff: full value in the centre, unchanged at the rim.
-      const t = 1 - Math.sqrt(d2) / radius;
+      const t = 1 - d / radius;
       const blend = t * t * (3 - 2 * t);
       this.weights[v] += (this.value - this.weights[v]) * blend;
-      this.changed = true;
-    }
-    viewer.surface.setColors(this.weights.map((w) => w - 1));
-    viewer.render();
+      if (count === this.touched.length) {
+        const grown = new Uint32Array(2 * count);
+        grown.set(this.touched);
+        this.touched = grown;
+      }
+      this.touched[count++] = v;
+    });
+    if (!count) return 0;
+    this.changed = true;
+    const surface = this.viewer.surface;
+    if (!surface.mesh.geometry.getAttribute('color')) surface.setColors(this.weights.map((w) => w - 1), WEIGHT_SCALE);
+    else surface.updateColors(this.touched, count, (v) => this.weights[v] - 1, WEIGHT_SCALE);
+    this.viewer.render();
+    return count;
   }
 }

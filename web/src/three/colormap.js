@@ -16,13 +16,16 @@ export function robustScale(values) {
 
 /** Colours of `values`, saturated at ±`scale` (by default robustScale(values)); the page's colour scale shows the same scale. */
 export function divergingColors(values, out = new Float32Array(values.length * 3), scale = robustScale(values)) {
-  for (let i = 0; i < values.length; i++) {
-    const t = Math.max(-1, Math.min(1, (values[i] || 0) / scale));
-    const [from, to] = t < 0 ? [WHITE, BLUE] : [WHITE, RED];
-    const a = Math.abs(t);
-    for (let k = 0; k < 3; k++) out[3 * i + k] = from[k] + (to[k] - from[k]) * a;
-  }
+  for (let i = 0; i < values.length; i++) divergingColor(values[i], scale, out, 3 * i);
   return out;
+}
+
+/** The colour of one value into out[offset…offset + 2]. */
+export function divergingColor(value, scale, out, offset) {
+  const t = Math.max(-1, Math.min(1, (value || 0) / scale));
+  const to = t < 0 ? BLUE : RED;
+  const a = Math.abs(t);
+  for (let k = 0; k < 3; k++) out[offset + k] = WHITE[k] + (to[k] - WHITE[k]) * a;
 }
 
 /** The map as a CSS gradient from −1 (or 0 with `positive`) to +1, for a colour scale. */

@@ -1,7 +1,7 @@
 // The shaded surface. Polygon offset pushes it back in depth so the feature
 // lines lying exactly on it win the depth test without showing through it.
 import { BufferAttribute, BufferGeometry, DoubleSide, Mesh, MeshStandardMaterial } from 'three';
-import { divergingColors, robustScale } from './colormap.js';
+import { divergingColor, divergingColors, robustScale } from './colormap.js';
 
 export class SurfaceLayer {
   constructor() {
@@ -42,10 +42,13 @@ export class SurfaceLayer {
     this.setSingular(null);
   }
 
-  /** Per-vertex scalar field shown as a colour map, or null for plain shading; returns the value the colours saturate at. */
-  setColors(values) {
+  /**
+   * Per-vertex scalar field shown as a colour map, or null for plain
+   * shading; `scale`: the value the colours saturate at (by default the 95th
+   * percentile of |values|), returned.
+   */
+  setColors(values, scale = values ? robustScale(values) : 0) {
     const geometry = this.mesh.geometry;
-    const scale = values ? robustScale(values) : 0;
     if (values) {
       geometry.setAttribute('color', new BufferAttribute(divergingColors(values, undefined, scale), 3));
       this.material.color.set(0xffffff);
@@ -56,6 +59,32 @@ export class SurfaceLayer {
     this.material.vertexColors = !!values;
     this.material.needsUpdate = true;
     return scale;
+  }
+
+  /**
+   * New colours for `count` vertices only (vertices[0…count)), value(v)
+   * each, saturated at `scale`: only their parts of the colour buffer are
+   * sent to the GPU. The colour map must be on (setColors).
+   */
+  updateColors(vertices, count, value, scale) {
+    const colors = this.mesh.geometry.getAttribute('color');
+    if (!colors || !count) return;
+    const sorted = vertices.subarray(0, count).sort();
+    colors.clearUpdateRanges();
+    // Runs of vertices, joined across gaps of up to 64 (one upload each, at most 32 of them).
+    const gap = Math.max(64, Math.ceil((sorted[count - 1] - sorted[0]) / 32));
+    let start = sorted[0], end = sorted[0];
+    for (let i = 0; i < count; i++) {
+      const v = sorted[i];
+      divergingColor(value(v), scale, colors.array, 3 * v);
+      if (v - end > gap) {
+        colors.addUpdateRange(3 * start, 3 * (end - start + 1));
+        start = v;
+      }
+      end = v;
+    }
+    colors.addUpdateRange(3 * start, 3 * (end - start + 1));
+    colors.needsUpdate = true;
   }
 
   /** Highlights the triangles whose mask value is 0 (singular), or hides the overlay. */

@@ -1,0 +1,80 @@
+// The smoothing brush measures its radius along the surface (issue 17): on a
+// thin slab, a stroke on the top face with a radius many times the slab's
+// thickness paints top vertices only, where a straight-line radius would
+// reach through to the bottom face. A move recolours only the vertices it
+// touched. Needs web/dist (web/build.sh). Its speed: bench/brush.mjs.
+import assert from 'node:assert/strict';
+import { after, before, test } from 'node:test';
+import { dropFiles, nextResult, openApp, sampleReady } from './app-page.mjs';
+import { boxObj } from './box-obj.mjs';
+
+let app, page;
+
+before(async () => {
+  app = await openApp({}, { viewport: { width: 1000, height: 750 } });
+  ({ page } = app);
+  await sampleReady(page);
+});
+
+after(() => app?.close());
+
+test('a thin slab: the brush paints the top face only, and only the touched colours are sent', async () => {
+  // 2 × 2 × 0.05, 40×40 quads a face: the top face at z = +0.025 faces the front view.
+  const slab = boxObj({ size: [2, 2, 0.05], n: 40 });
+  const result = await nextResult(page, () => dropFiles(page, [{ name: 'slab.obj', text: slab }]));
+  assert.equal(result.name, 'slab.obj');
+  await page.evaluate(() => window.crestline.update({ brush: true, brushRadius: 0.2, brushValue: 0 }));
+  const canvas = await page.locator('#view canvas').boundingBox();
+  // The screen point of the slab's centre (the orbit centre: the free area's centre).
+  const centre = await page.evaluate(() => {
+    const { viewer } = window.crestline;
+    const p = viewer.controls.target.clone().project(viewer.camera);
+    const r = viewer.renderer.domElement.getBoundingClientRect();
+    return [r.left + ((p.x + 1) / 2) * r.width, r.top + ((1 - p.y) / 2) * r.height];
+  });
+  assert.ok(centre[0] > canvas.x && centre[0] < canvas.x + canvas.width);
+  const count = await page.evaluate(() => window.crestline.results.length);
+  // Record what each move sends of the colour buffer.
+  await page.evaluate(() => {
+    const attribute = window.crestline.viewer.surface.mesh.geometry.getAttribute('color');
+    const add = attribute.addUpdateRange.bind(attribute);
+    window.colourUpload = { attribute, ranges: [] };
+    attribute.addUpdateRange = (start, count) => (window.colourUpload.ranges.push(count), add(start, count));
+  });
+  await page.mouse.move(centre[0], centre[1]);
+  await page.mouse.down();
+  await page.mouse.move(centre[0] + 20, centre[1] + 10, { steps: 3 });
+  const colours = await page.evaluate(() => {
+    const { attribute, ranges } = window.colourUpload;
+    const now = window.crestline.viewer.surface.mesh.geometry.getAttribute('color');
+    return { same: now === attribute, ranges, length: attribute.array.length };
+  });
+  await page.mouse.up();
+  await page.waitForFunction((n) => window.crestline.results.length > n, count, { timeout: 30000 });
+  const painted = await page.evaluate(() => {
+    const { viewer, brush } = window.crestline;
+    const positions = viewer.surface.mesh.geometry.getAttribute('position').array;
+    const radius = brush.radius * viewer.surface.mesh.geometry.boundingSphere.radius;
+    let top = 0, bottom = 0, bottomInStraightReach = 0;
+    brush.weights.forEach((w, v) => {
+      const [x, y, z] = [positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]];
+      if (w < 1) z > 0 ? top++ : bottom++;
+      // Bottom vertices a straight-line radius from the centre would have reached.
+      if (z < 0 && Math.hypot(x, y) < radius) bottomInStraightReach++;
+    });
+    return { top, bottom, bottomInStraightReach, radius, ran: window.crestline.lastResult.ran };
+  });
+  console.log(`# slab: ${painted.top} top vertices painted, ${painted.bottom} bottom; a straight-line radius would reach ${painted.bottomInStraightReach} bottom ones; 4 moves sent ${colours.ranges.length} colour ranges (${colours.ranges.reduce((a, b) => a + b, 0)} of ${colours.length} floats)`);
+  assert.ok(painted.radius > 4 * 0.05, `the radius ${painted.radius} is several times the thickness`);
+  assert.ok(painted.top > 50, `top vertices painted: ${painted.top}`);
+  assert.ok(painted.bottomInStraightReach > 50, 'a straight-line radius would paint through');
+  assert.equal(painted.bottom, 0, 'no bottom vertex painted');
+  assert.equal(painted.ran[0], 'smoothing', 'one recompute per stroke, from smoothing');
+  const sent = colours.ranges.reduce((a, b) => a + b, 0);
+  assert.equal(colours.same, true, 'the moves update the colour buffer in place');
+  assert.ok(colours.ranges.length >= 4 && sent < colours.length, `4 moves send only the touched colours (${sent} floats in ${colours.ranges.length} ranges; the buffer has ${colours.length})`);
+});
+
+test('no uncaught errors in the page', () => {
+  assert.deepEqual(app.pageErrors, []);
+});
