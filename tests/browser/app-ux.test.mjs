@@ -43,6 +43,7 @@ test('a random blob named x.glb and a zero-byte x.stl: one clean sentence each n
   const stl = await errorFor('x.stl', []);
   console.log(`${glb} / ${stl}`);
   assertCleanSentence(glb, 'x.glb');
+  assert.equal(glb, "x.glb: the file is neither a GLB (which starts with the bytes 'glTF') nor glTF JSON.");
   assertCleanSentence(stl, 'x.stl');
   // The page recovers: the bunny is still loaded and re-filters.
   const result = await nextResult(page, () => page.evaluate(() => window.crestline.update({ autoThreshold: false, threshold: window.crestline.lastResult.stats.threshold * 0.9 })));
@@ -118,6 +119,19 @@ test('every panel control has a plain-words tooltip; the pipeline ones are the p
     return out;
   });
   assert.deepEqual(problems, []);
+});
+
+test('a GLB export logs no warnings (the core writer makes it, not GLTFExporter)', async () => {
+  const warnings = [];
+  const listener = (message) => ['warning', 'error'].includes(message.type()) && warnings.push(message.text());
+  page.on('console', listener);
+  const saved = await page.evaluate(async () => {
+    const result = await window.crestline.save('glb');
+    return result && { fileName: result.fileName, magic: new TextDecoder().decode((await result.blob.arrayBuffer()).slice(0, 4)) };
+  });
+  page.off('console', listener);
+  assert.equal(saved?.magic, 'glTF');
+  assert.deepEqual(warnings, []);
 });
 
 test('no uncaught errors in the page', () => {

@@ -231,7 +231,7 @@ test('a glTF with its .bin and an OBJ load; a bad src fires error with a clear m
   const [missing] = await eventsOf(page, 'missing', 'error');
   const [garbage] = await eventsOf(page, 'garbage', 'error');
   assert.match(missing.detail.message, /^no-such-mesh\.glb: could not be fetched \(HTTP 404/);
-  assert.match(garbage.detail.message, /^garbage\.glb: the glTF JSON cannot be parsed\./);
+  assert.match(garbage.detail.message, /^garbage\.glb: the file is neither a GLB \(which starts with the bytes 'glTF'\) nor glTF JSON\./);
   assert.equal(await page.evaluate(() => document.getElementById('missing').shadowRoot.querySelector('[part=error]').textContent), missing.detail.message);
   await page.close();
 });

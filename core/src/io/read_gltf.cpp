@@ -20,6 +20,7 @@
 #include <tiny_gltf.h>
 
 #include <Eigen/Geometry>
+#include <cctype>
 #include <cstring>
 #include <map>
 
@@ -237,7 +238,17 @@ void check_integers(const Input& in, const Json& json) {
 std::string prepare_json(const Input& in, const std::string& text, bool binary, Files& files) {
   check_depth(in, text);
   Json json = Json::parse(text, nullptr, false);
-  if (json.is_discarded() || !json.is_object()) fail(ErrorKind::InvalidInput, in, "the glTF JSON cannot be parsed.");
+  if (json.is_discarded() || !json.is_object()) {
+    // A ".glb" without the GLB header that is not glTF JSON either is most
+    // likely no glTF at all (a renamed file, a download error page).
+    const size_t dot = in.name.find_last_of('.');
+    std::string ext = dot == std::string::npos ? "" : in.name.substr(dot + 1);
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    if (!binary && ext == "glb")
+      fail(ErrorKind::InvalidInput, in,
+           "the file is neither a GLB (which starts with the bytes 'glTF') nor glTF JSON.");
+    fail(ErrorKind::InvalidInput, in, "the glTF JSON cannot be parsed.");
+  }
   check_version(in, json);
   check_integers(in, json);
   for (const char* unused : {"images", "textures", "samplers", "materials", "animations", "skins", "cameras"}) {
