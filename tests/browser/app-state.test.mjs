@@ -1,7 +1,7 @@
 // The page's one state (issue 17, items 1–2): mesh A is shown, file B is
 // dropped; while B loads, the header names B and the picture, stats and
 // exports stay A's, labelled as the previous mesh; Cancel — while B is read,
-// once it is loaded, in the middle of its pipeline — gives A's page back
+// once it is loaded, at the start of each pipeline stage — gives A's page back
 // whole (the same header, stats, picture and byte-identical OBJ export); an
 // export error clears when a later action succeeds. Generated meshes, so it
 // is quick. Needs web/dist (web/build.sh).
@@ -10,6 +10,7 @@ import { after, before, test } from 'node:test';
 import { dropFiles, nextResult, openApp, sampleReady } from './app-page.mjs';
 import { boxObj } from './box-obj.mjs';
 import { sineHeightField } from '../node/helpers.mjs';
+import { STAGES } from '../../web/src/worker/protocol.js';
 
 /** A soup as OBJ text. */
 function objText({ positions, indices }) {
@@ -96,7 +97,8 @@ async function dropAndCancelAt(hook) {
   return { before, count };
 }
 
-for (const hook of ['read', 'loaded', 'smoothing']) {
+// Every point of a load: reading, loaded, and the start of each pipeline stage.
+for (const hook of ['read', 'loaded', ...STAGES]) {
   test(`Cancel while B is at "${hook}": A's page comes back whole`, async () => {
     const { before, count } = await dropAndCancelAt(hook);
     assert.equal(before.state, 'loading');
