@@ -8,7 +8,7 @@ import { mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { after, before, test } from 'node:test';
-import { openApp } from './app-page.mjs';
+import { dropFiles, openApp } from './app-page.mjs';
 import { boxObj } from './box-obj.mjs';
 import { serve } from './server.mjs';
 
@@ -45,6 +45,21 @@ test('#src= with parameters: the linked mesh, computed with them, Z up', async (
   assert.equal(await page.textContent('#error'), '');
 });
 
+test('the address bar holds the link to the view shown; opened elsewhere, it gives the same lines', async () => {
+  const before = await page.evaluate(() => window.crestline.results.length);
+  await page.evaluate(() => window.crestline.update({ threshold: 3.5 }));
+  await page.waitForFunction((n) => window.crestline.results.length > n && document.body.dataset.state === 'ready', before, { timeout: 30000 });
+  const shown = await page.evaluate(() => ({ hash: location.hash, stats: window.crestline.lastResult.stats }));
+  const fragment = new URLSearchParams(shown.hash.slice(1));
+  assert.deepEqual(Object.fromEntries(fragment), { src: 'pages/box.obj', 'smoothing-steps': '4', threshold: '3.5', 'up-axis': 'z' });
+  const other = await page.context().browser().newPage();
+  await other.goto(`${app.origin}/${shown.hash}`);
+  await other.waitForFunction(() => window.crestline?.lastResult && document.body.dataset.state === 'ready', null, { timeout: 60000 });
+  const again = await other.evaluate(() => window.crestline.lastResult.stats);
+  for (const key of ['threshold', 'ridges', 'valleys', 'ridgeLength', 'valleyLength']) assert.equal(again[key], shown.stats[key], key);
+  await other.close();
+});
+
 test('a missing file and a server without CORS: one sentence naming the file; the page keeps its mesh', async () => {
   await page.evaluate(() => (location.hash = '#src=pages/missing.obj'));
   await page.waitForFunction(() => document.body.dataset.state === 'error', null, { timeout: 30000 });
@@ -64,6 +79,14 @@ test('a new fragment opens the next mesh', async () => {
   assert.equal(result.name, 'tetra.obj');
   assert.equal(result.stats.triangles, 4);
   assert.equal(await page.textContent('#error'), '');
+  assert.equal(new URLSearchParams((await page.evaluate(() => location.hash)).slice(1)).get('src'), 'pages/tetra.obj');
+});
+
+test('a dropped file is not a link: the address bar drops the fragment', async () => {
+  const count = await page.evaluate(() => window.crestline.results.length);
+  await dropFiles(page, [{ name: 'tetra2.obj', text: 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n' }]);
+  await page.waitForFunction((n) => window.crestline.results.length > n, count, { timeout: 30000 });
+  assert.equal(await page.evaluate(() => location.hash), '');
 });
 
 test('no uncaught errors in the page', () => {

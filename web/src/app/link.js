@@ -2,7 +2,8 @@
 // the names of <crestline-viewer>'s attributes (embed.html takes the same):
 // a parameter by its CLI flag, read with the core's table. The mesh is
 // fetched by the worker like the widget's src (same origin, or a server that
-// allows cross-origin requests) and read like a dropped file.
+// allows cross-origin requests) and read like a dropped file. While the page
+// shows a linked mesh, the address bar holds the link to what it shows.
 import { ATTRIBUTE_ALIASES, attributeName, parseParameter, pipelineParameters } from '../client/parameters.js';
 import { autoKey } from './gui.js';
 
@@ -11,7 +12,7 @@ import { autoKey } from './gui.js';
  * @param {string} hash location.hash
  * @param {import('../client/parameters.js').Parameter[]} table
  * @param {string} base the page's URL: a relative src is resolved against it
- * @returns {{url: string, name: string, settings: Record<string, unknown>} | null}
+ * @returns {{url: string, name: string, src: string, settings: Record<string, unknown>} | null}
  */
 export function parseLink(hash, table, base) {
   const fragment = new URLSearchParams(hash.replace(/^#/, ''));
@@ -22,7 +23,7 @@ export function parseLink(hash, table, base) {
   try {
     url = new URL(src, base);
   } catch {
-    return { url: '', name: src, settings: {} };
+    return { url: '', name: src, src, settings: {} };
   }
   const name = decodeURIComponent(url.pathname.split('/').pop() || url.hostname || 'model');
   const settings = {};
@@ -34,5 +35,22 @@ export function parseLink(hash, table, base) {
   }
   const up = fragment.get('up-axis')?.toLowerCase();
   if (up === 'y' || up === 'z') settings.upAxis = up;
-  return { url: url.href, name, settings };
+  return { url: url.href, name, src, settings };
+}
+
+/**
+ * The fragment that opens `src` as the page shows it: the parameters that
+ * differ from the table's defaults, by their flags, and the up axis.
+ * @param {string} src the link's src as given
+ * @param {Record<string, any>} params the panel's values
+ * @param {import('../client/parameters.js').Parameter[]} table
+ */
+export function linkFragment(src, params, table) {
+  const fragment = new URLSearchParams({ src });
+  for (const p of pipelineParameters(table)) {
+    const value = p.automatic && params[autoKey(p)] ? 'auto' : params[p.key];
+    if (String(value) !== String(p.default)) fragment.set(attributeName(p), String(value));
+  }
+  if (params.upAxis && params.upAxis !== 'y') fragment.set('up-axis', params.upAxis);
+  return `#${fragment}`;
 }

@@ -13,7 +13,7 @@ import { createExports } from './exports.js';
 import { PICKER_ACCEPT, ignoredSentence, selectFiles } from './files.js';
 import { pipelineParameters } from '../client/parameters.js';
 import { autoKey, createGui, defaultParams, pipelineOptions } from './gui.js';
-import { parseLink } from './link.js';
+import { linkFragment, parseLink } from './link.js';
 
 const connection = sharedConnection();
 // The parameter table of the core: the panel's controls and defaults.
@@ -119,6 +119,9 @@ function received(session, result) {
   app.mesh = { name: shown.name, vertices: shown.vertices, triangles: shown.triangles, loadMs: shown.loadMs };
   app.lastResult = { name: shown.name, ran: result.ran, stats: result.stats, lineCount: kept.length, linesChanged: result.linesChanged, creaseCount: result.creases?.convex.length ?? 0, drawMs, milliseconds: result.milliseconds };
   app.results.push(app.lastResult);
+  // The address bar: the link to this view of a linked mesh, else the bare page (no hashchange).
+  const address = shown.src ? linkFragment(shown.src, { ...params, ...optionsAsParams(shown.options) }, table) : '';
+  if (address !== location.hash) history.replaceState(null, '', `${location.pathname}${location.search}${address}`);
   gui.showUsed(result.stats, rescaleThreshold);
   rescaleThreshold = false;
   state.error = null; // a good result supersedes an earlier failure
@@ -131,15 +134,22 @@ function received(session, result) {
   shown.waiting?.splice(0).forEach((resolve) => resolve());
 }
 
-/** The panel shows `options` (the values that made the lines shown). */
-function showOptions(options) {
-  if (!options) return;
+/** Pipeline options as the panel's values. */
+function optionsAsParams(options = {}) {
+  const out = {};
   for (const p of pipelineParameters(table)) {
     const value = options[p.key];
     if (value === undefined) continue;
-    if (p.automatic) params[autoKey(p)] = value === 'auto';
-    if (value !== 'auto') params[p.key] = value;
+    if (p.automatic) out[autoKey(p)] = value === 'auto';
+    if (value !== 'auto') out[p.key] = value;
   }
+  return out;
+}
+
+/** The panel shows `options` (the values that made the lines shown). */
+function showOptions(options) {
+  if (!options) return;
+  Object.assign(params, optionsAsParams(options));
   gui.gui.controllersRecursive().forEach((c) => c.updateDisplay());
   if (state.shown?.result) gui.showUsed(state.shown.result.stats, false);
 }
@@ -354,6 +364,7 @@ function openLink(link) {
   if (link.settings.upAxis) applyCamera();
   if (!link.url) return fail(`${link.name}: is not a URL the page can fetch.`);
   startMesh(link.name, (session, options) => session.openUrl(link.url, link.name, options));
+  state.loading.src = link.src;
 }
 
 /** Dropped or picked files: read by the C++ readers in the worker, so the page never blocks. */

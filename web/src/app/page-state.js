@@ -10,9 +10,9 @@
 /**
  * @typedef {import('../client/client.js').Session} Session
  * @typedef {import('../client/client.js').Result} Result
- * @typedef {{session: Session, name: string, vertices?: number, triangles?: number, loadMs?: number,
+ * @typedef {{session: Session, name: string, src?: string, vertices?: number, triangles?: number, loadMs?: number,
  *            notes: string[], result?: Result, options?: object, stale?: boolean}} MeshState
- *   options: the pipeline options that made `result` (the panel returns to them on cancel);
+ *   src: the link it was opened by (#src=); options: the pipeline options that made `result` (the panel returns to them on cancel);
  *   stale: the worker's lines may no longer be `result`'s (a cancelled or failed run, a worker restart)
  * @typedef {{shown: MeshState | null, loading: (MeshState & {restore: object | null}) | null,
  *            error: string | null, notes: string[], progress: {stage: string, fraction: number} | null}} PageState
