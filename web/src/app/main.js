@@ -131,8 +131,11 @@ function received(session, result) {
   render();
   if (promoted) viewer.fitView(); // once the info box shows the new mesh: framing avoids it
   if (!session.busy) applyView();
-  shown.waiting?.splice(0).forEach((resolve) => resolve());
+  release(shown);
 }
+
+/** Exports waiting for the shown mesh's re-run go on (after a failure they fail with the worker's sentence). */
+const release = (shown) => shown?.waiting?.splice(0).forEach((resolve) => resolve());
 
 /** Pipeline options as the panel's values. */
 function optionsAsParams(options = {}) {
@@ -176,6 +179,7 @@ function cancelled(session) {
   state.shown.stale = true;
   state.progress = null;
   state.notes = ['Cancelled: the lines shown are those of the values in the panel.'];
+  release(state.shown);
   showOptions(state.shown.options);
   render();
   applyView();
@@ -189,6 +193,7 @@ function failed(session, { message }) {
     state.loading = null;
   } else if (session === state.shown?.session) {
     state.shown.stale = true;
+    release(state.shown);
   } else {
     return forget(session);
   }
@@ -295,6 +300,7 @@ const workerExports = {
     exporting.set(session, (exporting.get(session) ?? 0) + 1);
     try {
       await current(source.shown);
+      if (source.shown.stale) throw new Error(`the lines of ${source.shown.name} could not be computed again for it (cancelled or failed).`);
       return await session.exportFile(format, view);
     } finally {
       exporting.set(session, exporting.get(session) - 1);
