@@ -69,6 +69,16 @@ const cases = {
     j.nodes = Array.from({ length: 6000 }, () => ({ mesh: 0 }));
     j.extras = ' '.repeat(30000);
   }), 'expands to 60000000 triangles, more than the limit of 50000000'],
+  // Item 4's example: 48 triangles placed 10^6 times by EXT_mesh_gpu_instancing
+  // (zeros: no bufferView), 1 MB; under the triangle limit, past 16 times
+  // the triangles stored and the floor of 4·10^6.
+  'amplified.gltf': [gltf((j) => {
+    j.extensionsUsed = ['EXT_mesh_gpu_instancing'];
+    j.accessors[0] = { componentType: 5126, count: 144, type: 'VEC3' };
+    j.accessors.push({ componentType: 5126, count: 1_000_000, type: 'VEC3' });
+    j.nodes = [{ mesh: 0, extensions: { EXT_mesh_gpu_instancing: { attributes: { TRANSLATION: 1 } } } }];
+    j.extras = ' '.repeat(1_000_000);
+  }), 'which expands their 48 triangles to 48000000, more than the limit of 4000000 (16 times the triangles stored'],
   'bom.obj': [`\uFEFF${square}f 1 2 3 4\n`, null],
   'continued.obj': [`${square}f 1 2 \\\n 3 4\n`, null],
 };

@@ -455,8 +455,10 @@ class GltfReader {
   /// expanded: each placed mesh is decoded once to count its triangles and
   /// vertices, which are then multiplied by how often it is placed (10^6
   /// GPU instances of a small mesh took 4 GB and 18 s, then gave a soup).
+  /// Besides the triangle limit, the expansion is bounded relative to the
+  /// triangles stored (ReadOptions::max_expansion explains the numbers).
   void check_expansion() {
-    uint64_t triangles = 0, vertices = 0, placed = 0;
+    uint64_t triangles = 0, vertices = 0, placed = 0, stored = 0;
     auto add = [](uint64_t& total, uint64_t each, uint64_t copies) {
       const uint64_t cap = UINT64_MAX / 4;
       total = each > 0 && copies > (cap - total) / each ? cap : total + each * copies;
@@ -468,6 +470,7 @@ class GltfReader {
         mesh_triangles += primitive.triangles.size() / 3;
         mesh_vertices += primitive.positions.size() / 3;
       }
+      if (copies > 0) stored += mesh_triangles;
       add(triangles, mesh_triangles, copies);
       add(vertices, mesh_vertices, copies);
       placed = std::min<uint64_t>(placed + copies, UINT64_MAX / 4);
@@ -479,6 +482,17 @@ class GltfReader {
                std::to_string(by_triangles ? triangles : vertices) + (by_triangles ? " triangles" : " vertices") +
                ", more than the limit of " +
                std::to_string(by_triangles ? options_.max_triangles : 3 * options_.max_triangles + 3) + ".");
+    }
+    const uint64_t ratio = options_.max_expansion;
+    const uint64_t limit =
+        std::max<uint64_t>(options_.max_expanded_triangles,
+                           stored > UINT64_MAX / 4 / std::max<uint64_t>(ratio, 1) ? UINT64_MAX / 4 : ratio * stored);
+    if (triangles > limit) {
+      fail(ErrorKind::TooLarge, in_,
+           "the scene places its meshes " + std::to_string(placed) + " times, which expands their " +
+               std::to_string(stored) + " triangles to " + std::to_string(triangles) + ", more than the limit of " +
+               std::to_string(limit) + " (" + std::to_string(ratio) + " times the triangles stored, or " +
+               std::to_string(options_.max_expanded_triangles) + " if that is more).");
     }
   }
 
