@@ -9,6 +9,12 @@
 #include <vector>
 
 namespace crestline::io::detail {
+
+PolygonWork& polygon_work() {
+  thread_local PolygonWork work;
+  return work;
+}
+
 namespace {
 
 double cross2(const double* o, const double* a, const double* b) {
@@ -67,14 +73,17 @@ class CornerTree {
     Range stack[64];
     int top = 0;
     stack[top++] = {0, 0, n_};
+    PolygonWork& work = polygon_work();
     while (top > 0) {
       const Range r = stack[--top];
       const Node& node = nodes_[r.node];
+      ++work.nodes;
       if (node.alive == 0 || node.x0 > x1 || node.x1 < x0 || node.y0 > y1 || node.y1 < y0) continue;
       if (r.hi - r.lo <= kLeaf) {
         for (uint32_t k = r.lo; k < r.hi; ++k) {
           const uint32_t corner = order_[k];
           const double* p = &xy_[2 * corner];
+          ++work.points;
           if (alive_[corner] && p[0] >= x0 && p[0] <= x1 && p[1] >= y0 && p[1] <= y1 && stop(corner)) return true;
         }
         continue;
@@ -157,6 +166,7 @@ class EarClipper {
   // Strictly convex, and no other corner inside or on the triangle (corners
   // coincident with one of its three are skipped: repeated corners).
   bool is_ear(uint32_t i) const {
+    ++polygon_work().ear_tests;
     const double* a = &xy_[2 * prev_[i]];
     const double* b = &xy_[2 * i];
     const double* c = &xy_[2 * next_[i]];

@@ -24,4 +24,14 @@ namespace crestline::io::detail {
 /// outline has no ear (self-intersecting or degenerate outlines).
 void add_polygon(TriangleSoup& soup, const uint32_t* poly, size_t n);
 
+/// The work add_polygon has done on this thread: ear tests, and the k-d tree
+/// nodes and points those tests examined. Tests assert the clipper's
+/// complexity with these counts (operation counts, not timings, so that a
+/// slow or sanitized build cannot fail them and a quadratic clipper cannot
+/// pass them); set it to {} before the polygons to be measured.
+struct PolygonWork {
+  uint64_t ear_tests = 0, nodes = 0, points = 0;
+};
+PolygonWork& polygon_work();
+
 }  // namespace crestline::io::detail
