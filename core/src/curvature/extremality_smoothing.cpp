@@ -64,8 +64,9 @@ bool smooth_fields_paired(const Topology& topology, const CotanWeights& cotan, s
                           const Curvature& curvature, const Extremality& in, int steps,
                           const std::function<void(double)>& progress, Extremality& out) {
   const size_t nv = cotan.vertex_mass.size();
-  const SignedPairSolver solver(signed_pair_matrix(topology, cotan, edge_strength, curvature));
-  std::vector<double>().swap(edge_strength);
+  SignedPairMatrix matrix = signed_pair_matrix(topology, cotan, edge_strength, curvature);
+  std::vector<double>().swap(edge_strength);  // before the solver copies the matrix
+  const SignedPairSolver solver(std::move(matrix));
   std::vector<double> x(2 * nv), b(2 * nv);
   for (size_t v = 0; v < nv; ++v) x[2 * v] = in.e_max[v], x[2 * v + 1] = in.e_min[v];
   for (int step = 0; step < steps; ++step) {

@@ -117,28 +117,44 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix) {
   std::vector<uint32_t> position(n), fill(colour_begin_.begin(), colour_begin_.end() - 1);
   for (size_t i = 0; i < n; ++i) position[i] = fill[colour[i]]++, order_[position[i]] = static_cast<uint32_t>(i);
   // The permuted matrix, each row's entries as upper (later colours) | lower.
-  a_.offsets.assign(n + 1, 0);
-  a_.columns.resize(matrix.columns.size());
-  a_.weights.resize(matrix.weights.size());
+  // Weights first, then columns, each input array released once copied: at
+  // most one and a half matrices are held, not two.
   a_.diagonal.resize(n);
-  lower_begin_.resize(n);
   inverse_diagonal_.resize(n);
-  uint32_t next = 0;
+  for (size_t k = 0; k < n; ++k) {
+    a_.diagonal[k] = matrix.diagonal[order_[k]];
+    inverse_diagonal_[k] = 1.0 / a_.diagonal[k];
+  }
+  std::vector<double>().swap(matrix.diagonal);
+  // Calls entry(input entry, output entry) in the output's order.
+  auto permute = [&](const auto& entry) {
+    uint32_t next = 0;
+    for (size_t k = 0; k < n; ++k) {
+      const size_t i = order_[k];
+      for (int lower = 0; lower < 2; ++lower)
+        for (uint32_t e = matrix.offsets[i]; e < matrix.offsets[i + 1]; ++e) {
+          const size_t j = matrix.columns[e] & SignedPairMatrix::kColumnMask;
+          if ((colour[j] < colour[i]) == bool(lower)) entry(e, next++);
+        }
+    }
+  };
+  a_.weights.resize(matrix.weights.size());
+  permute([&](uint32_t from, uint32_t to) { a_.weights[to] = matrix.weights[from]; });
+  std::vector<double>().swap(matrix.weights);
+  a_.columns.resize(matrix.columns.size());
+  permute([&](uint32_t from, uint32_t to) {
+    const uint32_t c = matrix.columns[from];
+    a_.columns[to] = position[c & SignedPairMatrix::kColumnMask] | (c & ~SignedPairMatrix::kColumnMask);
+  });
+  a_.offsets.assign(n + 1, 0);
+  lower_begin_.resize(n);
   for (size_t k = 0; k < n; ++k) {
     const size_t i = order_[k];
-    a_.diagonal[k] = matrix.diagonal[i];
-    inverse_diagonal_[k] = 1.0 / matrix.diagonal[i];
-    for (int lower = 0; lower < 2; ++lower) {
-      if (lower) lower_begin_[k] = next;
-      for (uint32_t e = matrix.offsets[i]; e < matrix.offsets[i + 1]; ++e) {
-        const uint32_t c = matrix.columns[e];
-        const size_t j = c & SignedPairMatrix::kColumnMask;
-        if ((colour[j] < colour[i]) != bool(lower)) continue;
-        a_.columns[next] = position[j] | (c & ~SignedPairMatrix::kColumnMask);
-        a_.weights[next++] = matrix.weights[e];
-      }
-    }
-    a_.offsets[k + 1] = next;
+    uint32_t upper = 0;
+    for (uint32_t e = matrix.offsets[i]; e < matrix.offsets[i + 1]; ++e)
+      upper += colour[matrix.columns[e] & SignedPairMatrix::kColumnMask] > colour[i];
+    lower_begin_[k] = a_.offsets[k] + upper;
+    a_.offsets[k + 1] = a_.offsets[k] + (matrix.offsets[i + 1] - matrix.offsets[i]);
   }
 }
 
