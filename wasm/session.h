@@ -54,8 +54,9 @@ class Session {
   /// {error, kind}.
   val run(val progress);
 
-  /// {positions: Float64Array, indices: Uint32Array} of the surface the
-  /// lines lie on (after pre-smoothing).
+  /// {positions: Float64Array, indices: Uint32Array} of the repaired input
+  /// mesh: the lines are placed on it even when pre-smoothing traced them on
+  /// a smoothed copy.
   val surface() const;
   /// Ridges and valleys as flat arrays: {points: Float64Array (xyz), offsets: Uint32Array
   /// (lineCount+1, in points), types: Uint8Array (0 ridge, 1 valley),

@@ -16,7 +16,7 @@
 // smoothing, joining nor automatic threshold. What the user sees is mapped
 // back: lines(), all_lines(), surface() and the lengths in stats() are in the
 // input's coordinates; the per-stage fields (curvature(), extremality(),
-// traced(), …) stay in the working frame (lengths in mean edges of their
+// segments(), …) stay in the working frame (lengths in mean edges of their
 // component, curvatures in 1 / mean edge).
 #include <functional>
 #include <string>
@@ -105,8 +105,8 @@ class Pipeline {
   const Mesh& input_mesh() const { return input_; }
   /// The mesh after optional pre-smoothing, in the input's coordinates.
   const Mesh& surface() const { return presmoothed_ ? surface_ : input_; }
-  /// The same in the working frame: all curvature lives on it, and traced()
-  /// lies on its edges.
+  /// The same in the working frame: all curvature lives on it, and segments()
+  /// lie on its edges.
   const Mesh& working_surface() const { return presmoothed_ ? working_surface_ : local_input_; }
   const ComponentFrames& frames() const { return frames_; }
   const Topology& topology() const { return topology_; }
@@ -114,7 +114,9 @@ class Pipeline {
   const Extremality& raw_extremality() const { return raw_extremality_; }
   const Extremality& extremality() const { return extremality_; }  // after smoothing
   const Regularity& regularity() const { return regularity_; }
-  const SingularResult& traced() const { return singular_; }
+  /// The line graphs: the regular triangles' segments (tracing) with the
+  /// singular triangles' added (the singular stage), and the singular counts.
+  const SingularResult& segments() const { return singular_; }
   /// Every joined, faired line, before the threshold filter (input's coordinates).
   const std::vector<Polyline>& all_lines() const { return faired_; }
   const FilterResult& filtered() const { return filtered_; }

@@ -706,7 +706,7 @@ class GltfReader {
         const uint8_t* p = data + accessor.byteOffset + i * stride;
         for (int c = 0; c < components; ++c) {
           out[i * size_t(components) + size_t(c)] =
-              component(p + c * size, accessor.componentType, accessor.normalized);
+              component(p + ptrdiff_t{c} * size, accessor.componentType, accessor.normalized);
         }
       }
     } else {
@@ -737,7 +737,7 @@ class GltfReader {
       const uint8_t* p = value_data + std::max(sparse.values.byteOffset, 0) + k * element;
       for (int c = 0; c < components; ++c) {
         out[size_t(target) * size_t(components) + size_t(c)] =
-            component(p + c * size, accessor.componentType, accessor.normalized);
+            component(p + ptrdiff_t{c} * size, accessor.componentType, accessor.normalized);
       }
     }
   }

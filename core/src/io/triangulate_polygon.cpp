@@ -43,7 +43,7 @@ class CornerTree {
   explicit CornerTree(const std::vector<double>& xy) : xy_(xy), n_(uint32_t(xy.size() / 2)) {
     order_.resize(n_);
     std::iota(order_.begin(), order_.end(), 0u);
-    nodes_.resize(4 * (n_ / kLeaf + 1));
+    nodes_.resize(size_t{4} * (n_ / kLeaf + 1));
     build(0, 0, n_);
     where_.resize(n_);
     for (uint32_t k = 0; k < n_; ++k) where_[order_[k]] = k;
@@ -82,7 +82,7 @@ class CornerTree {
       if (r.hi - r.lo <= kLeaf) {
         for (uint32_t k = r.lo; k < r.hi; ++k) {
           const uint32_t corner = order_[k];
-          const double* p = &xy_[2 * corner];
+          const double* p = &xy_[size_t{2} * corner];
           ++work.points;
           if (alive_[corner] && p[0] >= x0 && p[0] <= x1 && p[1] >= y0 && p[1] <= y1 && stop(corner)) return true;
         }
@@ -106,7 +106,7 @@ class CornerTree {
     Node& node = nodes_[index];
     node.alive = hi - lo;
     for (uint32_t k = lo; k < hi; ++k) {
-      const double* p = &xy_[2 * order_[k]];
+      const double* p = &xy_[size_t{2} * order_[k]];
       node.x0 = std::min(node.x0, p[0]), node.x1 = std::max(node.x1, p[0]);
       node.y0 = std::min(node.y0, p[1]), node.y1 = std::max(node.y1, p[1]);
     }
@@ -132,13 +132,13 @@ std::vector<double> distinct_points(const std::vector<double>& xy, std::vector<u
   const uint32_t n = uint32_t(xy.size() / 2);
   std::vector<uint32_t> order(n);
   std::iota(order.begin(), order.end(), 0u);
-  auto key = [&](uint32_t i) { return std::make_pair(xy[2 * i], xy[2 * i + 1]); };
+  auto key = [&](uint32_t i) { return std::make_pair(xy[size_t{2} * i], xy[size_t{2} * i + 1]); };
   std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return key(a) < key(b); });
   std::vector<double> points;
   point_of.resize(n);
   for (uint32_t k = 0; k < n; ++k) {
     if (k == 0 || key(order[k]) != key(order[k - 1]))
-      points.insert(points.end(), {xy[2 * order[k]], xy[2 * order[k] + 1]});
+      points.insert(points.end(), {xy[size_t{2} * order[k]], xy[size_t{2} * order[k] + 1]});
     point_of[order[k]] = uint32_t(points.size() / 2 - 1);
   }
   return points;
@@ -167,14 +167,14 @@ class EarClipper {
   // coincident with one of its three are skipped: repeated corners).
   bool is_ear(uint32_t i) const {
     ++polygon_work().ear_tests;
-    const double* a = &xy_[2 * prev_[i]];
-    const double* b = &xy_[2 * i];
-    const double* c = &xy_[2 * next_[i]];
+    const double* a = &xy_[size_t{2} * prev_[i]];
+    const double* b = &xy_[size_t{2} * i];
+    const double* c = &xy_[size_t{2} * next_[i]];
     if (!(cross2(a, b, c) > 0)) return false;
     const double x0 = std::min({a[0], b[0], c[0]}), x1 = std::max({a[0], b[0], c[0]});
     const double y0 = std::min({a[1], b[1], c[1]}), y1 = std::max({a[1], b[1], c[1]});
     return !tree_.any_in_box(x0, y0, x1, y1, [&](uint32_t point) {
-      const double* p = &points_[2 * point];
+      const double* p = &points_[size_t{2} * point];
       if (same_point(p, a) || same_point(p, b) || same_point(p, c)) return false;
       return inside(p, a, b, c);
     });

@@ -1,6 +1,7 @@
 #include "crestline/lines/polylines.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 
@@ -165,8 +166,9 @@ Vec3 end_tangent(const Polyline& line, bool back, size_t segments) {
 std::vector<Polyline> bridge_gaps(std::vector<Polyline> lines, const std::vector<uint8_t>& open_end, double segment) {
   const double max_gap = kMaxGapSegments * segment, tiny_gap = kTinyGapSegments * segment;
   struct End {
-    Vec3 point, tangent[2];  // over kEndTangentSegments
-    uint32_t id;             // 2 · line + (1 for the back end)
+    Vec3 point;
+    std::array<Vec3, 2> tangent;  // over kEndTangentSegments
+    uint32_t id;                  // 2 · line + (1 for the back end)
   };
   std::vector<End> ends;
   for (uint32_t l = 0; l < lines.size(); ++l)
@@ -232,11 +234,12 @@ std::vector<Polyline> bridge_gaps(std::vector<Polyline> lines, const std::vector
   };
   for (uint32_t l = 0; l < lines.size(); ++l) {
     if (done[l]) continue;
-    if (link[2 * l] == kNone && link[2 * l + 1] == kNone) {
+    const size_t front = 2 * size_t{l}, back = front + 1;
+    if (link[front] == kNone && link[back] == kNone) {
       done[l] = 1;
       out.push_back(std::move(lines[l]));
-    } else if (link[2 * l] == kNone || link[2 * l + 1] == kNone) {
-      out.push_back(follow(l, link[2 * l] == kNone ? 0 : 1));
+    } else if (link[front] == kNone || link[back] == kNone) {
+      out.push_back(follow(l, link[front] == kNone ? 0 : 1));
     }
   }
   // Whatever is left is linked at both ends all round: closed chains.

@@ -4,16 +4,6 @@
 
 namespace crestline {
 
-double bounding_box_diagonal(const std::vector<Vec3>& positions) {
-  if (positions.empty()) return 0;
-  Vec3 lo = positions[0], hi = positions[0];
-  for (const Vec3& p : positions) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  return (hi - lo).norm();
-}
-
 double mean_edge_length(const Mesh& mesh) {
   // Every interior edge is seen twice and boundary edges once; the bias is
   // negligible for a length unit and avoids building edges here.

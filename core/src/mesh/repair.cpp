@@ -219,7 +219,7 @@ Orientation orient(std::vector<Triangle>& tris, const std::vector<Vec3>& points,
     if (closed) {
       // Signed volume about the first corner of the component, in units of
       // its first edge: the same sign at any position and scale.
-      const Vec3 origin = points[tris[members[0]][0]];
+      const Vec3& origin = points[tris[members[0]][0]];
       const double unit = (points[tris[members[0]][1]] - origin).norm();
       const double inv_unit = unit > 0 ? 1 / unit : 1;
       double volume = 0;
@@ -237,7 +237,7 @@ Orientation orient(std::vector<Triangle>& tris, const std::vector<Vec3>& points,
         std::swap(tris[t][1], tris[t][2]);
         ++report.flipped_triangles;
         // Corner k of the swapped triangle: edges (0,2),(2,1),(1,0) — remap cut flags.
-        uint8_t* cut = &out.cut[3 * t];
+        uint8_t* cut = &out.cut[size_t{3} * t];
         std::swap(cut[0], cut[2]);
       }
   }

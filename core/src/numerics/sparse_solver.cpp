@@ -22,8 +22,8 @@ struct SpdSolver::Factorization {
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
 };
 
-void SpdSolver::compute(SparseMatrix matrix) {
-  matrix_ = std::move(matrix);
+void SpdSolver::compute(SparseMatrix&& matrix) {
+  matrix_.swap(matrix);
   matrix_.makeCompressed();
   factorization_.reset();
   iterative_ok_ = false;

@@ -70,8 +70,8 @@ TEST_CASE("invariants over every real mesh", "[real]") {
     CHECK(finite(p.extremality().e_max));
     CHECK(finite(p.extremality().e_min));
     // Lengths in the working frame are in mean edges.
-    check_on_surface(p, p.traced().lines.ridges, 1e-9);
-    check_on_surface(p, p.traced().lines.valleys, 1e-9);
+    check_on_surface(p, p.segments().lines.ridges, 1e-9);
+    check_on_surface(p, p.segments().lines.valleys, 1e-9);
 
     // Well-formed polylines, and fairing moves no point farther than its bound.
     const std::vector<Polyline> faired = p.all_lines();

@@ -38,9 +38,6 @@ struct Mesh {
   size_t triangle_count() const { return triangles.size(); }
 };
 
-/// Axis-aligned bounding box diagonal length (0 for an empty mesh).
-double bounding_box_diagonal(const std::vector<Vec3>& positions);
-
 /// Mean length over all edges; the length unit of every unitless parameter.
 double mean_edge_length(const Mesh& mesh);
 

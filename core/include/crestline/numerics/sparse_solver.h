@@ -19,9 +19,10 @@ using Triplets = std::vector<Eigen::Triplet<double>>;
 
 class SpdSolver {
  public:
-  /// Takes the matrix; throws Error(Numerical) unless its diagonal is
-  /// positive and finite.
-  void compute(SparseMatrix matrix);
+  /// Takes the matrix (swapped in: Eigen's SparseMatrix has no move
+  /// constructor, so a by-value parameter would copy it); throws
+  /// Error(Numerical) unless its diagonal is positive and finite.
+  void compute(SparseMatrix&& matrix);
   /// Solves matrix · x = b starting from `guess`; throws Error(Numerical)
   /// when neither the iteration nor the factorization converges. The first
   /// solve gives CG a budget of about what a factorization costs; beyond it,
