@@ -65,9 +65,14 @@ test('a missing file and a server without CORS: one sentence naming the file; th
   await page.waitForFunction(() => document.body.dataset.state === 'error', null, { timeout: 30000 });
   assert.equal(await page.textContent('#error'), 'missing.obj: could not be fetched (HTTP 404 Not Found).');
   assert.match(await page.textContent('#file'), /^box\.obj: 6,912 triangles/);
+  // The bad link leaves the address bar, which holds the view shown again.
+  const boxLink = { src: 'pages/box.obj', 'smoothing-steps': '4', threshold: '3.5', 'up-axis': 'z' };
+  const address = () => page.evaluate(() => Object.fromEntries(new URLSearchParams(location.hash.slice(1))));
+  assert.deepEqual(await address(), boxLink);
   await page.evaluate((url) => (location.hash = `#src=${url}`), `http://127.0.0.1:${other.address().port}/tetra.obj`);
   await page.waitForFunction(() => /tetra/.test(document.getElementById('error').textContent), null, { timeout: 30000 });
   assert.equal(await page.textContent('#error'), 'tetra.obj: could not be fetched (network error, or the server does not allow cross-origin requests).');
+  assert.deepEqual(await address(), boxLink);
 });
 
 test('a new fragment opens the next mesh', async () => {

@@ -1,10 +1,12 @@
 // The page's one state (issue 17, items 1–2): mesh A is shown, file B is
-// dropped; while B loads, the header names B and the picture, stats and
-// exports stay A's, labelled as the previous mesh; Cancel — while B is read,
-// once it is loaded, at the start of each pipeline stage — gives A's page back
-// whole (the same header, stats, picture and byte-identical OBJ export); an
-// export error clears when a later action succeeds. Generated meshes, so it
-// is quick. Needs web/dist (web/build.sh).
+// dropped; while B is read, the header names B and the picture, stats and
+// exports stay A's, labelled as the previous mesh, and Cancel gives A's page
+// back whole (the same header, stats, picture and byte-identical OBJ export).
+// Once B is loaded (repaired) its surface is shown at once, lines pending;
+// Cancel from then on — once it is loaded, at the start of each pipeline
+// stage — keeps B without lines (header, stats and exports say so), and a
+// changed setting computes them. An export error clears when a later action
+// succeeds. Generated meshes, so it is quick. Needs web/dist (web/build.sh).
 import assert from 'node:assert/strict';
 import { after, before, test } from 'node:test';
 import { dropFiles, nextResult, openApp, sampleReady } from './app-page.mjs';
@@ -97,45 +99,125 @@ async function dropAndCancelAt(hook) {
   return { before, count };
 }
 
-// Every point of a load: reading, loaded, and the start of each pipeline stage.
-for (const hook of ['read', 'loaded', ...STAGES]) {
-  test(`Cancel while B is at "${hook}": A's page comes back whole`, async () => {
+test('Cancel while B is read: A\'s page comes back whole', async () => {
+  const { before, count } = await dropAndCancelAt('read');
+  assert.equal(before.state, 'loading');
+  assert.match(before.header, /^waves\.obj: reading…/);
+  assert.equal(before.label, 'Previous mesh: box.obj (shown until waves.obj is read)');
+  const after = await views();
+  assert.deepEqual({ ...after }, { ...shownA }, 'header, state, stats, picture: A\'s');
+  assert.match(await page.textContent('#notes'), /^Cancelled waves\.obj: back to box\.obj\.$/);
+  // The worker still holds A: its core writer gives the same lines, byte for byte.
+  const obj = await save('obj');
+  assert.equal(obj.fileName, 'box-lines.obj');
+  assert.equal(obj.text, objA);
+  assert.equal((await save('svg')).fileName, 'box-lines.svg');
+  // Nothing of B arrives later.
+  await page.waitForTimeout(300);
+  assert.equal(await page.evaluate(() => window.crestline.results.length), count);
+  assert.deepEqual(await views(), shownA);
+});
+
+/** Drops A again (its lines shown), as the start of each of the next tests. */
+async function showA() {
+  await nextResult(page, () => dropFiles(page, [A]));
+  // The same page as A's first time, but for the times measured.
+  const untimed = (v) => ({ ...v, stats: v.stats.replace(/^(ran|read and repair).*$/gm, '') });
+  assert.deepEqual(untimed(await views()), untimed(shownA));
+}
+
+const B_VERTICES = 111 * 111;
+
+// Once B is loaded: at 'loaded' and the start of each pipeline stage.
+for (const hook of ['loaded', ...STAGES]) {
+  test(`Cancel once B is loaded, at "${hook}": B stays shown without lines, and a setting computes them`, async () => {
+    await showA();
     const { before, count } = await dropAndCancelAt(hook);
-    assert.equal(before.state, 'loading');
-    assert.match(before.header, hook === 'read' ? /^waves\.obj: reading…/ : /^waves\.obj: 24,200 triangles, computing its lines…/);
-    assert.equal(before.label, 'Previous mesh: box.obj (shown until waves.obj is ready)');
+    assert.equal(before.state, 'computing');
+    assert.match(before.header, /^waves\.obj: 24,200 triangles, computing its lines… — /);
+    assert.equal(before.label, '', 'B is shown, not labelled');
+    await page.waitForFunction(() => document.body.dataset.state === 'ready', null, { timeout: 30000 });
     const after = await views();
-    assert.deepEqual({ ...after }, { ...shownA }, 'header, state, stats, picture: A\'s');
-    assert.match(await page.textContent('#notes'), /^Cancelled waves\.obj: back to box\.obj\.$/);
-    // The worker still holds A: its core writer gives the same lines, byte for byte.
-    const obj = await save('obj');
-    assert.equal(obj.fileName, 'box-lines.obj');
-    assert.equal(obj.text, objA);
-    assert.equal((await save('svg')).fileName, 'box-lines.svg');
-    // Nothing of B arrives later.
-    await page.waitForTimeout(300);
-    assert.equal(await page.evaluate(() => window.crestline.results.length), count);
-    assert.deepEqual(await views(), shownA);
+    assert.deepEqual(after, {
+      state: 'ready',
+      header: 'waves.obj: 24,200 triangles, lines not computed — drop another mesh or ',
+      label: '',
+      dimmed: false,
+      error: '',
+      progress: false,
+      stats: after.stats,
+      surfaceVertices: B_VERTICES,
+      linePoints: 0,
+    });
+    assert.match(after.stats, /^waves\.obj\n12,321 vertices, 24,200 triangles\nlines: not computed \(cancelled; change a setting to compute them\)\nread and repair \d+ ms$/);
+    assert.equal(await page.textContent('#notes'), 'Cancelled: waves.obj has no lines yet; change a setting to compute them.');
+    assert.equal(await page.evaluate(() => window.crestline.results.length), count, 'no result of B');
+    // Exports say plainly that there are no lines (A is gone).
+    for (const format of ['obj', 'svg']) {
+      assert.deepEqual(await save(format), { error: `Export ${format.toUpperCase()}: Nothing to export yet: the lines of waves.obj are not computed (cancelled); change a setting to compute them.` });
+    }
+    // A changed setting computes B's lines (every line, though some stages ran before the cancel).
+    const result = await nextResult(page, () => page.evaluate(() => window.crestline.update({ threshold: window.crestline.params.threshold * 1.01 })));
+    assert.equal(result.name, 'waves.obj');
+    assert.ok(result.lineCount > 0, 'lines kept');
+    const now = await views();
+    assert.equal(now.state, 'ready');
+    assert.match(now.header, /^waves\.obj: 24,200 triangles — /);
+    assert.ok(now.linePoints > 0, 'lines drawn');
+    assert.equal((await save('obj')).fileName, 'waves-lines.obj');
+    assert.equal(await page.textContent('#error'), '', 'the export error cleared');
   });
 }
 
-test('while B loads: header B, picture and stats A labelled and dimmed, exports A\'s; then all B', async () => {
+test('while B is read: A labelled and dimmed, exports A\'s; once loaded: B\'s surface, counts, lines pending; then all B', async () => {
+  await showA();
   await page.evaluate(() => {
-    window.crestline.hooks.loaded = async () => {
-      window.crestline.hooks.loaded = null;
-      const text = (id) => document.getElementById(id).textContent;
-      window.during = { state: document.body.dataset.state, header: text('file'), label: text('view-label'), dimmed: document.body.classList.contains('previous'), stats: text('stats') };
-      window.during.svg = (await window.crestline.save('svg'))?.fileName;
+    const { hooks, viewer } = window.crestline;
+    const text = (id) => document.getElementById(id).textContent;
+    const look = () => ({
+      state: document.body.dataset.state,
+      header: document.getElementById('file').firstChild.textContent,
+      label: text('view-label'),
+      dimmed: document.body.classList.contains('previous'),
+      stats: text('stats'),
+      surfaceVertices: viewer.surface.mesh.geometry.getAttribute('position').count,
+      results: window.crestline.results.length,
+    });
+    hooks.progress = async (stage) => {
+      if (stage !== 'read') return;
+      hooks.progress = null;
+      window.reading = look();
+      window.reading.svg = (await window.crestline.save('svg'))?.fileName;
+    };
+    hooks.loaded = async () => {
+      hooks.loaded = null;
+      window.loaded = look();
+      window.loaded.svg = (await window.crestline.save('svg'))?.fileName ?? text('error');
     };
   });
+  const count = await page.evaluate(() => window.crestline.results.length);
   const result = await nextResult(page, () => dropFiles(page, [B]));
-  const during = await page.evaluate(() => window.during);
-  assert.equal(during.state, 'loading');
-  assert.match(during.header, /^waves\.obj: 24,200 triangles, computing its lines… — /);
-  assert.equal(during.label, 'Previous mesh: box.obj (shown until waves.obj is ready)');
-  assert.equal(during.dimmed, true);
-  assert.match(during.stats, /^box\.obj\n/, 'the stats are A\'s, named');
-  assert.equal(during.svg, 'box-lines.svg', 'an export while B loads is A\'s, as the label says');
+  const { reading, loaded } = await page.evaluate(() => ({ reading: window.reading, loaded: window.loaded }));
+  assert.equal(reading.state, 'loading');
+  assert.match(reading.header, /^waves\.obj: reading… — /);
+  assert.equal(reading.label, 'Previous mesh: box.obj (shown until waves.obj is read)');
+  assert.equal(reading.dimmed, true);
+  assert.match(reading.stats, /^box\.obj\n/, 'the stats are A\'s, named');
+  assert.equal(reading.surfaceVertices, shownA.surfaceVertices);
+  assert.equal(reading.svg, 'box-lines.svg', 'an export while B is read is A\'s, as the label says');
+  // Loaded: B's surface is in the picture before any of its lines.
+  assert.deepEqual({ ...loaded, stats: '' }, {
+    state: 'computing',
+    header: 'waves.obj: 24,200 triangles, computing its lines… — drop another mesh or ',
+    label: '',
+    dimmed: false,
+    stats: '',
+    surfaceVertices: B_VERTICES,
+    results: count,
+    svg: 'Export SVG: Nothing to export yet: wait for the lines of waves.obj (or Cancel).',
+  });
+  assert.match(loaded.stats, /^waves\.obj\n12,321 vertices, 24,200 triangles\nlines: computing…\n/);
+  await page.evaluate(() => window.crestline.save('svg')); // clears the export error
   assert.equal(result.name, 'waves.obj');
   const now = await views();
   assert.equal(now.state, 'ready');

@@ -219,8 +219,12 @@ test('the file picker opens an OFF file (an octahedron)', async () => {
 });
 
 test('cancel stops a long computation and the page stays usable', { skip: noMeshes }, async () => {
+  // The stage is seen through the page's progress hook: polling the text could miss it while the
+  // page draws the dragon's surface (shown as soon as it is loaded).
+  await page.evaluate(() => (window.crestline.hooks.progress = (stage) => stage === 'smoothing' && (window.sawSmoothing = true)));
   await drop(['large/dragon-draco.glb']);
-  await page.waitForFunction(() => document.getElementById('progress-text').textContent === 'smoothing', null, { timeout: 60000 });
+  await page.waitForFunction(() => window.sawSmoothing, null, { timeout: 60000 });
+  await page.evaluate(() => (window.crestline.hooks.progress = null));
   // The main thread keeps drawing frames while the worker computes.
   const longestFrame = await page.evaluate(() => new Promise((resolve) => {
     let last = performance.now();

@@ -31,10 +31,15 @@ test('init, load, re-threshold, re-smooth, fields, exports: the stages each repl
   assert.deepEqual(types(await send({ type: 'init' })), ['ready']);
   const mesh = sineHeightField({ n: 30 });
   const loaded = await send({ type: 'load', id: 1, job: 1, ...mesh, options: {} });
-  assert.ok(types(loaded).includes('loaded'));
+  const t = types(loaded);
+  assert.ok(t.indexOf('loaded') < t.indexOf('progress', t.indexOf('loaded')), 'loaded comes before the pipeline runs');
+  const { surface } = loaded.find((m) => m.type === 'loaded');
+  assert.ok(surface.positions instanceof Float64Array && surface.indices instanceof Uint32Array, "'loaded' carries the repaired surface");
+  assert.deepEqual([surface.positions.length, surface.indices.length], [mesh.positions.length, mesh.indices.length]);
+  assert.ok(surface.positions.buffer.byteLength === surface.positions.byteLength, 'a copy, not a view of the WASM heap');
   const result = loaded.at(-1);
   assert.deepEqual([result.type, result.id, result.job], ['result', 1, 1]);
-  assert.ok(result.surface.positions instanceof Float64Array, 'the first result carries the surface');
+  assert.equal(result.surface, undefined, 'the result does not send the surface again');
   assert.ok(result.lines.types.length > 0);
   assert.ok(result.kept.length > 0 && result.kept.length <= result.lines.types.length);
   const filtered = (await send({ type: 'options', id: 1, job: 2, options: { threshold: 0 } })).at(-1);
@@ -189,6 +194,31 @@ test('client: options sent while a job runs wait for it, and only the latest run
   assert.equal(second.stats.threshold, 0.5);
   assert.equal(events.filter(([k]) => k === 'result').length, 2, 'threshold 0 never ran');
   assert.equal(await session.exportText('json').then((t) => JSON.parse(t).stats.threshold), 0.5);
+});
+
+test('client: the loaded surface comes with onLoaded, before the lines, and again with the first result only', async () => {
+  const workers = inProcessWorkers();
+  const connection = new Connection(workers.start);
+  const { session, next, events } = observed(connection);
+  const mesh = sineHeightField({ n: 20 });
+  const loaded = next('loaded');
+  session.load(mesh, {});
+  const { surface } = await loaded;
+  assert.equal(surface.positions.length, mesh.positions.length);
+  assert.equal(events.filter(([k]) => k === 'result').length, 0, 'no lines yet');
+  const first = await next('result');
+  assert.equal(first.surface, surface, 'the same arrays: a page that showed them need not draw them again');
+  session.setOptions({ threshold: 0 });
+  assert.equal((await next('result')).surface, undefined);
+  // Cancelled before its lines: the surface waits for the mesh's first result.
+  const again = next('loaded');
+  const cancelled = next('cancelled');
+  session.load(mesh, {});
+  session.cancel(); // the pipeline stops at its first progress check, after the load
+  await again;
+  await cancelled;
+  session.setOptions({ threshold: 0.1 });
+  assert.equal((await next('result')).surface.positions.length, mesh.positions.length);
 });
 
 test('client: a WASM trap restarts the worker once, says so once, and the next run sends the mesh again', async () => {

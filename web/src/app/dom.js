@@ -1,7 +1,7 @@
 // The page's text, all drawn from the one page state (page-state.js): the
 // header, the label over a previous mesh, progress, the one-sentence error,
 // notes, stats.
-import { headerOf, phaseOf, viewLabelOf } from './page-state.js';
+import { countsOf, headerOf, phaseOf, viewLabelOf } from './page-state.js';
 import { colormapGradient } from '../three/colormap.js';
 
 const $ = (id) => document.getElementById(id);
@@ -27,7 +27,7 @@ export function render(state) {
   $('notes').textContent = state.notes.join(' ');
   const { shown } = state;
   if (shown?.result) showStats(shown.result, shown);
-  else $('stats').textContent = '';
+  else $('stats').textContent = shown ? countsOf(shown) : '';
 }
 
 const fmt = (x, digits = 3) => (Number.isFinite(x) ? Number(x.toPrecision(digits)).toString() : '–');

@@ -51,11 +51,12 @@ function newSession() {
       render();
       app.hooks.progress?.(stage);
     },
-    onLoaded: ({ vertices, triangles, notes, milliseconds }) => {
+    onLoaded: ({ vertices, triangles, notes, milliseconds, surface }) => {
+      // The shown session reads its mesh again only after a worker restart: the same surface.
       if (session !== state.loading?.session) return;
       Object.assign(state.loading, { vertices, triangles, loadMs: milliseconds, notes: [...state.loading.notes, ...notes] });
       state.notes = state.loading.notes;
-      render();
+      promote(surface);
       app.hooks.loaded?.();
     },
     onResult: (result) => received(session, result),
@@ -84,30 +85,90 @@ function forget(session) {
 const exporting = new Map();
 const retired = new Set();
 
-/** A result: the loading file becomes the shown mesh (the previous one is freed), or the shown mesh's lines change. */
-function received(session, result) {
-  let promoted = false;
-  if (session === state.loading?.session) {
-    const loaded = state.loading;
-    delete loaded.restore;
-    if (state.shown) forget(state.shown.session);
-    state.shown = loaded;
-    state.loading = null;
-    viewer.setSurface(result.surface, { fit: false });
-    promoted = true;
-    brush.reset(result.surface.positions.length / 3);
-    app.fields = null;
-  } else if (session === state.shown?.session) {
-    if (result.surface) viewer.setSurface(result.surface, { fit: false });
-  } else {
-    return forget(session);
+/**
+ * The loading file's surface is repaired: it becomes the shown mesh, its
+ * lines still to come (Cancel from here on keeps this one). Framed once the
+ * info box names it.
+ */
+function promote(surface) {
+  const loaded = state.loading;
+  if (state.shown) dropPrevious(state.shown); // one mesh is held behind the shown one, no more
+  // The previous mesh is kept (not drawn) until the new one has lines: a
+  // computation that fails before them gives the previous page back.
+  loaded.previous = state.shown && { mesh: state.shown, restore: loaded.restore, weights: brush.weights, shown: app.shown };
+  delete loaded.restore;
+  state.shown = loaded;
+  state.loading = null;
+  loaded.surface = surface;
+  viewer.setSurface(surface, { fit: false });
+  viewer.clearLines();
+  brush.weights = null;
+  brush.reset(surface.positions.length / 3);
+  app.fields = null;
+  app.shown = null;
+  app.mesh = { name: loaded.name, vertices: loaded.vertices, triangles: loaded.triangles, loadMs: loaded.loadMs };
+  render();
+  viewer.fitView();
+  applyView();
+}
+
+/** The shown mesh keeps the page: the previous one is freed. */
+function dropPrevious(shown) {
+  if (shown.previous) forget(shown.previous.mesh.session);
+  shown.previous = null;
+}
+
+/** The mesh shown before `shown` (whose lines failed) is the page's again, picture, brush, panel and exports. */
+function backToPrevious(shown) {
+  const { mesh, restore, weights, shown: lines } = shown.previous;
+  shown.previous = null;
+  forget(shown.session);
+  state.shown = mesh;
+  viewer.setSurface(mesh.surface, { fit: false });
+  viewer.clearLines();
+  if (mesh.result) {
+    viewer.setLines(mesh.result.lines, mesh.result.kept);
+    if (mesh.result.creases) viewer.setCreases(mesh.result.creases);
   }
+  brush.weights = weights;
+  brush.reset(mesh.surface.positions.length / 3);
+  app.fields = null;
+  app.shown = lines;
+  app.mesh = { name: mesh.name, vertices: mesh.vertices, triangles: mesh.triangles, loadMs: mesh.loadMs };
+  showOptions(restore);
+  viewer.fitView();
+}
+
+/**
+ * A reply of the mesh held behind a new one (a recompute it ran when the new
+ * file came): the worker's lines may differ from those it would come back with.
+ */
+function ofPrevious(session) {
+  const previous = state.shown?.previous?.mesh;
+  if (session !== previous?.session) return false;
+  previous.stale = true;
+  return true;
+}
+
+/** A result: the shown mesh's lines (the first ones after a load, or new ones after a change). */
+function received(session, result) {
+  if (ofPrevious(session)) return;
+  if (session === state.loading?.session) promote(result.surface); // no 'loaded' seen (not expected)
+  else if (session !== state.shown?.session) return forget(session);
   const shown = /** @type {import('./page-state.js').MeshState} */ (state.shown);
+  dropPrevious(shown);
+  // Drawn already when it was loaded; again only after a worker restart read the mesh anew.
+  if (result.surface && result.surface !== shown.surface) {
+    viewer.setSurface(result.surface, { fit: false });
+    shown.surface = result.surface;
+  }
   const started = performance.now();
-  if (result.linesChanged) viewer.setLines(result.lines, result.kept);
+  // New lines, or lines the page did not draw (a result that came after Cancel).
+  if (result.lines !== shown.result?.lines) viewer.setLines(result.lines, result.kept);
   else viewer.setKept(result.kept);
-  if (result.creasesChanged && result.creases) viewer.setCreases(result.creases);
+  if (result.creases && result.creases !== shown.result?.creases) viewer.setCreases(result.creases);
   const drawMs = performance.now() - started; // main-thread work to show the result's lines
+  const firstLines = !shown.result;
   shown.result = result;
   shown.stale = false;
   // The options that made these lines (unknown while newer ones wait behind them).
@@ -119,9 +180,7 @@ function received(session, result) {
   app.mesh = { name: shown.name, vertices: shown.vertices, triangles: shown.triangles, loadMs: shown.loadMs };
   app.lastResult = { name: shown.name, ran: result.ran, stats: result.stats, lineCount: kept.length, linesChanged: result.linesChanged, creaseCount: result.creases?.convex.length ?? 0, drawMs, milliseconds: result.milliseconds };
   app.results.push(app.lastResult);
-  // The address bar: the link to this view of a linked mesh, else the bare page (no hashchange).
-  const address = shown.src ? linkFragment(shown.src, { ...params, ...optionsAsParams(shown.options) }, table) : '';
-  if (address !== location.hash) history.replaceState(null, '', `${location.pathname}${location.search}${address}`);
+  showAddress();
   gui.showUsed(result.stats, rescaleThreshold);
   rescaleThreshold = false;
   state.error = null; // a good result supersedes an earlier failure
@@ -129,9 +188,20 @@ function received(session, result) {
   const upstream = ['presmooth', 'curvature', 'extremality', 'regularity', 'smoothing'];
   if (result.ran.some((s) => upstream.includes(s))) app.fields = null;
   render();
-  if (promoted) viewer.fitView(); // once the info box shows the new mesh: framing avoids it
+  // The info box grew with the statistics: framed again, unless the user moved the camera meanwhile.
+  if (firstLines && !shown.cameraMoved) viewer.fitView();
   if (!session.busy) applyView();
   release(shown);
+}
+
+/**
+ * The address bar: the link to the view shown of a linked mesh, else the bare
+ * page (replaceState: no hashchange). A link that failed or was cancelled goes.
+ */
+function showAddress() {
+  const { shown } = state;
+  const address = shown?.src ? linkFragment(shown.src, { ...params, ...optionsAsParams(shown.options) }, table) : '';
+  if (address !== location.hash) history.replaceState(null, '', `${location.pathname}${location.search}${address}`);
 }
 
 /** Exports waiting for the shown mesh's re-run go on (after a failure they fail with the worker's sentence). */
@@ -166,6 +236,7 @@ function cancel() {
     state.progress = null;
     state.notes = [state.shown ? `Cancelled ${name}: back to ${state.shown.name}.` : `Cancelled ${name}.`];
     showOptions(restore);
+    showAddress();
     render();
     applyView();
   } else if (state.shown?.session.busy) {
@@ -174,11 +245,13 @@ function cancel() {
 }
 
 function cancelled(session) {
+  if (ofPrevious(session)) return;
   if (session !== state.shown?.session) return forget(session);
+  dropPrevious(state.shown); // Cancel keeps the new mesh once it is shown
   // The worker may hold a half-run pipeline: an OBJ/JSON export re-runs first.
   state.shown.stale = true;
   state.progress = null;
-  state.notes = ['Cancelled: the lines shown are those of the values in the panel.'];
+  state.notes = [state.shown.result ? 'Cancelled: the lines shown are those of the values in the panel.' : `Cancelled: ${state.shown.name} has no lines yet; change a setting to compute them.`];
   release(state.shown);
   showOptions(state.shown.options);
   render();
@@ -186,11 +259,19 @@ function cancelled(session) {
 }
 
 function failed(session, { message }) {
+  if (ofPrevious(session)) return;
   if (session === state.loading?.session) {
     // A file that cannot be read or computed: the previous mesh stays whole.
     showOptions(state.loading.restore);
     forget(session);
     state.loading = null;
+    showAddress();
+  } else if (session === state.shown?.session && state.shown.previous) {
+    // The new mesh's first lines failed (out of memory, say): the previous page comes back.
+    const previous = state.shown;
+    release(previous);
+    backToPrevious(previous);
+    showAddress();
   } else if (session === state.shown?.session) {
     state.shown.stale = true;
     release(state.shown);
@@ -426,6 +507,7 @@ viewer.covers = () => {
   });
 };
 gui.gui.onOpenClose(() => viewer.applyFrame());
+viewer.controls.addEventListener('start', () => state.shown && (state.shown.cameraMoved = true));
 document.getElementById('details').addEventListener('toggle', () => viewer.applyFrame());
 // Phones: the panel starts collapsed and the statistics folded away.
 if (matchMedia('(max-width: 599px)').matches) {

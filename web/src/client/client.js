@@ -28,7 +28,8 @@ export { pickMainFile };
  *            surface?: import('../worker/protocol.js').Surface}} Result
  *   lines: every faired line of the mesh (kept or not); kept: those that pass
  *   the filter; linesChanged: `lines` are new (false after a threshold change);
- *   creases: the sharp edges at the current crease angle; creasesChanged: they are new
+ *   creases: the sharp edges at the current crease angle; creasesChanged: they are new;
+ *   surface: the mesh (as 'loaded' sent it), with the first result after a load
  * @typedef {{onProgress?: (stage: string, fraction: number) => void, onLoaded?: (loaded: LoadedReply) => void,
  *            onResult?: (result: Result) => void, onFields?: (fields: Fields) => void,
  *            onCancelled?: () => void, onError?: (error: {message: string, kind: string}) => void}} SessionHandlers
@@ -193,6 +194,8 @@ export class Session {
     this.lines = null;
     /** @type {Creases | null} the creases of the mesh the worker holds */
     this.creases = null;
+    /** @type {import('../worker/protocol.js').Surface | null} the loaded surface, until a result carries it */
+    this.surface = null;
     /** @type {PipelineOptions} */
     this.options = {};
     /** @type {PipelineOptions | null} options that arrived while a job ran: the latest win */
@@ -230,6 +233,7 @@ export class Session {
     this.source = source;
     this.name = name;
     this.hasMesh = false;
+    this.surface = null;
     this.pending = null;
     this.options = { ...options };
     this.sendSource(source, this.options);
@@ -278,7 +282,8 @@ export class Session {
   /** @param {PipelineOptions} options */
   runPending(options) {
     this.pending = null;
-    if (this.hasMesh) this.send({ type: 'options', options });
+    // A mesh whose first run was cancelled: the worker sends every line with the result.
+    if (this.hasMesh) this.send({ type: 'options', options, ...(this.lines ? {} : { lines: true }) });
     else if (this.source) this.sendSource(this.source, options);
   }
 
@@ -321,6 +326,8 @@ export class Session {
   cancel(graceMs = CANCEL_GRACE_MS) {
     if (!this.busy) return;
     const job = this.running;
+    // Its result, if it was on its way already, is not shown either.
+    this.cancelledJob = job;
     this.pending = null;
     const flag = this.raiseCancelFlag(job);
     clearTimeout(this.cancelTimer);
@@ -394,6 +401,10 @@ export class Session {
         this.hasMesh = true;
         this.previous = null;
         this.name = message.name;
+        // Shown early by handlers that want it (the page), and with the mesh's first result.
+        this.surface = message.surface;
+        this.lines = null; // the worker's mesh is new: its lines are to come
+        this.creases = null;
         this.handlers.onLoaded?.(message);
         break;
       case 'result': {
@@ -402,9 +413,19 @@ export class Session {
         if (message.lines) this.lines = message.lines;
         const creasesChanged = Boolean(message.creases);
         if (message.creases) this.creases = message.creases;
-        const { ran, stats, kept, milliseconds, surface } = message;
+        if (message.job === this.cancelledJob) {
+          // Finished before the cancel reached it: the lines above are the
+          // worker's now (later runs send only what changes), but not shown.
+          clearTimeout(this.cancelTimer);
+          this.handlers.onCancelled?.();
+          if (this.pending) this.runPending(this.pending);
+          break;
+        }
+        const { ran, stats, kept, milliseconds } = message;
         if (this.lines) {
           const { lines, creases } = this;
+          const surface = this.surface ?? undefined;
+          this.surface = null;
           this.handlers.onResult?.({ ran, stats, lines, kept, linesChanged, creases, creasesChanged, milliseconds, surface });
         }
         if (this.pending) this.runPending(this.pending);

@@ -223,16 +223,18 @@ export class CrestlineViewer extends HTMLElement {
     return this.selected;
   }
 
-  showResult({ surface, lines, kept, linesChanged, creases, creasesChanged, stats }) {
+  showResult({ surface, lines, kept, creases, stats }) {
     if (surface) this.view.setSurface(surface);
-    this.result = { lines, kept };
+    const drawn = this.result;
+    this.result = { lines, kept, creases };
     this.selected = null;
     this.stats = stats;
     this.applyDisplay();
-    // A threshold change shows other lines of the same geometry.
-    if (linesChanged || surface) this.view.setLines(lines, kept);
+    // A threshold change shows other lines of the same geometry; lines not
+    // drawn yet (new, or a run that finished after a cancel) are drawn.
+    if (surface || lines !== drawn?.lines) this.view.setLines(lines, kept);
     else this.view.setKept(kept);
-    if (creases && (creasesChanged || surface)) this.view.setCreases(creases);
+    if (creases && (surface || creases !== drawn?.creases)) this.view.setCreases(creases);
     this.progress(null);
     if (!this.shownLoad) {
       this.shownLoad = true;

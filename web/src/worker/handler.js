@@ -64,21 +64,23 @@ export function createHandler({ startModule, post, startDecoders }) {
   /**
    * @param {Engine} engine
    * @param {{id: number, job: number, options: import('./protocol.js').PipelineOptions}} message
-   * @param {boolean} sendSurface
+   * @param {boolean} allLines every line and crease, whichever stages ran (the page has none of this mesh)
    */
-  function run(engine, { id, job, options }, sendSurface) {
+  function run(engine, { id, job, options }, allLines) {
     const progress = progressReporter(id, job);
-    // After a load (sendSurface) the page has no lines of this mesh yet.
-    const result = engine.run(options, progress, sendSurface);
+    const result = engine.run(options, progress, allLines);
     if (result.cancelled) return post({ type: 'cancelled', id, job });
-    // The surface changes only after a load or when pre-smoothing ran.
-    const surface = sendSurface || result.ran.includes('presmooth') ? engine.surface() : undefined;
     const { ran, stats, lines, creases, kept, milliseconds } = result;
-    post({ type: 'result', id, job, ran, stats, lines, creases, kept, milliseconds, surface });
+    post({ type: 'result', id, job, ran, stats, lines, creases, kept, milliseconds });
   }
 
-  /** @param {import('./engine.js').Loaded} loaded @param {number} id @param {number} job */
-  const postLoaded = (loaded, id, job) => post({ type: 'loaded', id, job, ...loaded });
+  /**
+   * The repaired surface goes with 'loaded', before the pipeline runs, so the
+   * page shows the new mesh long before its lines (Session.surface() copies
+   * it out of the WASM heap; the lines are drawn on it even after pre-smoothing).
+   * @param {Engine} engine @param {import('./engine.js').Loaded} loaded @param {number} id @param {number} job
+   */
+  const postLoaded = (engine, loaded, id, job) => post({ type: 'loaded', id, job, ...loaded, surface: engine.surface() });
 
   /** @param {Request} message */
   async function dispatch(message) {
@@ -96,19 +98,19 @@ export function createHandler({ startModule, post, startDecoders }) {
         const files = message.files ?? (await fetchedFiles.get(message));
         fetchedFiles.delete(message);
         if (!files || latest.get(id) !== job) return;
-        postLoaded(await engine.open(files, decoders), id, job);
+        postLoaded(engine, await engine.open(files, decoders), id, job);
         return run(engine, message, true);
       }
       case 'load': {
         const engine = await engineFor(message.id);
-        postLoaded(engine.load(message), message.id, message.job);
+        postLoaded(engine, engine.load(message), message.id, message.job);
         return run(engine, message, true);
       }
       case 'options': {
         const engine = await engineFor(message.id);
         // After a restart the worker has no mesh for this session: the client sends it again.
         if (!engine.session) return post({ type: 'lost', id: message.id, job: message.job });
-        return run(engine, message, false);
+        return run(engine, message, Boolean(message.lines));
       }
       case 'fields': {
         const engine = await engineFor(message.id);

@@ -35,8 +35,9 @@
  *   read files (or fetch `url` and a .gltf's buffers) with the C++ readers, then run
  * @typedef {{type: 'load', id: number, job: number, name: string, positions: Float64Array | Float32Array,
  *            indices: Uint32Array, options: PipelineOptions}} LoadMessage  a triangle soup, then run
- * @typedef {{type: 'options', id: number, job: number, options: PipelineOptions}} OptionsMessage
- *   set_options + run: only dirty stages re-run
+ * @typedef {{type: 'options', id: number, job: number, options: PipelineOptions, lines?: boolean}} OptionsMessage
+ *   set_options + run: only dirty stages re-run; lines: reply with every line and
+ *   crease whichever stages ran (the page has none of this mesh: its first run was cancelled)
  * @typedef {{type: 'fields', id: number, job: number}} FieldsMessage
  * @typedef {'obj' | 'json' | 'stats' | 'svg' | 'glb'} ExportFormat
  * @typedef {{camera?: {matrix: ArrayLike<number>, width: number, height: number}, ridges?: boolean, valleys?: boolean,
@@ -59,14 +60,14 @@
  * @typedef {{type: 'progress', id: number, job: number, stage: string, fraction: number}} ProgressReply
  *   stages: 'fetch', 'read', then STAGES
  * @typedef {{type: 'loaded', id: number, job: number, name: string, vertices: number, triangles: number,
- *            notes: string[], report: Record<string, number>, milliseconds: number}} LoadedReply
- *   milliseconds: reading + repair
+ *            notes: string[], report: Record<string, number>, milliseconds: number, surface: Surface}} LoadedReply
+ *   milliseconds: reading + repair; surface: the repaired mesh, sent before the
+ *   pipeline runs (the lines are drawn on it, pre-smoothed or not)
  * @typedef {{type: 'result', id: number, job: number, ran: string[], stats: Stats, lines?: Lines,
- *            creases?: Creases, kept: Uint32Array, milliseconds: number, surface?: Surface}} ResultReply
+ *            creases?: Creases, kept: Uint32Array, milliseconds: number}} ResultReply
  *   lines: every faired line, after a load and whenever a stage before the
  *   filter ran (a threshold change sends none); kept: the indices of the
- *   lines that pass the filter; surface: after a load and whenever
- *   pre-smoothing ran
+ *   lines that pass the filter
  * @typedef {{type: 'fields', id: number, job: number, fields: Fields}} FieldsReply
  * @typedef {{type: 'export', id: number, request: number, format: string, text?: string, bytes?: Uint8Array}} ExportReply
  *   text for every format but 'glb', which sends bytes
