@@ -23,7 +23,20 @@ test('a thin slab: the brush paints the top face only, and only the touched colo
   const slab = boxObj({ size: [2, 2, 0.05], n: 40 });
   const result = await nextResult(page, () => dropFiles(page, [{ name: 'slab.obj', text: slab }]));
   assert.equal(result.name, 'slab.obj');
-  await page.evaluate(() => window.crestline.update({ brush: true, brushRadius: 0.2, brushValue: 0 }));
+  // Switching the brush on starts the surface index in a worker: the page does not wait for it.
+  const switchedOn = await page.evaluate(async () => {
+    const { brush, update } = window.crestline;
+    const started = performance.now();
+    update({ brush: true, brushRadius: 0.2, brushValue: 0 });
+    const afterSwitch = { ms: performance.now() - started, index: brush.index };
+    const index = await brush.ready();
+    return { ...afterSwitch, offThread: index.offThread, nodes: index.nodes, adjacency: index.neighbours.length };
+  });
+  assert.equal(switchedOn.index, null, 'no index built on the main thread when the brush is switched on');
+  assert.equal(switchedOn.offThread, true, 'the index came from the worker');
+  // 2 × 41² vertices… the slab's 6 faces: 6 × 2 × 40² triangles, each adds 6 neighbour entries.
+  assert.equal(switchedOn.adjacency, 6 * 6 * 2 * 40 * 40);
+  assert.ok(switchedOn.nodes >= (6 * 2 * 40 * 40) / 8, `${switchedOn.nodes} BVH nodes`);
   const canvas = await page.locator('#view canvas').boundingBox();
   // The screen point of the slab's centre (the orbit centre: the free area's centre).
   const centre = await page.evaluate(() => {
@@ -51,6 +64,9 @@ test('a thin slab: the brush paints the top face only, and only the touched colo
   });
   await page.mouse.up();
   await page.waitForFunction((n) => window.crestline.results.length > n, count, { timeout: 30000 });
+  // One recompute per stroke, not per move: no second result follows.
+  await page.waitForTimeout(500);
+  assert.equal(await page.evaluate(() => window.crestline.results.length), count + 1, 'one result for a stroke of 4 moves');
   const painted = await page.evaluate(() => {
     const { viewer, brush } = window.crestline;
     const positions = viewer.surface.mesh.geometry.getAttribute('position').array;

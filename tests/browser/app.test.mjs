@@ -187,11 +187,12 @@ test('curvature colour map and singular triangles views', async () => {
 
 test('smoothing brush: painting frozen weights re-runs from the smoothing stage', async () => {
   const before = await page.evaluate(() => window.crestline.lastResult);
-  await page.evaluate(() => {
+  await page.evaluate(async () => {
     const { brush } = window.crestline;
     brush.setEnabled(true);
     brush.radius = 0.6;
     brush.value = 0;
+    await brush.ready(); // the surface index, built in a worker
   });
   const box = await page.locator('#view canvas').boundingBox();
   const result = await nextResult(async () => {

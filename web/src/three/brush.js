@@ -14,6 +14,33 @@ const pointer = new Vector2();
 /** The weights' colour map saturates at ±1 around the normal weight 1 (0 = frozen, 2 = twice). */
 export const WEIGHT_SCALE = 1;
 
+/** The index builder's worker, started on first use and kept (builds run in turn; a stale one's result is dropped). */
+let indexWorker = null;
+let nextBuild = 1;
+
+/** The SurfaceIndex arrays of the surface (copies of its arrays go to the worker). */
+function buildOffThread(positions, indices) {
+  indexWorker ??= new Worker(new URL('./surface-index-worker.js', import.meta.url), { type: 'module' });
+  const id = nextBuild++;
+  return new Promise((resolve, reject) => {
+    const worker = indexWorker;
+    const failed = (event) => {
+      worker.removeEventListener('message', done);
+      reject(new Error(`the brush's surface index could not be built (${event.message ?? 'worker error'})`));
+    };
+    function done({ data }) {
+      if (data.id !== id) return;
+      worker.removeEventListener('message', done);
+      worker.removeEventListener('error', failed);
+      resolve(data.parts);
+    }
+    worker.addEventListener('message', done);
+    worker.addEventListener('error', failed, { once: true });
+    const [p, i] = [positions.slice(), indices.slice()];
+    worker.postMessage({ id, positions: p, indices: i }, [p.buffer, i.buffer]);
+  });
+}
+
 export class WeightBrush {
   /** @param {import('./viewer.js').Viewer} viewer  @param {{onStroke: (weights) => void}} handlers */
   constructor(viewer, { onStroke }) {
@@ -35,16 +62,41 @@ export class WeightBrush {
   reset(count) {
     if (this.weights?.length !== count) this.weights = new Float64Array(count).fill(1);
     this.index = null; // built again for the new surface on first use
+    this.building = null;
   }
 
-  /** The picking and distance structure of the surface shown (built on first use: ~1 s for a million triangles). */
+  /**
+   * The picking and distance structure of the surface shown, or null while
+   * it is built: seconds for a million triangles, so in a browser a worker
+   * builds it (the page stays responsive; strokes start once it is there).
+   * Without workers (node) it is built here and returned at once.
+   */
   surfaceIndex() {
     const geometry = this.viewer.surface.mesh.geometry;
-    if (this.index?.geometry !== geometry) {
-      this.index = new SurfaceIndex(geometry.getAttribute('position').array, geometry.index.array);
-      this.index.geometry = geometry;
-      this.touched = new Uint32Array(1024);
+    if (this.index?.geometry === geometry) return this.index;
+    const positions = geometry.getAttribute('position').array;
+    const indices = geometry.index.array;
+    if (typeof Worker !== 'function') return this.adopt(new SurfaceIndex(positions, indices), geometry);
+    if (this.building?.geometry !== geometry) {
+      const building = buildOffThread(positions, indices).then((parts) => {
+        if (this.building === building) this.adopt(new SurfaceIndex(positions, indices, parts), geometry, true);
+        return this.index;
+      });
+      this.building = Object.assign(building, { geometry });
     }
+    return null;
+  }
+
+  /** Resolves to the surface shown's index once it is built (tests, callers that can wait). */
+  ready() {
+    return this.surfaceIndex() ?? this.building;
+  }
+
+  /** @param {SurfaceIndex} index @param {object} geometry @param {boolean} [offThread] */
+  adopt(index, geometry, offThread = false) {
+    this.index = Object.assign(index, { geometry, offThread });
+    this.building = null;
+    this.touched = new Uint32Array(1024);
     return this.index;
   }
 
@@ -84,10 +136,10 @@ export class WeightBrush {
     return this.paintRay(raycaster.ray.origin, raycaster.ray.direction);
   }
 
-  /** Paints where the ray (in the surface's coordinates) hits; returns how many vertices changed. */
+  /** Paints where the ray (in the surface's coordinates) hits; returns how many vertices changed (none while the index is built). */
   paintRay(origin, direction) {
     const index = this.surfaceIndex();
-    const hit = index.raycast(origin, direction);
+    const hit = index?.raycast(origin, direction);
     if (!hit) return 0;
     const geometry = this.viewer.surface.mesh.geometry;
     const radius = this.radius * geometry.boundingSphere.radius;

@@ -3,7 +3,8 @@
 // dozen box tests instead of a test per triangle) and the vertex adjacency
 // for distances measured along the surface (Dijkstra over the edges, bounded
 // by the brush radius), so a brush does not paint through a thin part.
-// Built once per surface, lazily, on the main thread (no three.js objects).
+// Built once per surface, lazily; in a browser off the main thread
+// (surface-index-worker.js sends the arrays back: SurfaceIndex.parts); no three.js objects.
 
 const LEAF = 8; // triangles per leaf at most
 
@@ -105,17 +106,28 @@ class Heap {
 }
 
 export class SurfaceIndex {
-  /** @param {Float32Array} positions xyz per vertex @param {Uint32Array} indices three per triangle */
-  constructor(positions, indices) {
+  /**
+   * @param {Float32Array} positions xyz per vertex @param {Uint32Array} indices three per triangle
+   * @param {object} [parts] the tree and adjacency built elsewhere (SurfaceIndex.parts of an index of the same surface)
+   */
+  constructor(positions, indices, parts) {
     this.positions = positions;
     this.indices = indices;
-    this.buildTree();
-    this.buildAdjacency();
+    if (parts) Object.assign(this, parts);
+    else {
+      this.buildTree();
+      this.buildAdjacency();
+    }
     const n = positions.length / 3;
     this.distance = new Float64Array(n);
     this.stamp = new Uint32Array(n); // distance[v] is valid when stamp[v] === this.round
     this.round = 0;
     this.heap = new Heap();
+  }
+
+  /** What a copy of `index` needs besides the surface (typed arrays, and the node count). @param {SurfaceIndex} index */
+  static parts({ order, bounds, first, size, nodes, offsets, neighbours }) {
+    return { order, bounds, first, size, nodes, offsets, neighbours };
   }
 
   buildTree() {
