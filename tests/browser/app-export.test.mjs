@@ -21,7 +21,14 @@ before(async () => {
 after(() => app?.close());
 
 /** Clicks the panel's export button `label`; returns {name, bytes} of the download. */
+/** The panel's Export folder starts closed: opened as a user would, by its title. */
+async function openExportFolder() {
+  const title = page.locator('.lil-gui .lil-title', { hasText: /^Export$/ });
+  if (await page.evaluate(() => window.crestline.gui.folders.find((f) => f._title === 'Export')._closed)) await title.click();
+}
+
 async function exported(label) {
+  await openExportFolder();
   const [download] = await Promise.all([
     page.waitForEvent('download', { timeout: 60000 }),
     page.getByRole('button', { name: label }).click(),
@@ -46,6 +53,7 @@ test('SVG: the visible lines of the current view, with a viewBox', async () => {
 });
 
 test('PNG at the chosen resolution (2× the canvas)', async () => {
+  await openExportFolder();
   await page.locator('.lil-controller', { hasText: 'PNG resolution' }).locator('select').selectOption({ label: '2× canvas' });
   const css = await page.evaluate(() => {
     const { width, height } = window.crestline.viewer.renderer.domElement.getBoundingClientRect();

@@ -32,6 +32,26 @@ test('1280×800: the bunny is framed clear of the info box and the panel', async
   assertUncovered(await framing(page));
 });
 
+test('1280×800: the panel fits the window as it opens; with every folder open it scrolls inside it', async () => {
+  const panel = () =>
+    page.evaluate(() => {
+      const root = window.crestline.gui.domElement;
+      const children = root.querySelector(':scope > .lil-children');
+      return { bottom: root.getBoundingClientRect().bottom, content: children.scrollHeight, shown: children.clientHeight, overflow: getComputedStyle(children).overflowY };
+    });
+  const start = await panel();
+  assert.ok(start.bottom <= 800, `the panel ends at ${start.bottom}`);
+  assert.ok(start.content <= start.shown, `its controls (${start.content} px) fit without scrolling (${start.shown} px)`);
+  const folders = await page.evaluate(() => window.crestline.gui.foldersRecursive().map((f) => [f._title, f._closed]));
+  await page.evaluate(() => window.crestline.gui.foldersRecursive().forEach((f) => f.open()));
+  await page.waitForTimeout(400); // lil-gui's opening transition
+  const open = await panel();
+  assert.ok(open.bottom <= 800 && open.content > open.shown && open.overflow === 'auto', `all open: ${JSON.stringify(open)}: scrolls inside the window`);
+  await page.evaluate((folders) => {
+    for (const f of window.crestline.gui.foldersRecursive()) if (folders.find(([title]) => title === f._title)[1]) f.close();
+  }, folders);
+});
+
 test('view presets with Y up, then with Z up', async () => {
   const s = 1 / Math.sqrt(3);
   const yUp = { front: [0, 0, 1], back: [0, 0, -1], left: [-1, 0, 0], right: [1, 0, 0], top: [0, 1, 0], bottom: [0, -1, 0], iso: [s, s, s] };

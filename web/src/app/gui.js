@@ -129,6 +129,7 @@ export function createGui(params, table, { onCompute, onDisplay, onFit, onCamera
   tip(exports.add(params, 'exportSilhouette').name('SVG: silhouette'), 'Add the model’s outline to the SVG export');
   tip(exports.add(params, 'pngScale', PNG_SCALES).name('PNG resolution'), 'Size of the PNG export, as a multiple of the canvas');
   for (const [format, label] of Object.entries(EXPORTS)) tip(exports.add({ [format]: () => onExport(format) }, format).name(label), `Download the ${EXPORT_TIPS[format]}`);
+  exports.close(); // with it closed the panel fits a 1280×800 window without scrolling
   const camera = gui.addFolder('Camera');
   tip(camera.add(params, 'preset', VIEW_PRESETS).name('view from'), 'Look at the model from the front, back, left, right, top, bottom or at an angle (iso), relative to its up axis').onChange(onCamera);
   tip(camera.add(params, 'upAxis', { 'Y up (glTF)': 'y', 'Z up (CAD, scans)': 'z' }).name('up axis'), 'Which axis of the file points up: glTF says Y; many CAD and scanned models use Z (seen from the top with Y)').onChange(onCamera);
