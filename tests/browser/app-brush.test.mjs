@@ -28,11 +28,15 @@ test('a thin slab: the brush paints the top face only, and only the touched colo
     const { brush, update } = window.crestline;
     const started = performance.now();
     update({ brush: true, brushRadius: 0.2, brushValue: 0 });
-    const afterSwitch = { ms: performance.now() - started, index: brush.index };
+    const notes = () => document.getElementById('notes').textContent;
+    const afterSwitch = { ms: performance.now() - started, index: brush.index, notes: notes() };
     const index = await brush.ready();
-    return { ...afterSwitch, offThread: index.offThread, nodes: index.nodes, adjacency: index.neighbours.length };
+    await new Promise((resolve) => setTimeout(resolve, 0));
+    return { ...afterSwitch, offThread: index.offThread, nodes: index.nodes, adjacency: index.neighbours.length, notesAfter: notes() };
   });
   assert.equal(switchedOn.index, null, 'no index built on the main thread when the brush is switched on');
+  assert.equal(switchedOn.notes, 'Brush: preparing the surface (a few seconds on a large mesh); strokes paint once it is ready.');
+  assert.equal(switchedOn.notesAfter, '', 'the note goes once the index is there');
   assert.equal(switchedOn.offThread, true, 'the index came from the worker');
   // 2 × 41² vertices… the slab's 6 faces: 6 × 2 × 40² triangles, each adds 6 neighbour entries.
   assert.equal(switchedOn.adjacency, 6 * 6 * 2 * 40 * 40);

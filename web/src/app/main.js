@@ -357,9 +357,19 @@ function applyView() {
 }
 
 /** The brush settings of the panel; painting shows the weights. */
+const PREPARING = 'Brush: preparing the surface (a few seconds on a large mesh); strokes paint once it is ready.';
+
 function applyBrush() {
   brush.setEnabled(params.brush);
-  if (params.brush && state.shown) brush.surfaceIndex(); // built now rather than at the first stroke
+  // Built now rather than at the first stroke, in a worker: the page says so until it is there.
+  if (params.brush && state.shown && !brush.surfaceIndex()) {
+    state.notes = [...state.notes.filter((n) => n !== PREPARING), PREPARING];
+    render();
+    brush.ready().then(() => {
+      state.notes = state.notes.filter((n) => n !== PREPARING);
+      render();
+    }, (error) => fail(error.message));
+  }
   brush.radius = params.brushRadius;
   brush.value = params.brushValue;
   if (params.brush && params.view !== 'weights') app.update({ view: 'weights' });
