@@ -34,13 +34,19 @@ const centre = [0, 1, 2].map((k) => {
   for (let i = k; i < positions.length; i += 3) [lo, hi] = [Math.min(lo, positions[i]), Math.max(hi, positions[i])];
   return (lo + hi) / 2;
 });
-surface.setMesh(Float32Array.from(positions, (x, i) => x - centre[i % 3]), Uint32Array.from(indices));
+surface.setMesh(
+  Float32Array.from(positions, (x, i) => x - centre[i % 3]),
+  Uint32Array.from(indices),
+);
 const viewer = { renderer: { domElement: new EventTarget() }, controls: {}, surface, render() {} };
 const brush = new WeightBrush(viewer, { onStroke() {} });
 brush.reset(positions.length / 3);
 brush.radius = radius;
 brush.value = 0;
-surface.setColors(brush.weights.map((w) => w - 1), 1);
+surface.setColors(
+  brush.weights.map((w) => w - 1),
+  1,
+);
 
 let started = performance.now();
 brush.surfaceIndex();
@@ -48,7 +54,7 @@ const buildMs = performance.now() - started;
 
 // Rays from outside the model at random triangles' centroids, along their normals.
 let seed = 17;
-const random = () => ((seed = (seed * 1103515245 + 12345) >>> 0) / 2 ** 32);
+const random = () => (seed = (seed * 1103515245 + 12345) >>> 0) / 2 ** 32;
 const p = surface.mesh.geometry.getAttribute('position').array;
 const R = surface.mesh.geometry.boundingSphere.radius;
 const times = [];

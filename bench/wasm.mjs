@@ -8,8 +8,7 @@ import { createRequire } from 'node:module';
 import { resolve } from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
 
-const STAGES = ['presmooth', 'curvature', 'extremality', 'regularity', 'smoothing',
-  'tracing', 'singular', 'polylines', 'fairing', 'filter'];
+const STAGES = ['presmooth', 'curvature', 'extremality', 'regularity', 'smoothing', 'tracing', 'singular', 'polylines', 'fairing', 'filter'];
 
 function parseArgs(argv) {
   const args = { dist: fileURLToPath(new URL('../wasm/dist/', import.meta.url)), runs: 3 };
@@ -72,7 +71,7 @@ async function measure(mesh, options, runs, dist) {
     stats = check(session.run(null)).stats;
     samples.load.push(load);
     let total = load;
-    for (const s of STAGES) samples[s].push(stats.seconds[s]), (total += stats.seconds[s]);
+    for (const s of STAGES) (samples[s].push(stats.seconds[s]), (total += stats.seconds[s]));
     samples.total.push(total);
     check(session.setOptions({ threshold: 1.5 * stats.threshold }));
     t = performance.now();
@@ -86,7 +85,11 @@ async function measure(mesh, options, runs, dist) {
   }
   const seconds = Object.fromEntries(Object.entries(samples).map(([k, v]) => [k, median(v)]));
   return {
-    name: mesh.name, triangles: stats.triangles, runs, seconds, heap_bytes: module.HEAPU8.length,
+    name: mesh.name,
+    triangles: stats.triangles,
+    runs,
+    seconds,
+    heap_bytes: module.HEAPU8.length,
     lines: { ridges: stats.ridges, valleys: stats.valleys, ridge_length: stats.ridgeLength, valley_length: stats.valleyLength },
   };
 }
@@ -126,9 +129,20 @@ for (const r of results) {
     continue;
   }
   const s = r.seconds;
-  rows.push([r.name, r.triangles, f(s.load), ...STAGES.map((k) => f(s[k])), f(s.total), f(s.rethreshold), f(s.resmooth),
-    (r.heap_bytes / 1048576).toFixed(0), f(n.seconds.total), (s.total / n.seconds.total).toFixed(2)]);
+  rows.push([
+    r.name,
+    r.triangles,
+    f(s.load),
+    ...STAGES.map((k) => f(s[k])),
+    f(s.total),
+    f(s.rethreshold),
+    f(s.resmooth),
+    (r.heap_bytes / 1048576).toFixed(0),
+    f(n.seconds.total),
+    (s.total / n.seconds.total).toFixed(2),
+  ]);
 }
 console.log(`WASM in node ${process.version}, seconds, median of ${args.runs} run${args.runs === 1 ? '' : 's'}; total = load+repair + stages`);
 console.log(table(rows));
-if (args.json) writeFileSync(args.json, JSON.stringify({ runner: 'wasm-node', node: process.version, runs: args.runs, options, meshes: results }, null, 2) + '\n');
+if (args.json)
+  writeFileSync(args.json, JSON.stringify({ runner: 'wasm-node', node: process.version, runs: args.runs, options, meshes: results }, null, 2) + '\n');

@@ -11,8 +11,14 @@ const dir = join(ROOT, 'test-results', 'readme-types');
 mkdirSync(dir, { recursive: true });
 writeFileSync(join(dir, 'example.ts'), readmeExample());
 const compilerOptions = {
-  strict: true, noEmit: true, target: 'es2022', module: 'esnext', moduleResolution: 'bundler',
-  lib: ['es2022', 'dom'], types: [], skipLibCheck: true,
+  strict: true,
+  noEmit: true,
+  target: 'es2022',
+  module: 'esnext',
+  moduleResolution: 'bundler',
+  lib: ['es2022', 'dom'],
+  types: [],
+  skipLibCheck: true,
 };
 writeFileSync(join(dir, 'tsconfig.json'), JSON.stringify({ compilerOptions, include: ['example.ts'] }, null, 2));
 execFileSync(join(ROOT, 'node_modules/.bin/tsc'), ['-p', dir], { stdio: 'inherit' });

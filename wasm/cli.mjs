@@ -23,7 +23,7 @@ function resolveCompanion(gltfPath, uri) {
   const refuse = (why) => {
     throw new Error(`the buffer ${quoted} ${why}.`);
   };
-  if (isAbsolute(name) || /^[a-z][a-z0-9+.-]*:/i.test(name)) refuse('is not a path inside the model\'s folder');
+  if (isAbsolute(name) || /^[a-z][a-z0-9+.-]*:/i.test(name)) refuse("is not a path inside the model's folder");
   let path;
   try {
     path = realpathSync(join(folder, name));

@@ -24,15 +24,21 @@ test('the README example, bundled by Vite, runs as written in Chromium', async (
   assert.ok(existsSync(join(ROOT, 'wasm/dist/crestline.wasm')), 'wasm/dist is missing: run wasm/build.sh');
   rmSync(site, { recursive: true, force: true });
   mkdirSync(site, { recursive: true });
-  writeFileSync(join(site, 'index.html'), '<!doctype html><meta charset="utf-8"><link rel="icon" href="data:,"><script type="module" src="./main.js"></script>\n');
-  writeFileSync(join(site, 'main.js'), `${readmeExample()}
+  writeFileSync(
+    join(site, 'index.html'),
+    '<!doctype html><meta charset="utf-8"><link rel="icon" href="data:,"><script type="module" src="./main.js"></script>\n',
+  );
+  writeFileSync(
+    join(site, 'main.js'),
+    `${readmeExample()}
 window.result = {
   ridges: ridges.length, valleys: valleys.length, stats,
   float32: ridges[0].points instanceof Float32Array,
   after: { ridges: lines.ridgeCount, valleys: lines.valleyCount, threshold: lines.stats.threshold },
   segments: lines.layer.objects[0].geometry.getAttribute('instanceShown').count,
 };
-`);
+`,
+  );
   await build({
     root: site,
     configFile: false,
@@ -52,7 +58,10 @@ window.result = {
   await page.waitForFunction(() => window.result, null, { timeout: 60000 }).catch(() => assert.fail(`no result; errors: ${errors} logs: ${logs}`));
   const result = await page.evaluate(() => window.result);
   assert.deepEqual(errors, []);
-  assert.ok(logs.some((l) => l.startsWith(`${result.ridges} ridges, ${result.valleys} valleys, threshold `)), `console: ${logs}`);
+  assert.ok(
+    logs.some((l) => l.startsWith(`${result.ridges} ridges, ${result.valleys} valleys, threshold `)),
+    `console: ${logs}`,
+  );
   assert.ok(result.ridges > 0 && result.float32);
   assert.deepEqual([result.stats.ridges, result.stats.valleys, result.stats.triangles], [result.ridges, result.valleys, 200 * 32 * 2]);
   assert.equal(result.after.threshold, 2 * result.stats.threshold);

@@ -83,7 +83,7 @@ test('the app computes the sample bunny under a strict CSP', async () => {
 
 const noCompressed = (!haveMeshes && `SKIPPED: ${MESHES} is absent`) || (!haveNativeCli && `SKIPPED: ${NATIVE_CLI} is not built`);
 
-test('Draco and meshopt GLBs: decompressed in the worker under the strict CSP, the native CLI\'s lines', { skip: noCompressed }, async () => {
+test("Draco and meshopt GLBs: decompressed in the worker under the strict CSP, the native CLI's lines", { skip: noCompressed }, async () => {
   const dir = mkdtempSync(join(tmpdir(), 'crestline-csp-'));
   try {
     for (const file of ['glb/pmndrs-bunny-draco.glb', 'glb/pirate-meshopt.glb']) {

@@ -14,26 +14,27 @@ import { glbFromSoup } from './widget-glb.mjs';
 import { serveWidgetSite } from './widget-site.mjs';
 
 /** The policy for a page at `siteUrl` that embeds the widget from `cdnUrl`. */
-const policy = (cdnUrl) => [
-  "default-src 'none'",
-  // The element's module comes from the CDN; compiling crestline.wasm (in
-  // the worker, which inherits this policy) needs 'wasm-unsafe-eval', and
-  // nothing more: no 'unsafe-eval'.
-  `script-src ${cdnUrl} 'wasm-unsafe-eval'`,
-  // client/browser.js starts the worker from a blob: module (a Worker's URL must be
-  // same-origin with the page) that imports the worker script from the CDN;
-  // the imports of a module worker are checked against worker-src too.
-  `worker-src blob: ${cdnUrl}`,
-  // The worker fetches the meshes (here, the site's own) and the Emscripten
-  // glue fetches crestline.wasm from the CDN.
-  `connect-src 'self' ${cdnUrl}`,
-  // The page's stylesheet (the widget's own styles are a constructed sheet).
-  "style-src 'self'",
-  // The favicon the browser asks for.
-  "img-src 'self'",
-  "base-uri 'none'",
-  "form-action 'none'",
-].join('; ');
+const policy = (cdnUrl) =>
+  [
+    "default-src 'none'",
+    // The element's module comes from the CDN; compiling crestline.wasm (in
+    // the worker, which inherits this policy) needs 'wasm-unsafe-eval', and
+    // nothing more: no 'unsafe-eval'.
+    `script-src ${cdnUrl} 'wasm-unsafe-eval'`,
+    // client/browser.js starts the worker from a blob: module (a Worker's URL must be
+    // same-origin with the page) that imports the worker script from the CDN;
+    // the imports of a module worker are checked against worker-src too.
+    `worker-src blob: ${cdnUrl}`,
+    // The worker fetches the meshes (here, the site's own) and the Emscripten
+    // glue fetches crestline.wasm from the CDN.
+    `connect-src 'self' ${cdnUrl}`,
+    // The page's stylesheet (the widget's own styles are a constructed sheet).
+    "style-src 'self'",
+    // The favicon the browser asks for.
+    "img-src 'self'",
+    "base-uri 'none'",
+    "form-action 'none'",
+  ].join('; ');
 
 let servers, browser, pages;
 
@@ -43,11 +44,14 @@ before(async () => {
   writeFileSync(join(pages, 'page.css'), 'body { margin: 0; }\ncrestline-viewer { width: 480px; height: 320px; }\n');
   servers = await serveWidgetSite({ '/pages/': pages }, (cdnUrl) => ({ 'Content-Security-Policy': policy(cdnUrl) }));
   const { cdnUrl } = servers;
-  writeFileSync(join(pages, 'csp.html'), `<!doctype html>
+  writeFileSync(
+    join(pages, 'csp.html'),
+    `<!doctype html>
 <html><head><meta charset="utf-8"><title>Crestline under a strict CSP</title>
 <link rel="stylesheet" href="page.css">
 <script type="module" src="${cdnUrl}/crestline-viewer.js"></script>
-</head><body><crestline-viewer id="v" alt="A sine height field" src="/pages/sine.glb"></crestline-viewer></body></html>`);
+</head><body><crestline-viewer id="v" alt="A sine height field" src="/pages/sine.glb"></crestline-viewer></body></html>`,
+  );
   browser = await launch();
 });
 
@@ -71,9 +75,13 @@ test('the widget computes lines under a strict CSP, with no violation', async ()
     window.events = [];
     document.addEventListener('securitypolicyviolation', (e) => window.events.push({ type: 'violation', detail: `${e.violatedDirective}: ${e.blockedURI}` }));
     for (const type of ['lines', 'error']) {
-      document.addEventListener(type, (e) => {
-        if (e.target.localName === 'crestline-viewer') window.events.push({ type, detail: type === 'lines' ? e.detail.counts : e.detail.message });
-      }, true);
+      document.addEventListener(
+        type,
+        (e) => {
+          if (e.target.localName === 'crestline-viewer') window.events.push({ type, detail: type === 'lines' ? e.detail.counts : e.detail.message });
+        },
+        true,
+      );
     }
   });
   const response = await page.goto(`${servers.siteUrl}/pages/csp.html`);
@@ -89,7 +97,10 @@ test('the widget computes lines under a strict CSP, with no violation', async ()
     return { display: getComputedStyle(v).display, error: getComputedStyle(v.shadowRoot.querySelector('[part=error]')).display };
   });
   assert.deepEqual(styled, { display: 'inline-block', error: 'none' });
-  assert.deepEqual(events.filter((e) => e.type !== 'lines'), []);
+  assert.deepEqual(
+    events.filter((e) => e.type !== 'lines'),
+    [],
+  );
   assert.deepEqual(problems, []);
   await page.close();
 });

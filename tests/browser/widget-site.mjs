@@ -11,7 +11,12 @@ import { serve } from './server.mjs';
 import { ROOT } from '../node/helpers.mjs';
 
 // Neither origin is cross-origin isolated: the widget must work on ordinary pages.
-const SITE_HEADERS = { 'Cross-Origin-Opener-Policy': null, 'Cross-Origin-Embedder-Policy': null, 'Cross-Origin-Resource-Policy': null, 'Access-Control-Allow-Origin': '*' };
+const SITE_HEADERS = {
+  'Cross-Origin-Opener-Policy': null,
+  'Cross-Origin-Embedder-Policy': null,
+  'Cross-Origin-Resource-Policy': null,
+  'Access-Control-Allow-Origin': '*',
+};
 const CDN_HEADERS = { ...SITE_HEADERS, 'Cross-Origin-Resource-Policy': 'cross-origin' };
 
 /**
@@ -22,7 +27,10 @@ const CDN_HEADERS = { ...SITE_HEADERS, 'Cross-Origin-Resource-Policy': 'cross-or
 export async function serveWidgetSite(roots, siteHeaders = () => ({})) {
   assert.ok(existsSync(join(ROOT, 'wasm/dist/crestline.wasm')), 'wasm/dist is missing: run wasm/build.sh');
   const dist = mkdtempSync(join(tmpdir(), 'crestline-widget-dist-'));
-  execFileSync(join(ROOT, 'node_modules/.bin/vite'), ['build', '--config', join(ROOT, 'web/vite.widget.config.js'), '--outDir', dist, '--logLevel', 'error'], { cwd: ROOT, stdio: ['ignore', 'ignore', 'inherit'] });
+  execFileSync(join(ROOT, 'node_modules/.bin/vite'), ['build', '--config', join(ROOT, 'web/vite.widget.config.js'), '--outDir', dist, '--logLevel', 'error'], {
+    cwd: ROOT,
+    stdio: ['ignore', 'ignore', 'inherit'],
+  });
   const cdn = await serve({ '/': dist }, CDN_HEADERS);
   // "localhost" vs "127.0.0.1": another origin even on the same port range.
   const cdnUrl = `http://localhost:${cdn.address().port}`;

@@ -39,7 +39,9 @@ after(async () => {
 
 /** A page on the site that loads the element from the CDN; events are recorded in window.events. */
 async function openPage(name, body, viewport = { width: 1000, height: 700 }) {
-  writeFileSync(join(pages, name), `<!doctype html>
+  writeFileSync(
+    join(pages, name),
+    `<!doctype html>
 <html><head><meta charset="utf-8"><link rel="icon" href="data:,">
 <script type="module" src="${cdnUrl}/crestline-viewer.js"></script>
 <script>
@@ -59,7 +61,8 @@ async function openPage(name, body, viewport = { width: 1000, height: 700 }) {
         window.events.push({ type, id: e.target.id, detail: type === 'lines' ? { counts: e.detail.counts, lengths: e.detail.lengths, threshold: e.detail.stats.threshold } : e.detail });
     }, true);
   }
-</script></head><body style="margin:0">${body}</body></html>`);
+</script></head><body style="margin:0">${body}</body></html>`,
+  );
   const page = await browser.newPage({ viewport });
   const problems = [];
   page.requested = [];
@@ -78,7 +81,8 @@ const eventsOf = (page, id, type) => page.evaluate(([id, type]) => window.events
 async function waitForEvents(page, id, type, count, timeout = 30000) {
   try {
     await page.waitForFunction(
-      ([id, type, count]) => window.events.filter((e) => e.id === id && e.type === type).length >= count || window.events.some((e) => e.id === id && e.type === 'error'),
+      ([id, type, count]) =>
+        window.events.filter((e) => e.id === id && e.type === type).length >= count || window.events.some((e) => e.id === id && e.type === 'error'),
       [id, type, count],
       { timeout },
     );
@@ -91,7 +95,10 @@ async function waitForEvents(page, id, type, count, timeout = 30000) {
 const total = (counts) => counts.ridges + counts.valleys;
 
 test('a viewer from another origin loads a GLB, re-thresholds and exports', async () => {
-  const { page, problems } = await openPage('one.html', '<crestline-viewer id="v" alt="A fan disk" interaction="orbit" style="width:480px;height:320px"></crestline-viewer>');
+  const { page, problems } = await openPage(
+    'one.html',
+    '<crestline-viewer id="v" alt="A fan disk" interaction="orbit" style="width:480px;height:320px"></crestline-viewer>',
+  );
   assert.notEqual(new URL(siteUrl).origin, new URL(cdnUrl).origin);
   // The worker and the .wasm are separate files, found beside the module on its own origin.
   for (const file of ['crestline-viewer.js', 'crestline-viewer-worker.js']) {
@@ -118,7 +125,10 @@ test('a viewer from another origin loads a GLB, re-thresholds and exports', asyn
   assert.deepEqual(order, ['load', 'lines'], `events: ${order}`);
   const [first] = await eventsOf(page, 'v', 'lines');
   const progress = await page.evaluate(() => window.progress);
-  assert.ok(progress.length > 3 && progress.every(({ stage, fraction }) => typeof stage === 'string' && fraction >= 0 && fraction <= 1), JSON.stringify(progress));
+  assert.ok(
+    progress.length > 3 && progress.every(({ stage, fraction }) => typeof stage === 'string' && fraction >= 0 && fraction <= 1),
+    JSON.stringify(progress),
+  );
   assert.ok(total(first.detail.counts) > 0, 'the first result has lines');
   assert.ok(first.detail.lengths.ridges + first.detail.lengths.valleys > 0);
 
@@ -146,14 +156,27 @@ test('a viewer from another origin loads a GLB, re-thresholds and exports', asyn
   assert.equal(await page.getAttribute('#v', 'threshold'), String(threshold));
   await waitForEvents(page, 'v', 'lines', 2);
   const [, second] = await eventsOf(page, 'v', 'lines');
-  assert.ok(total(second.detail.counts) < total(first.detail.counts), `${total(second.detail.counts)} lines after raising the threshold, ${total(first.detail.counts)} before`);
+  assert.ok(
+    total(second.detail.counts) < total(first.detail.counts),
+    `${total(second.detail.counts)} lines after raising the threshold, ${total(first.detail.counts)} before`,
+  );
 
   const exported = await page.evaluate(async () => {
     const v = document.getElementById('v');
     const png = await v.toPNG({ width: 960 });
     const glb = await v.toGLB();
-    const glbJson = JSON.parse(new TextDecoder().decode(new Uint8Array(await glb.arrayBuffer(), 20, new DataView(await glb.arrayBuffer()).getUint32(12, true))));
-    return { svg: await v.toSVG(), outlined: await v.toSVG({ silhouette: '#222222' }), obj: await v.toOBJ(), json: JSON.parse(await v.toJSON()), png: [png.type, png.size], glb: glbJson.meshes.map((m) => m.name ?? m.primitives[0].mode), label: v.shadowRoot.querySelector('canvas').getAttribute('aria-label') };
+    const glbJson = JSON.parse(
+      new TextDecoder().decode(new Uint8Array(await glb.arrayBuffer(), 20, new DataView(await glb.arrayBuffer()).getUint32(12, true))),
+    );
+    return {
+      svg: await v.toSVG(),
+      outlined: await v.toSVG({ silhouette: '#222222' }),
+      obj: await v.toOBJ(),
+      json: JSON.parse(await v.toJSON()),
+      png: [png.type, png.size],
+      glb: glbJson.meshes.map((m) => m.name ?? m.primitives[0].mode),
+      label: v.shadowRoot.querySelector('canvas').getAttribute('aria-label'),
+    };
   });
   // The core's SVG writer, with the widget's camera and size.
   assert.match(exported.svg, /<g id="(ridges|valleys)" fill="none" stroke="#[0-9a-f]{6}" stroke-width="[\d.]+"[^>]*>\n<path d="M[\d.]+,[\d.]+ L/);
@@ -187,19 +210,29 @@ test('a viewer from another origin loads a GLB, re-thresholds and exports', asyn
 });
 
 test('20 viewers share one WebGL context, load without context loss and redraw after one', async () => {
-  const body = Array.from({ length: 20 }, (_, i) =>
-    `<crestline-viewer id="v${i}" src="${i % 2 ? SECOND_MESH : MAIN_MESH}" style="width:190px;height:120px" ${i % 3 ? '' : 'auto-rotate'}></crestline-viewer>`).join('');
+  const body = Array.from(
+    { length: 20 },
+    (_, i) =>
+      `<crestline-viewer id="v${i}" src="${i % 2 ? SECOND_MESH : MAIN_MESH}" style="width:190px;height:120px" ${i % 3 ? '' : 'auto-rotate'}></crestline-viewer>`,
+  ).join('');
   const { page, problems } = await openPage('twenty.html', `<div style="display:flex;flex-wrap:wrap">${body}</div>`, { width: 1000, height: 700 });
-  await page.waitForFunction(() => new Set(window.events.filter((e) => e.type === 'lines' || e.type === 'error').map((e) => e.id)).size === 20, null, { timeout: 60000 });
+  await page.waitForFunction(() => new Set(window.events.filter((e) => e.type === 'lines' || e.type === 'error').map((e) => e.id)).size === 20, null, {
+    timeout: 60000,
+  });
   const errors = await page.evaluate(() => window.events.filter((e) => e.type === 'error'));
   assert.deepEqual(errors, []);
   // Every viewer has drawn something into its canvas.
-  const blankViewers = () => page.evaluate(() => [...document.querySelectorAll('crestline-viewer')].filter((v) => {
-    const canvas = v.shadowRoot.querySelector('canvas');
-    const { data } = canvas.getContext('2d').getImageData(0, 0, canvas.width, canvas.height);
-    for (let i = 3; i < data.length; i += 4) if (data[i]) return false;
-    return true;
-  }).map((v) => v.id));
+  const blankViewers = () =>
+    page.evaluate(() =>
+      [...document.querySelectorAll('crestline-viewer')]
+        .filter((v) => {
+          const canvas = v.shadowRoot.querySelector('canvas');
+          const { data } = canvas.getContext('2d').getImageData(0, 0, canvas.width, canvas.height);
+          for (let i = 3; i < data.length; i += 4) if (data[i]) return false;
+          return true;
+        })
+        .map((v) => v.id),
+    );
   await page.waitForTimeout(300);
   const blank = await blankViewers();
   assert.deepEqual(blank, []);
@@ -228,12 +261,17 @@ test('20 viewers share one WebGL context, load without context loss and redraw a
 });
 
 test('a glTF with its .bin and an OBJ load; a bad src fires error with a clear message', async () => {
-  const good = haveMeshes ? `
+  const good = haveMeshes
+    ? `
     <crestline-viewer id="gltf" src="/meshes/gltf/Duck/Duck.gltf"></crestline-viewer>
-    <crestline-viewer id="obj" src="/meshes/cad/fandisk-quads.obj"></crestline-viewer>` : '';
-  const { page } = await openPage('sources.html', `${good}
+    <crestline-viewer id="obj" src="/meshes/cad/fandisk-quads.obj"></crestline-viewer>`
+    : '';
+  const { page } = await openPage(
+    'sources.html',
+    `${good}
     <crestline-viewer id="missing" src="/meshes/no-such-mesh.glb"></crestline-viewer>
-    <crestline-viewer id="garbage" src="/pages/garbage.glb"></crestline-viewer>`);
+    <crestline-viewer id="garbage" src="/pages/garbage.glb"></crestline-viewer>`,
+  );
   for (const id of haveMeshes ? ['gltf', 'obj'] : []) {
     await waitForEvents(page, id, 'lines', 1);
     assert.deepEqual(await eventsOf(page, id, 'error'), []);
@@ -248,10 +286,13 @@ test('a glTF with its .bin and an OBJ load; a bad src fires error with a clear m
   await page.close();
 });
 
-test('cancel() stops a viewer\'s computation (event cancel); it and its neighbour on the same worker compute again', async () => {
-  const { page } = await openPage('cancel.html', `
+test("cancel() stops a viewer's computation (event cancel); it and its neighbour on the same worker compute again", async () => {
+  const { page } = await openPage(
+    'cancel.html',
+    `
     <crestline-viewer id="a" src="${MAIN_MESH}"></crestline-viewer>
-    <crestline-viewer id="b" src="${MAIN_MESH}"></crestline-viewer>`);
+    <crestline-viewer id="b" src="${MAIN_MESH}"></crestline-viewer>`,
+  );
   await waitForEvents(page, 'a', 'lines', 1);
   await waitForEvents(page, 'b', 'lines', 1);
   await page.evaluate(() => {
@@ -276,7 +317,10 @@ test('cancel() stops a viewer\'s computation (event cancel); it and its neighbou
 
 test('the iframe embed shows one mesh full-frame with the fragment parameters', async () => {
   const src = `${siteUrl}${MAIN_MESH}`;
-  const { page } = await openPage('embed.html', `<iframe id="frame" style="width:400px;height:300px;border:0" src="${cdnUrl}/embed.html#src=${encodeURIComponent(src)}&threshold=0&ridge-color=%2300aa00"></iframe>`);
+  const { page } = await openPage(
+    'embed.html',
+    `<iframe id="frame" style="width:400px;height:300px;border:0" src="${cdnUrl}/embed.html#src=${encodeURIComponent(src)}&threshold=0&ridge-color=%2300aa00"></iframe>`,
+  );
   const frame = page.frames().find((f) => f.url().startsWith(cdnUrl));
   await frame.waitForFunction(() => document.querySelector('crestline-viewer')?.lines, null, { timeout: 30000 });
   const state = await frame.evaluate(() => {
@@ -289,7 +333,9 @@ test('the iframe embed shows one mesh full-frame with the fragment parameters', 
 });
 
 test('lazy loading waits for the viewport; keyboard orbit; reduced motion stops auto-rotate', async () => {
-  const { page } = await openPage('lazy.html', `
+  const { page } = await openPage(
+    'lazy.html',
+    `
     <crestline-viewer id="near" src="${MAIN_MESH}" interaction="orbit" auto-rotate poster="data:image/gif;base64,R0lGODlhAQABAAAAACw="></crestline-viewer>
     <crestline-viewer id="still" src="${MAIN_MESH}" interaction="none" threshold="0" style="--crestline-ridge-color: #00ff00; --crestline-valley-color: #ff00ff"></crestline-viewer>
     <div style="height:3000px"></div>
@@ -300,7 +346,8 @@ test('lazy loading waits for the viewport; keyboard orbit; reduced motion stops 
       early.id = 'early';
       early.threshold = 2.5;
       document.body.append(early);
-    </script>`);
+    </script>`,
+  );
   await page.emulateMedia({ reducedMotion: 'reduce' });
   await waitForEvents(page, 'near', 'lines', 1);
   await waitForEvents(page, 'still', 'lines', 1);
@@ -309,7 +356,12 @@ test('lazy loading waits for the viewport; keyboard orbit; reduced motion stops 
     const near = document.getElementById('near');
     const canvas = near.shadowRoot.querySelector('canvas');
     const { width, height } = near.getBoundingClientRect();
-    return { size: [width, height], tabIndex: canvas.tabIndex, label: canvas.getAttribute('aria-label'), posterHidden: near.shadowRoot.querySelector('[part=poster]').hidden };
+    return {
+      size: [width, height],
+      tabIndex: canvas.tabIndex,
+      label: canvas.getAttribute('aria-label'),
+      posterHidden: near.shadowRoot.querySelector('[part=poster]').hidden,
+    };
   });
   assert.equal(await page.getAttribute('#early', 'threshold'), '2.5');
   assert.deepEqual(state, { size: [300, 150], tabIndex: 0, label: 'A 3D model with its ridge and valley lines', posterHidden: true });
@@ -326,7 +378,12 @@ test('lazy loading waits for the viewport; keyboard orbit; reduced motion stops 
   const still = await camera('still');
   // CSS custom properties colour the lines (and so the SVG).
   assert.match(await page.evaluate(() => document.getElementById('still').toSVG()), /stroke="#00ff00"[^]*stroke="#ff00ff"/);
-  await page.evaluate(() => document.getElementById('still').shadowRoot.querySelector('canvas').dispatchEvent(new KeyboardEvent('keydown', { key: 'ArrowLeft' })));
+  await page.evaluate(() =>
+    document
+      .getElementById('still')
+      .shadowRoot.querySelector('canvas')
+      .dispatchEvent(new KeyboardEvent('keydown', { key: 'ArrowLeft' })),
+  );
   assert.deepEqual(await camera('still'), still);
   // A removed viewer frees its worker session; put back, it loads again.
   await page.evaluate(async () => {
@@ -336,7 +393,11 @@ test('lazy loading waits for the viewport; keyboard orbit; reduced motion stops 
     document.body.prepend(still);
   });
   await waitForEvents(page, 'still', 'lines', 2);
-  assert.equal((await eventsOf(page, 'still', 'load')).length, 2, JSON.stringify(await page.evaluate(() => window.events.filter((e) => e.id === 'still').map((e) => e.type + ' ' + (e.detail.threshold ?? '')))));
+  assert.equal(
+    (await eventsOf(page, 'still', 'load')).length,
+    2,
+    JSON.stringify(await page.evaluate(() => window.events.filter((e) => e.id === 'still').map((e) => e.type + ' ' + (e.detail.threshold ?? '')))),
+  );
   // A worker that lost the mesh (as after a WebAssembly abort) gets it sent
   // again by the client on the next change; the viewer keeps its picture (no new 'load').
   await page.evaluate(() => {
@@ -345,12 +406,24 @@ test('lazy loading waits for the viewport; keyboard orbit; reduced motion stops 
     still.threshold = 0.5;
   });
   await waitForEvents(page, 'still', 'lines', 3);
-  assert.equal((await eventsOf(page, 'still', 'load')).length, 2, JSON.stringify(await page.evaluate(() => window.events.filter((e) => e.id === 'still').map((e) => e.type + ' ' + (e.detail.threshold ?? '')))));
+  assert.equal(
+    (await eventsOf(page, 'still', 'load')).length,
+    2,
+    JSON.stringify(await page.evaluate(() => window.events.filter((e) => e.id === 'still').map((e) => e.type + ' ' + (e.detail.threshold ?? '')))),
+  );
   assert.deepEqual(await eventsOf(page, 'still', 'error'), []);
   // Without reduced motion, auto-rotate turns the model.
   await page.emulateMedia({ reducedMotion: 'no-preference' });
   const turned = await camera('near');
-  await page.waitForFunction((p) => document.getElementById('near').view.camera.position.toArray().some((v, i) => Math.abs(v - p[i]) > 1e-6), turned, { timeout: 5000 });
+  await page.waitForFunction(
+    (p) =>
+      document
+        .getElementById('near')
+        .view.camera.position.toArray()
+        .some((v, i) => Math.abs(v - p[i]) > 1e-6),
+    turned,
+    { timeout: 5000 },
+  );
   // The lazy viewer three screens down has not even fetched its mesh.
   await page.waitForTimeout(300);
   assert.deepEqual(await eventsOf(page, 'far', 'load'), []);
@@ -360,16 +433,24 @@ test('lazy loading waits for the viewport; keyboard orbit; reduced motion stops 
 });
 
 test('up-axis: the polar angle of camera-orbit is measured from Y (default) or Z', async () => {
-  const { page, problems } = await openPage('up.html', `
+  const { page, problems } = await openPage(
+    'up.html',
+    `
     <crestline-viewer id="y" src="/pages/sine.glb" camera-orbit="0deg 30deg 100%"></crestline-viewer>
-    <crestline-viewer id="z" src="/pages/sine.glb" camera-orbit="0deg 30deg 100%" up-axis="z"></crestline-viewer>`);
+    <crestline-viewer id="z" src="/pages/sine.glb" camera-orbit="0deg 30deg 100%" up-axis="z"></crestline-viewer>`,
+  );
   await waitForEvents(page, 'y', 'lines', 1);
   await waitForEvents(page, 'z', 'lines', 1);
-  const view = (id) => page.evaluate((id) => {
-    const { camera, controls } = document.getElementById(id).view;
-    return { direction: camera.position.clone().sub(controls.target).normalize().toArray(), up: camera.up.toArray() };
-  }, id);
-  const near = (a, b, what) => assert.ok(a.every((x, i) => Math.abs(x - b[i]) < 1e-6), `${what}: ${a} ≠ ${b}`);
+  const view = (id) =>
+    page.evaluate((id) => {
+      const { camera, controls } = document.getElementById(id).view;
+      return { direction: camera.position.clone().sub(controls.target).normalize().toArray(), up: camera.up.toArray() };
+    }, id);
+  const near = (a, b, what) =>
+    assert.ok(
+      a.every((x, i) => Math.abs(x - b[i]) < 1e-6),
+      `${what}: ${a} ≠ ${b}`,
+    );
   const [sin, cos] = [Math.sin(Math.PI / 6), Math.cos(Math.PI / 6)];
   const y = await view('y');
   near(y.direction, [0, cos, sin], 'Y up: 30° from +Y, towards +Z');
@@ -386,32 +467,37 @@ test('up-axis: the polar angle of camera-orbit is measured from Y (default) or Z
 });
 
 test('creases: shown in crease-color (attribute over --crestline-crease-color), creases="false" hides them, in toSVG/toOBJ/toJSON', async () => {
-  const { page, problems } = await openPage('creases.html', `
+  const { page, problems } = await openPage(
+    'creases.html',
+    `
     <crestline-viewer id="c" src="/pages/box.obj" crease-color="#00aa44" style="width:400px;height:300px;--crestline-crease-color:#aa0000"></crestline-viewer>
-    <crestline-viewer id="d" src="/pages/box.obj" creases="false" style="width:400px;height:300px;--crestline-crease-color:#123456"></crestline-viewer>`);
+    <crestline-viewer id="d" src="/pages/box.obj" creases="false" style="width:400px;height:300px;--crestline-crease-color:#123456"></crestline-viewer>`,
+  );
   await waitForEvents(page, 'c', 'lines', 1);
   await waitForEvents(page, 'd', 'lines', 1);
-  const state = (id) => page.evaluate((id) => {
-    const v = document.getElementById(id);
-    return {
-      creases: v.creases,
-      creaseColor: v.creaseColor,
-      count: v.stats.creases,
-      visible: v.view.creases.objects.map((o) => o.visible),
-      segments: v.view.creases.objects.map((o) => o.userData.segments),
-      colour: `#${v.view.creases.objects[0].material.color.getHexString()}`,
-    };
-  }, id);
+  const state = (id) =>
+    page.evaluate((id) => {
+      const v = document.getElementById(id);
+      return {
+        creases: v.creases,
+        creaseColor: v.creaseColor,
+        count: v.stats.creases,
+        visible: v.view.creases.objects.map((o) => o.visible),
+        segments: v.view.creases.objects.map((o) => o.userData.segments),
+        colour: `#${v.view.creases.objects[0].material.color.getHexString()}`,
+      };
+    }, id);
   const c = await state('c');
   const d = await state('d');
   // The box: 12 convex edges of 24 segments each, no concave ones.
   assert.deepEqual(c, { creases: true, creaseColor: '#00aa44', count: 12, visible: [true, false], segments: [288, 0], colour: '#00aa44' });
   assert.deepEqual(d, { creases: false, creaseColor: null, count: 12, visible: [false, false], segments: [288, 0], colour: '#123456' });
 
-  const exports = (id) => page.evaluate(async (id) => {
-    const v = document.getElementById(id);
-    return { svg: await v.toSVG(), obj: await v.toOBJ(), json: JSON.parse(await v.toJSON()) };
-  }, id);
+  const exports = (id) =>
+    page.evaluate(async (id) => {
+      const v = document.getElementById(id);
+      return { svg: await v.toSVG(), obj: await v.toOBJ(), json: JSON.parse(await v.toJSON()) };
+    }, id);
   const shown = await exports('c');
   assert.match(shown.svg, /<g id="creases" fill="none" stroke="#00aa44"[^>]*>\n<path class="convex" d="M/);
   assert.doesNotMatch(shown.svg, /class="concave"/);

@@ -28,7 +28,8 @@ console.log('RESULT ' + JSON.stringify({
 }));`;
   writeFileSync(script, readmeExample() + report);
   const stdout = await new Promise((resolve, reject) =>
-    execFile(process.execPath, [script], { timeout: 120_000 }, (error, out, err) => (error ? reject(new Error(`${error.message}\n${err}`)) : resolve(out))));
+    execFile(process.execPath, [script], { timeout: 120_000 }, (error, out, err) => (error ? reject(new Error(`${error.message}\n${err}`)) : resolve(out))),
+  );
   const line = stdout.split('\n').find((l) => l.startsWith('RESULT '));
   assert.ok(line, stdout);
   const result = JSON.parse(line.slice(7));
@@ -36,7 +37,10 @@ console.log('RESULT ' + JSON.stringify({
   assert.ok(result.ridges > 0, JSON.stringify(result));
   assert.deepEqual([result.stats.ridges, result.stats.valleys], [result.ridges, result.valleys], 'stats count the lines returned');
   assert.equal(result.stats.triangles, 200 * 32 * 2, 'the torus knot, welded');
-  assert.deepEqual({ ...result.first, n: result.first.n % 3, strength: result.first.strength > 0 }, { float32: true, n: 0, strength: true, closed: result.first.closed });
+  assert.deepEqual(
+    { ...result.first, n: result.first.n % 3, strength: result.first.strength > 0 },
+    { float32: true, n: 0, strength: true, closed: result.first.closed },
+  );
   assert.equal(result.after.threshold, 2 * result.stats.threshold, 'update() applied the new threshold');
   assert.ok(result.after.ridges + result.after.valleys <= result.ridges + result.valleys, 'a higher threshold keeps no more lines');
   assert.equal(result.parent, true);
@@ -50,7 +54,7 @@ const objText = ({ positions, indices }) => {
   return `${out.join('\n')}\n`;
 };
 
-test('computeFeatureLines gives the native CLI\'s lines and --stats', { skip: !haveNativeCli && `SKIPPED: ${NATIVE_CLI} is not built` }, async () => {
+test("computeFeatureLines gives the native CLI's lines and --stats", { skip: !haveNativeCli && `SKIPPED: ${NATIVE_CLI} is not built` }, async () => {
   // Coordinates a float32 can hold: the C++ OBJ reader keeps them exactly.
   const sine = sineHeightField({ n: 40 });
   const mesh = { positions: Float64Array.from(Float32Array.from(sine.positions)), indices: sine.indices };
@@ -60,7 +64,7 @@ test('computeFeatureLines gives the native CLI\'s lines and --stats', { skip: !h
   const native = JSON.parse(execFileSync(NATIVE_CLI, [input, '-o', output, '--stats', '-q', '--smoothing-steps', '2'], { encoding: 'utf8' }));
   const stages = new Set();
   const { ridges, valleys, stats } = await computeFeatureLines(mesh, { smoothingSteps: 2, onProgress: (stage) => stages.add(stage) });
-  assert.deepEqual(Object.keys(stats).sort(), Object.keys(native).sort(), 'the --stats object\'s keys');
+  assert.deepEqual(Object.keys(stats).sort(), Object.keys(native).sort(), "the --stats object's keys");
   for (const key of ['vertices', 'triangles', 'ridges', 'valleys', 'presmooth_steps']) assert.equal(stats[key], native[key], key);
   // A soup and the same mesh read from a file are repaired into differently
   // ordered meshes: sums agree to round-off (singular counts of this flat-ish

@@ -35,7 +35,10 @@ function run(build, args) {
 async function both(name, args, { stats = false } = {}) {
   const outcomes = {};
   for (const build of ['native', 'wasm']) {
-    outcomes[build] = await run(build, args.map((a) => (typeof a === 'function' ? a(build) : a)));
+    outcomes[build] = await run(
+      build,
+      args.map((a) => (typeof a === 'function' ? a(build) : a)),
+    );
   }
   const { native, wasm } = outcomes;
   const show = (o) => `exit ${o.code}, stderr: ${JSON.stringify(o.stderr.slice(0, 300))}`;
@@ -50,7 +53,8 @@ async function both(name, args, { stats = false } = {}) {
 /** 30×30 height field z = 0.1 cos(4πx) on [0,2]²: two ridges and valleys. */
 function waveObj(n = 30) {
   const lines = [];
-  for (let j = 0; j <= n; j++) for (let i = 0; i <= n; i++) lines.push(`v ${(2 * i) / n} ${(2 * j) / n} ${(0.1 * Math.cos(4 * Math.PI * ((2 * i) / n))).toFixed(6)}`);
+  for (let j = 0; j <= n; j++)
+    for (let i = 0; i <= n; i++) lines.push(`v ${(2 * i) / n} ${(2 * j) / n} ${(0.1 * Math.cos(4 * Math.PI * ((2 * i) / n))).toFixed(6)}`);
   for (let j = 0; j < n; j++) {
     for (let i = 0; i < n; i++) {
       const a = j * (n + 1) + i + 1;
@@ -76,8 +80,8 @@ test('--help: the same text in both builds, and every parameter of describe() in
   const number = (x) => (x === Infinity ? 'inf' : String(x));
   const valueName = { integer: ' N', number: ' X', choice: ' NAME', boolean: '' };
   for (const p of table) {
-    const range = p.kind === 'choice' ? p.choices.join(', ')
-      : p.kind === 'boolean' ? '' : `${p.automatic ? 'auto or ' : ''}${number(p.min)} to ${number(p.max)}`;
+    const range =
+      p.kind === 'choice' ? p.choices.join(', ') : p.kind === 'boolean' ? '' : `${p.automatic ? 'auto or ' : ''}${number(p.min)} to ${number(p.max)}`;
     const details = [p.unit, range, `default ${number(p.default)}`].filter(Boolean).join('; ');
     const row = `${p.flag}${valueName[p.kind]} ${p.help} (${details})`;
     assert.ok(text.includes(row), `--help does not show the table's row\n  ${row}`);
@@ -87,13 +91,30 @@ test('--help: the same text in both builds, and every parameter of describe() in
 
 // Usage errors: exit code 2, one line naming the option, nothing written.
 const USAGE = [
-  ['--smoothing-steps', '1000000000'], ['--presmooth-steps', '1000000000'], ['--fairing-iterations', '1000000000'],
-  ['--smoothing-steps', '-1'], ['--smoothing-steps', '2.5'], ['--smoothing-steps', 'auto'],
-  ['--presmooth-time-step', '-1'], ['--presmooth-time-step', 'nan'], ['--smoothing-time-step', 'inf'],
-  ['--threshold', 'nan'], ['--threshold', '-1'], ['--threshold', 'x'], ['--fairing-bound', '9'.repeat(309)],
-  ['--boundary-rings', '21'], ['--short-line-length', '-1'], ['--svg-width', '15'], ['--stroke-width', '0'],
-  ['--view', 'sideways'], ['--silhouette=maybe'], ['--no-such-option'], ['--stats=1'], ['--smoothing-steps'],
-  ['--threads', '-1'], ['--threads', '2000'],
+  ['--smoothing-steps', '1000000000'],
+  ['--presmooth-steps', '1000000000'],
+  ['--fairing-iterations', '1000000000'],
+  ['--smoothing-steps', '-1'],
+  ['--smoothing-steps', '2.5'],
+  ['--smoothing-steps', 'auto'],
+  ['--presmooth-time-step', '-1'],
+  ['--presmooth-time-step', 'nan'],
+  ['--smoothing-time-step', 'inf'],
+  ['--threshold', 'nan'],
+  ['--threshold', '-1'],
+  ['--threshold', 'x'],
+  ['--fairing-bound', '9'.repeat(309)],
+  ['--boundary-rings', '21'],
+  ['--short-line-length', '-1'],
+  ['--svg-width', '15'],
+  ['--stroke-width', '0'],
+  ['--view', 'sideways'],
+  ['--silhouette=maybe'],
+  ['--no-such-option'],
+  ['--stats=1'],
+  ['--smoothing-steps'],
+  ['--threads', '-1'],
+  ['--threads', '2000'],
 ];
 
 test('usage errors: the same exit code 2 and sentence in both builds', { skip: noNative }, async () => {
@@ -114,7 +135,11 @@ test('usage errors: the same exit code 2 and sentence in both builds', { skip: n
   ]) {
     assert.equal((await both(name, args)).code, 2, name);
   }
-  assert.deepEqual(readdirSync(dir).filter((f) => f.includes('usage')), [], 'a usage error wrote a file');
+  assert.deepEqual(
+    readdirSync(dir).filter((f) => f.includes('usage')),
+    [],
+    'a usage error wrote a file',
+  );
 });
 
 test('data safety: same sentences; the input is never overwritten; no file is left behind', { skip: noNative }, async () => {
@@ -140,13 +165,21 @@ test('data safety: same sentences; the input is never overwritten; no file is le
     assert.doesNotMatch(result.stderr, /E[A-Z]{3,}:|Error:| {4}at /, `${name}: a raw error`);
     assert.ok(readFileSync(input).equals(original), `${name}: the input changed`);
   }
-  assert.deepEqual(readdirSync(dir).filter((f) => /\.tmp$|\.partial$|^(native|wasm)-/.test(f)), [], 'left behind');
+  assert.deepEqual(
+    readdirSync(dir).filter((f) => /\.tmp$|\.partial$|^(native|wasm)-/.test(f)),
+    [],
+    'left behind',
+  );
   assert.deepEqual(readdirSync(join(dir, 'folder.obj')), []);
 });
 
 test('every output format: byte-identical files, the same notes and stats', { skip: noNative }, async () => {
   const runs = [
-    ['lines.obj', []], ['lines.json', []], ['lines.glb', []], ['mesh.obj', ['--with-mesh']], ['mesh.glb', ['--with-mesh']],
+    ['lines.obj', []],
+    ['lines.json', []],
+    ['lines.glb', []],
+    ['mesh.obj', ['--with-mesh']],
+    ['mesh.glb', ['--with-mesh']],
     ['lines.svg', ['--view', 'top', '--silhouette', '--svg-width', '400', '--stroke-width', '2', '--svg-surface-tolerance', '0.3']],
     ['manual.obj', ['--threshold', '0.5', '--smoothing-steps', '5', '--presmooth-steps', '1', '--fairing-bound', '0', '--short-line-length', '0']],
   ];
@@ -198,8 +231,10 @@ for (const file of MESH_FILES) {
     assert.equal(a.valleys.length, b.valleys.length, `${file}: valley count`);
     assert.equal(a.creases.length, b.creases.length, `${file}: crease count`);
     for (const group of ['ridges', 'valleys', 'creases']) {
-      const d = Math.max(maxNearestDistance(flat(a[group], a.vertices), flat(b[group], b.vertices)),
-        maxNearestDistance(flat(b[group], b.vertices), flat(a[group], a.vertices)));
+      const d = Math.max(
+        maxNearestDistance(flat(a[group], a.vertices), flat(b[group], b.vertices)),
+        maxNearestDistance(flat(b[group], b.vertices), flat(a[group], a.vertices)),
+      );
       assert.equal(d, 0, `${file}: ${group} differ by up to ${d}`);
     }
     assert.ok(readFileSync(out(`${name}.obj`)('wasm')).equals(readFileSync(out(`${name}.obj`)('native'))), `${file}: the files differ`);

@@ -22,8 +22,26 @@ export function concaveOctagonObj(blocksX = 30, blocksY = 30) {
   for (let by = 0; by < blocksY; by++) {
     for (let bx = 0; bx < blocksX; bx++) {
       const [i, j] = [2 * bx, 3 * by];
-      const L1 = [[0, 0], [1, 0], [2, 0], [2, 1], [1, 1], [1, 2], [0, 2], [0, 1]];
-      const L2 = [[1, 1], [2, 1], [2, 2], [2, 3], [1, 3], [0, 3], [0, 2], [1, 2]];
+      const L1 = [
+        [0, 0],
+        [1, 0],
+        [2, 0],
+        [2, 1],
+        [1, 1],
+        [1, 2],
+        [0, 2],
+        [0, 1],
+      ];
+      const L2 = [
+        [1, 1],
+        [2, 1],
+        [2, 2],
+        [2, 3],
+        [1, 3],
+        [0, 3],
+        [0, 2],
+        [1, 2],
+      ];
       for (const L of [L1, L2]) lines.push(`f ${L.map(([a, b]) => v(i + a, j + b)).join(' ')}`);
     }
   }

@@ -55,30 +55,49 @@ const cases = {
   'digits.obj': [`${square}f 1 2 12345678901234567890\n`, 'which is out of range'],
   // JSON.stringify cannot write 2^63 exactly: spliced in as text.
   'offset.gltf': [gltf().replace('"buffer":0,', '"buffer":0,"byteOffset":9223372036854775808,'), 'bufferViews[0].byteOffset is 9223372036854775808'],
-  'indices.gltf': [gltf((j) => { j.meshes[0].primitives[0].indices = -7; }), 'indices is -7'],
-  'version.gltf': [gltf((j) => { j.asset.version = '1.0'; }), "asset version is '1.0'"],
-  'float.gltf': [gltf((j) => {
-    j.accessors.push({ bufferView: 0, componentType: 5126, count: 3, type: 'SCALAR' });
-    j.meshes[0].primitives[0].indices = 1;
-  }), 'component type 5126 (FLOAT)'],
+  'indices.gltf': [
+    gltf((j) => {
+      j.meshes[0].primitives[0].indices = -7;
+    }),
+    'indices is -7',
+  ],
+  'version.gltf': [
+    gltf((j) => {
+      j.asset.version = '1.0';
+    }),
+    "asset version is '1.0'",
+  ],
+  'float.gltf': [
+    gltf((j) => {
+      j.accessors.push({ bufferView: 0, componentType: 5126, count: 3, type: 'SCALAR' });
+      j.meshes[0].primitives[0].indices = 1;
+    }),
+    'component type 5126 (FLOAT)',
+  ],
   'hex.obj': [`${square}v 0x1p0 0 0\nf 1 2 3\n`, "hexadecimal number '0x1p0'"],
   'datauri.gltf': [gltf(() => {}, `data:application/octet-stream;base64,${'!'.repeat(20000)}`), 'the glTF data is invalid'],
   'model/up.gltf': [gltf(() => {}, '../secret.bin'), "'../secret.bin' leads out of the model's folder"],
-  'forest.gltf': [gltf((j) => {
-    j.accessors[0] = { componentType: 5126, count: 30000, type: 'VEC3' }; // zeros: 10^4 triangles
-    j.nodes = Array.from({ length: 6000 }, () => ({ mesh: 0 }));
-    j.extras = ' '.repeat(30000);
-  }), 'expands to 60000000 triangles, more than the limit of 50000000'],
+  'forest.gltf': [
+    gltf((j) => {
+      j.accessors[0] = { componentType: 5126, count: 30000, type: 'VEC3' }; // zeros: 10^4 triangles
+      j.nodes = Array.from({ length: 6000 }, () => ({ mesh: 0 }));
+      j.extras = ' '.repeat(30000);
+    }),
+    'expands to 60000000 triangles, more than the limit of 50000000',
+  ],
   // Item 4's example: 48 triangles placed 10^6 times by EXT_mesh_gpu_instancing
   // (zeros: no bufferView), 1 MB; under the triangle limit, past 16 times
   // the triangles stored and the floor of 4·10^6.
-  'amplified.gltf': [gltf((j) => {
-    j.extensionsUsed = ['EXT_mesh_gpu_instancing'];
-    j.accessors[0] = { componentType: 5126, count: 144, type: 'VEC3' };
-    j.accessors.push({ componentType: 5126, count: 1_000_000, type: 'VEC3' });
-    j.nodes = [{ mesh: 0, extensions: { EXT_mesh_gpu_instancing: { attributes: { TRANSLATION: 1 } } } }];
-    j.extras = ' '.repeat(1_000_000);
-  }), 'which expands their 48 triangles to 48000000, more than the limit of 4000000 (16 times the triangles stored'],
+  'amplified.gltf': [
+    gltf((j) => {
+      j.extensionsUsed = ['EXT_mesh_gpu_instancing'];
+      j.accessors[0] = { componentType: 5126, count: 144, type: 'VEC3' };
+      j.accessors.push({ componentType: 5126, count: 1_000_000, type: 'VEC3' });
+      j.nodes = [{ mesh: 0, extensions: { EXT_mesh_gpu_instancing: { attributes: { TRANSLATION: 1 } } } }];
+      j.extras = ' '.repeat(1_000_000);
+    }),
+    'which expands their 48 triangles to 48000000, more than the limit of 4000000 (16 times the triangles stored',
+  ],
   'bom.obj': [`\uFEFF${square}f 1 2 3 4\n`, null],
   'continued.obj': [`${square}f 1 2 \\\n 3 4\n`, null],
 };

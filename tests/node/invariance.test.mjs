@@ -23,7 +23,7 @@ function noisyField(n = 50) {
     for (let i = 0; i <= n; i++) {
       const x = i * h;
       const y = j * h;
-      const z = 0.25 * Math.cos(2 * Math.PI * x / 1.1) * Math.cos(2 * Math.PI * y / 1.1) + 0.15 * h * gauss();
+      const z = 0.25 * Math.cos((2 * Math.PI * x) / 1.1) * Math.cos((2 * Math.PI * y) / 1.1) + 0.15 * h * gauss();
       positions.set([x, y, z], 3 * (j * (n + 1) + i));
     }
   }
@@ -72,7 +72,12 @@ test('a noisy field scaled and moved 1e7 diagonals away gives the same lines (WA
   const reference = run(engine, mesh);
   assert.ok(reference.stats.presmoothStepsUsed > 0, 'the noise switches pre-smoothing on');
   assert.ok(reference.stats.ridges > 0 && reference.stats.valleys > 0);
-  for (const [name, scale, shift] of [['x2^-27 (exact)', 2 ** -27, 0], ['x1e8', 1e8, 0], ['x1e-3 +1e7 diagonals', 1e-3, 1e7], ['+1e7 diagonals', 1, 1e7]]) {
+  for (const [name, scale, shift] of [
+    ['x2^-27 (exact)', 2 ** -27, 0],
+    ['x1e8', 1e8, 0],
+    ['x1e-3 +1e7 diagonals', 1e-3, 1e7],
+    ['+1e7 diagonals', 1, 1e7],
+  ]) {
     const offset = direction.map((d) => d * shift * scale * diagonal);
     const moved = { ...mesh, positions: mesh.positions.map((x, i) => x * scale + offset[i % 3]) };
     // A translation rounds away digits no frame can restore: compare with the
@@ -98,10 +103,16 @@ test('a copy 100 times smaller inside the mesh changes none of its lines (WASM)'
   const count = mesh.positions.length / 3;
   const positions = new Float64Array(2 * mesh.positions.length);
   positions.set(mesh.positions);
-  positions.set(mesh.positions.map((x) => x * 0.01 + 1), mesh.positions.length);
+  positions.set(
+    mesh.positions.map((x) => x * 0.01 + 1),
+    mesh.positions.length,
+  );
   const indices = new Uint32Array(2 * mesh.indices.length);
   indices.set(mesh.indices);
-  indices.set(mesh.indices.map((i) => i + count), mesh.indices.length);
+  indices.set(
+    mesh.indices.map((i) => i + count),
+    mesh.indices.length,
+  );
   const both = run(engine, { name: 'two fields', positions, indices });
   assert.equal(both.stats.components, 2);
   assert.equal(both.stats.ridges, 2 * alone.stats.ridges);
@@ -119,7 +130,11 @@ test('coordinates of 1e-100 and 1e100 work; 1e-200 is refused in one sentence (W
     assert.equal(result.stats.valleys, reference.stats.valleys, `scale ${scale}`);
   }
   const session = new module.Session();
-  const result = session.load(mesh.positions.map((x) => x * 1e-200), mesh.indices, {});
+  const result = session.load(
+    mesh.positions.map((x) => x * 1e-200),
+    mesh.indices,
+    {},
+  );
   assert.match(result.error, /^the coordinates are out of range: the model measures .* units across, outside 1e-140 to 1e140\.$/);
   session.delete();
   engine.dispose();

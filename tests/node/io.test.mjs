@@ -22,11 +22,13 @@ const MESH_EXTENSIONS = new Set(['.obj', '.ply', '.stl', '.off', '.gltf', '.glb'
 const large = process.env.CRESTLINE_LARGE_MESHES === '1';
 
 function meshFiles(folder) {
-  return readdirSync(folder, { withFileTypes: true }).flatMap((entry) => {
-    const path = join(folder, entry.name);
-    if (entry.isDirectory()) return entry.name === 'large' && !large ? [] : meshFiles(path);
-    return MESH_EXTENSIONS.has(extname(entry.name).toLowerCase()) ? [path] : [];
-  }).sort();
+  return readdirSync(folder, { withFileTypes: true })
+    .flatMap((entry) => {
+      const path = join(folder, entry.name);
+      if (entry.isDirectory()) return entry.name === 'large' && !large ? [] : meshFiles(path);
+      return MESH_EXTENSIONS.has(extname(entry.name).toLowerCase()) ? [path] : [];
+    })
+    .sort();
 }
 
 const dir = mkdtempSync(join(tmpdir(), 'crestline-io-'));
@@ -103,39 +105,56 @@ describe('the page reads every shared mesh as the native CLI does', { skip: why 
   }
 });
 
-test('concave L-shaped octagons: the page gets the CLI\'s lines (the C++ reader ear-clips them)', { skip: !haveNativeCli && `SKIPPED: ${NATIVE_CLI} is not built` }, async () => {
-  const path = join(dir, 'concave-octagons.obj');
-  writeFileSync(path, concaveOctagonObj());
-  const [nat, pg] = await Promise.all([native(path), page([fileOf(path)])]);
-  // Fanned from their first corner, these polygons overlap and lose most lines.
-  assert.ok(pg.loaded.triangles > 10700 && pg.loaded.triangles <= 10800, `${pg.loaded.triangles} triangles`);
-  const lines = parseLinesObj(pg.obj);
-  assert.ok(lines.ridges.length >= 2 && lines.valleys.length >= 2, `${lines.ridges.length} ridges, ${lines.valleys.length} valleys`);
-  assertSame('concave-octagons.obj', nat, pg);
-});
-
-test('unreadable and unsupported files: one sentence naming the file, as the CLI says it', { skip: !haveNativeCli && `SKIPPED: ${NATIVE_CLI} is not built` }, async () => {
-  for (const [name, text] of [['readme.txt', 'hello'], ['broken.glb', 'glTF garbage'], ['empty.obj', '# nothing\n'], ['short.off', 'OFF 3 1 0\n0 0 0\n']]) {
-    const path = join(dir, name);
-    writeFileSync(path, text);
+test(
+  "concave L-shaped octagons: the page gets the CLI's lines (the C++ reader ear-clips them)",
+  { skip: !haveNativeCli && `SKIPPED: ${NATIVE_CLI} is not built` },
+  async () => {
+    const path = join(dir, 'concave-octagons.obj');
+    writeFileSync(path, concaveOctagonObj());
     const [nat, pg] = await Promise.all([native(path), page([fileOf(path)])]);
-    assert.equal(nat.ok, false, `${name}: the CLI fails`);
-    assert.equal(pg.named, true);
-    assert.ok(pg.message.startsWith(`${name}: `), pg.message);
-    assertSame(name, nat, pg);
-  }
-});
+    // Fanned from their first corner, these polygons overlap and lose most lines.
+    assert.ok(pg.loaded.triangles > 10700 && pg.loaded.triangles <= 10800, `${pg.loaded.triangles} triangles`);
+    const lines = parseLinesObj(pg.obj);
+    assert.ok(lines.ridges.length >= 2 && lines.valleys.length >= 2, `${lines.ridges.length} ridges, ${lines.valleys.length} valleys`);
+    assertSame('concave-octagons.obj', nat, pg);
+  },
+);
 
-test('compressed glTF: meshopt and Draco decode (npm decoders) into the surface of their plain twin', { skip: !haveMeshes && `SKIPPED: ${MESHES} is absent` }, async () => {
-  const [meshopt, draco, plain] = await Promise.all(['BoxMeshopt', 'Box-draco', 'Box'].map((n) => page([fileOf(join(MESHES, `glb/${n}.glb`))])));
-  assert.equal(plain.loaded.triangles, 12);
-  for (const decoded of [meshopt, draco]) {
-    assert.ok(decoded.ok, decoded.message);
-    assert.deepEqual([decoded.loaded.vertices, decoded.loaded.triangles], [plain.loaded.vertices, plain.loaded.triangles]);
-  }
-});
+test(
+  'unreadable and unsupported files: one sentence naming the file, as the CLI says it',
+  { skip: !haveNativeCli && `SKIPPED: ${NATIVE_CLI} is not built` },
+  async () => {
+    for (const [name, text] of [
+      ['readme.txt', 'hello'],
+      ['broken.glb', 'glTF garbage'],
+      ['empty.obj', '# nothing\n'],
+      ['short.off', 'OFF 3 1 0\n0 0 0\n'],
+    ]) {
+      const path = join(dir, name);
+      writeFileSync(path, text);
+      const [nat, pg] = await Promise.all([native(path), page([fileOf(path)])]);
+      assert.equal(nat.ok, false, `${name}: the CLI fails`);
+      assert.equal(pg.named, true);
+      assert.ok(pg.message.startsWith(`${name}: `), pg.message);
+      assertSame(name, nat, pg);
+    }
+  },
+);
 
-test('a handler without decoders gives the readers\' sentence for compressed glTF', { skip: !haveMeshes && `SKIPPED: ${MESHES} is absent` }, async () => {
+test(
+  'compressed glTF: meshopt and Draco decode (npm decoders) into the surface of their plain twin',
+  { skip: !haveMeshes && `SKIPPED: ${MESHES} is absent` },
+  async () => {
+    const [meshopt, draco, plain] = await Promise.all(['BoxMeshopt', 'Box-draco', 'Box'].map((n) => page([fileOf(join(MESHES, `glb/${n}.glb`))])));
+    assert.equal(plain.loaded.triangles, 12);
+    for (const decoded of [meshopt, draco]) {
+      assert.ok(decoded.ok, decoded.message);
+      assert.deepEqual([decoded.loaded.vertices, decoded.loaded.triangles], [plain.loaded.vertices, plain.loaded.triangles]);
+    }
+  },
+);
+
+test("a handler without decoders gives the readers' sentence for compressed glTF", { skip: !haveMeshes && `SKIPPED: ${MESHES} is absent` }, async () => {
   const bare = createHandler({ startModule: loadCrestline, post: (m) => messages.push(m) });
   const from = messages.length;
   await bare.handle({ type: 'open', id: 9999, job: 1, files: [fileOf(join(MESHES, 'glb/Box-draco.glb'))], options: {} });

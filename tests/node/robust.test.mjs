@@ -21,11 +21,13 @@ const MESH_EXTENSIONS = new Set(['.obj', '.gltf', '.glb']);
 // and scalar WASM arithmetic; they are asserted like every other file now.
 
 function meshFiles(folder) {
-  return readdirSync(folder, { withFileTypes: true }).flatMap((entry) => {
-    const path = join(folder, entry.name);
-    if (entry.isDirectory()) return meshFiles(path);
-    return MESH_EXTENSIONS.has(extname(entry.name).toLowerCase()) ? [path] : [];
-  }).sort();
+  return readdirSync(folder, { withFileTypes: true })
+    .flatMap((entry) => {
+      const path = join(folder, entry.name);
+      if (entry.isDirectory()) return meshFiles(path);
+      return MESH_EXTENSIONS.has(extname(entry.name).toLowerCase()) ? [path] : [];
+    })
+    .sort();
 }
 
 const dir = mkdtempSync(join(tmpdir(), 'crestline-robust-'));
@@ -61,13 +63,8 @@ function assertSameOutcome(name, native, wasm) {
   }
 }
 
-const files = [
-  ...(existsSync(ROBUST) ? meshFiles(ROBUST) : []),
-  ...GOOD.map((file) => join(MESHES, file)).filter(existsSync),
-];
-const why = !existsSync(ROBUST)
-  ? `SKIPPED: ${ROBUST} is absent`
-  : !haveNativeCli ? `SKIPPED: ${NATIVE_CLI} is not built (set CRESTLINE_NATIVE_CLI)` : false;
+const files = [...(existsSync(ROBUST) ? meshFiles(ROBUST) : []), ...GOOD.map((file) => join(MESHES, file)).filter(existsSync)];
+const why = !existsSync(ROBUST) ? `SKIPPED: ${ROBUST} is absent` : !haveNativeCli ? `SKIPPED: ${NATIVE_CLI} is not built (set CRESTLINE_NATIVE_CLI)` : false;
 
 describe('same outcome natively and in WASM', { skip: why, concurrency: Math.max(2, availableParallelism()) }, () => {
   for (const input of files) {

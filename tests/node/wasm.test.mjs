@@ -39,7 +39,10 @@ test('sine height field: ridges on the crests x = k·L, valleys in the troughs x
   assert.ok(ridges.length > 0 && valleys.length > 0, `${ridges.length} ridges, ${valleys.length} valleys`);
   const edge = result.stats.meanEdgeLength;
   // Strong lines (the long ones) follow the analytic crest and trough lines.
-  for (const [kind, set, phase] of [['ridge', ridges, 0], ['valley', valleys, 0.5]]) {
+  for (const [kind, set, phase] of [
+    ['ridge', ridges, 0],
+    ['valley', valleys, 0.5],
+  ]) {
     const longest = set.reduce((a, b) => (a.points.length > b.points.length ? a : b));
     for (const p of longest.points) {
       const offset = p[0] - phase;
@@ -52,10 +55,13 @@ test('sine height field: ridges on the crests x = k·L, valleys in the troughs x
 
 // The cube [−1, 1]³, each face an n × n grid, outward, welded by the core.
 function cube(n) {
-  const positions = [], indices = [];
+  const positions = [],
+    indices = [];
   for (let axis = 0; axis < 3; axis++) {
     for (const side of [-1, 1]) {
-      const u = (axis + 1) % 3, v = (axis + 2) % 3, base = positions.length / 3;
+      const u = (axis + 1) % 3,
+        v = (axis + 2) % 3,
+        base = positions.length / 3;
       for (let j = 0; j <= n; j++) {
         for (let i = 0; i <= n; i++) {
           const p = [0, 0, 0];
@@ -67,7 +73,10 @@ function cube(n) {
       }
       for (let j = 0; j < n; j++) {
         for (let i = 0; i < n; i++) {
-          const a = base + j * (n + 1) + i, b = a + 1, c = a + n + 2, d = a + n + 1;
+          const a = base + j * (n + 1) + i,
+            b = a + 1,
+            c = a + n + 2,
+            d = a + n + 1;
           indices.push(a, b, c, a, c, d);
         }
       }
@@ -188,7 +197,10 @@ test('out of memory (60M triangles past the 2 GB heap) is a sentence, and the mo
   const indices = new Uint32Array(3 * triangles);
   for (let i = 0; i < indices.length; i++) indices[i] = i % 3;
   const result = session.load(new Float64Array([0, 0, 0, 1, 0, 0, 0, 1, 0]), indices, { maxTriangles: 1e9 });
-  assert.equal(result.error, 'the browser ran out of memory for a mesh of 60,000,000 triangles (a page has at most 2 GB); the command-line tool has no such limit.');
+  assert.equal(
+    result.error,
+    'the browser ran out of memory for a mesh of 60,000,000 triangles (a page has at most 2 GB); the command-line tool has no such limit.',
+  );
   assert.equal(result.kind, 'too large');
   const mesh = sineHeightField({ n: 10 });
   assert.ok(session.load(mesh.positions, mesh.indices, {}).ok);
@@ -239,9 +251,23 @@ test('without a mesh, Session.options() reports the core defaults; the app panel
   session.delete();
   // PipelineOptions{} and io::SvgOptions{} (their headers), through the parameter table.
   assert.deepEqual(defaults, {
-    presmoothSteps: 'auto', presmoothTimeStep: 1, smoothingSteps: 3, smoothingTimeStep: 1, boundaryRings: 2,
-    hausdorffBound: 0.25, fairingIterations: 30, threshold: 'auto', creaseAngle: 'auto', creaseMaxTurn: 60, shortLineLength: 6,
-    view: 'front', svgWidth: 1000, strokeWidth: 1.5, silhouette: false, svgSurfaceTolerance: 0.5, weighted: false,
+    presmoothSteps: 'auto',
+    presmoothTimeStep: 1,
+    smoothingSteps: 3,
+    smoothingTimeStep: 1,
+    boundaryRings: 2,
+    hausdorffBound: 0.25,
+    fairingIterations: 30,
+    threshold: 'auto',
+    creaseAngle: 'auto',
+    creaseMaxTurn: 60,
+    shortLineLength: 6,
+    view: 'front',
+    svgWidth: 1000,
+    strokeWidth: 1.5,
+    silhouette: false,
+    svgSurfaceTolerance: 0.5,
+    weighted: false,
   });
   for (const p of table) assert.equal(defaults[p.key], p.default, `describe() default of ${p.key}`);
   // The panel is made from the table: its options at start are the core's defaults.
@@ -254,13 +280,36 @@ test('Session.describe(): the table, and setOptions holds values to it all or no
   const table = session.describe();
   const byKey = Object.fromEntries(table.map((p) => [p.key, p]));
   assert.deepEqual(byKey.threshold, {
-    key: 'threshold', flag: '--threshold', group: 'pipeline', kind: 'number', automatic: true, default: 'auto',
-    min: 0, max: Infinity, choices: [], unit: '', stage: 'filter', help: byKey.threshold.help,
+    key: 'threshold',
+    flag: '--threshold',
+    group: 'pipeline',
+    kind: 'number',
+    automatic: true,
+    default: 'auto',
+    min: 0,
+    max: Infinity,
+    choices: [],
+    unit: '',
+    stage: 'filter',
+    help: byKey.threshold.help,
   });
-  assert.deepEqual({ ...byKey.smoothingSteps, help: '' }, {
-    key: 'smoothingSteps', flag: '--smoothing-steps', group: 'pipeline', kind: 'integer', automatic: false, default: 3,
-    min: 0, max: 50, choices: [], unit: '', stage: 'smoothing', help: '',
-  });
+  assert.deepEqual(
+    { ...byKey.smoothingSteps, help: '' },
+    {
+      key: 'smoothingSteps',
+      flag: '--smoothing-steps',
+      group: 'pipeline',
+      kind: 'integer',
+      automatic: false,
+      default: 3,
+      min: 0,
+      max: 50,
+      choices: [],
+      unit: '',
+      stage: 'smoothing',
+      help: '',
+    },
+  );
   assert.deepEqual(byKey.view.choices, ['front', 'back', 'left', 'right', 'top', 'bottom']);
   assert.equal(byKey.view.stage, null);
   for (const [options, message] of [

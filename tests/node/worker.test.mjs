@@ -88,15 +88,17 @@ test('files go to the C++ readers; their errors name the file, core errors do no
   const { send } = session();
   const opened = await send({ type: 'open', id: 1, job: 1, files: [{ name: 'tet.obj', bytes: bytes(TET) }], options: {} });
   assert.equal(opened.find((m) => m.type === 'loaded').triangles, 4);
-  const [broken] = (await send({ type: 'open', id: 1, job: 2, files: [{ name: 'broken.glb', bytes: bytes('glTF nonsense') }], options: {} }))
-    .filter((m) => m.type === 'error');
+  const [broken] = (await send({ type: 'open', id: 1, job: 2, files: [{ name: 'broken.glb', bytes: bytes('glTF nonsense') }], options: {} })).filter(
+    (m) => m.type === 'error',
+  );
   assert.match(broken.message, /^broken\.glb: /);
   assert.equal(broken.named, true);
   // The session still has the tetrahedron.
   const [again] = (await send({ type: 'options', id: 1, job: 3, options: {} })).filter((m) => m.type === 'result');
   assert.equal(again.stats.triangles, 4);
-  const [core] = (await send({ type: 'load', id: 1, job: 4, name: 'bad', positions: new Float64Array(9), indices: new Uint32Array([0, 1, 7]), options: {} }))
-    .filter((m) => m.type === 'error');
+  const [core] = (
+    await send({ type: 'load', id: 1, job: 4, name: 'bad', positions: new Float64Array(9), indices: new Uint32Array([0, 1, 7]), options: {} })
+  ).filter((m) => m.type === 'error');
   assert.match(core.message, /vertex 7/);
   assert.deepEqual([core.named, core.kind], [false, 'invalid input']);
 });
@@ -166,7 +168,8 @@ function observed(connection) {
   const events = [];
   const push = (kind, value) => {
     events.push([kind, value]);
-    for (const w of waiting.splice(0)) if (w.kind === kind) w.resolve(value);
+    for (const w of waiting.splice(0))
+      if (w.kind === kind) w.resolve(value);
       else waiting.push(w);
   };
   const session = connection.session({
@@ -229,7 +232,20 @@ test('client: a WASM trap restarts the worker once, says so once, and the next r
     Session: class {
       constructor() {
         this.inner = new real.Session();
-        for (const name of ['load', 'loadFile', 'setOptions', 'options', 'surface', 'lines', 'creases', 'keptLines', 'fields', 'linesObj', 'linesJson', 'statsJson'])
+        for (const name of [
+          'load',
+          'loadFile',
+          'setOptions',
+          'options',
+          'surface',
+          'lines',
+          'creases',
+          'keptLines',
+          'fields',
+          'linesObj',
+          'linesJson',
+          'statsJson',
+        ])
           this[name] = (...args) => this.inner[name](...args);
       }
       run(progress) {

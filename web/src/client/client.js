@@ -331,12 +331,15 @@ export class Session {
     this.pending = null;
     const flag = this.raiseCancelFlag(job);
     clearTimeout(this.cancelTimer);
-    this.cancelTimer = setTimeout(() => {
-      if (this.running !== job) return;
-      this.running = 0;
-      this.connection.restart(this);
-      this.handlers.onCancelled?.();
-    }, flag ? graceMs : 0);
+    this.cancelTimer = setTimeout(
+      () => {
+        if (this.running !== job) return;
+        this.running = 0;
+        this.connection.restart(this);
+        this.handlers.onCancelled?.();
+      },
+      flag ? graceMs : 0,
+    );
   }
 
   /** Asks the worker to stop `job`; returns the flag, or null without shared memory. @param {number} job */

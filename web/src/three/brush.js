@@ -159,7 +159,11 @@ export class WeightBrush {
     if (!count) return 0;
     this.changed = true;
     const surface = this.viewer.surface;
-    if (!surface.mesh.geometry.getAttribute('color')) surface.setColors(this.weights.map((w) => w - 1), WEIGHT_SCALE);
+    if (!surface.mesh.geometry.getAttribute('color'))
+      surface.setColors(
+        this.weights.map((w) => w - 1),
+        WEIGHT_SCALE,
+      );
     else surface.updateColors(this.touched, count, (v) => this.weights[v] - 1, WEIGHT_SCALE);
     this.viewer.render();
     return count;

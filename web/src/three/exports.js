@@ -48,7 +48,9 @@ export async function renderPng(view, { cssWidth, cssHeight, width, height }) {
     camera.updateProjectionMatrix();
     view.lines.setResolution(cssWidth, cssHeight);
   }
-  return new Promise((resolve, reject) => canvas.toBlob((blob) => (blob ? resolve(blob) : reject(new Error('crestline-viewer: the PNG could not be encoded.'))), 'image/png'));
+  return new Promise((resolve, reject) =>
+    canvas.toBlob((blob) => (blob ? resolve(blob) : reject(new Error('crestline-viewer: the PNG could not be encoded.'))), 'image/png'),
+  );
 }
 
 /**

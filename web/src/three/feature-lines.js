@@ -65,7 +65,8 @@ export class FeatureLines extends Group {
   update(options) {
     if (DISPLAY.some((k) => k in options)) {
       const { ridgeColor, valleyColor, lineWidth } = options;
-      if (ridgeColor || valleyColor) this.layer.setColors(ridgeColor ?? this.layer.objects[0].material.color, valleyColor ?? this.layer.objects[1].material.color);
+      if (ridgeColor || valleyColor)
+        this.layer.setColors(ridgeColor ?? this.layer.objects[0].material.color, valleyColor ?? this.layer.objects[1].material.color);
       if (lineWidth) this.layer.setWidth(lineWidth);
     }
     const pipeline = pipelineOptions(options, DISPLAY);

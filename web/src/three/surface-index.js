@@ -210,12 +210,14 @@ export class SurfaceIndex {
     const { bounds, first, size, order, indices, positions } = this;
     const inv = [1 / d.x, 1 / d.y, 1 / d.z];
     const origin = [o.x, o.y, o.z];
-    let nearest = Infinity, hit = -1;
+    let nearest = Infinity,
+      hit = -1;
     const stack = [0];
     while (stack.length) {
       const node = stack.pop();
       // Slab test of the node's box.
-      let near = 0, far = nearest;
+      let near = 0,
+        far = nearest;
       for (let axis = 0; axis < 3; axis++) {
         let t0 = (bounds[6 * node + axis] - origin[axis]) * inv[axis];
         let t1 = (bounds[6 * node + 3 + axis] - origin[axis]) * inv[axis];
@@ -278,16 +280,26 @@ export class SurfaceIndex {
 /** Möller–Trumbore: the ray parameter where it meets triangle t, or Infinity. */
 function intersect(p, indices, t, o, d) {
   const [a, b, c] = [3 * indices[3 * t], 3 * indices[3 * t + 1], 3 * indices[3 * t + 2]];
-  const e1x = p[b] - p[a], e1y = p[b + 1] - p[a + 1], e1z = p[b + 2] - p[a + 2];
-  const e2x = p[c] - p[a], e2y = p[c + 1] - p[a + 1], e2z = p[c + 2] - p[a + 2];
-  const px = d.y * e2z - d.z * e2y, py = d.z * e2x - d.x * e2z, pz = d.x * e2y - d.y * e2x;
+  const e1x = p[b] - p[a],
+    e1y = p[b + 1] - p[a + 1],
+    e1z = p[b + 2] - p[a + 2];
+  const e2x = p[c] - p[a],
+    e2y = p[c + 1] - p[a + 1],
+    e2z = p[c + 2] - p[a + 2];
+  const px = d.y * e2z - d.z * e2y,
+    py = d.z * e2x - d.x * e2z,
+    pz = d.x * e2y - d.y * e2x;
   const det = e1x * px + e1y * py + e1z * pz;
   if (Math.abs(det) < 1e-20) return Infinity;
   const inv = 1 / det;
-  const sx = o.x - p[a], sy = o.y - p[a + 1], sz = o.z - p[a + 2];
+  const sx = o.x - p[a],
+    sy = o.y - p[a + 1],
+    sz = o.z - p[a + 2];
   const u = (sx * px + sy * py + sz * pz) * inv;
   if (u < 0 || u > 1) return Infinity;
-  const qx = sy * e1z - sz * e1y, qy = sz * e1x - sx * e1z, qz = sx * e1y - sy * e1x;
+  const qx = sy * e1z - sz * e1y,
+    qy = sz * e1x - sx * e1z,
+    qz = sx * e1y - sy * e1x;
   const v = (d.x * qx + d.y * qy + d.z * qz) * inv;
   if (v < 0 || u + v > 1) return Infinity;
   const hit = (e2x * qx + e2y * qy + e2z * qz) * inv;

@@ -73,7 +73,8 @@ export class SurfaceLayer {
     colors.clearUpdateRanges();
     // Runs of vertices, joined across gaps of up to 64 (one upload each, at most 32 of them).
     const gap = Math.max(64, Math.ceil((sorted[count - 1] - sorted[0]) / 32));
-    let start = sorted[0], end = sorted[0];
+    let start = sorted[0],
+      end = sorted[0];
     for (let i = 0; i < count; i++) {
       const v = sorted[i];
       divergingColor(value(v), scale, colors.array, 3 * v);

@@ -1,16 +1,6 @@
 // The 3D view: renderer, camera, orbit controls, lights, the surface and the
 // line layers. Renders on demand (after a change), not in a loop.
-import {
-  Box3,
-  Color,
-  DirectionalLight,
-  HemisphereLight,
-  PerspectiveCamera,
-  Scene,
-  Sphere,
-  Vector3,
-  WebGLRenderer,
-} from 'three';
+import { Box3, Color, DirectionalLight, HemisphereLight, PerspectiveCamera, Scene, Sphere, Vector3, WebGLRenderer } from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import { fitDistance, presetDirection, setUpAxis, uncoveredRect } from './fit.js';
 import { LineLayer, concaveShade, creasesAsLines } from './line-layer.js';

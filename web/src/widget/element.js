@@ -74,10 +74,13 @@ export class CrestlineViewer extends HTMLElement {
       if (entry.isIntersecting) this.view.draw();
     });
     this.onScreen.observe(this);
-    this.nearScreen = new IntersectionObserver(([entry]) => {
-      this.near = entry.isIntersecting;
-      if (this.near) this.queue('loading');
-    }, { rootMargin: '100%' });
+    this.nearScreen = new IntersectionObserver(
+      ([entry]) => {
+        this.near = entry.isIntersecting;
+        if (this.near) this.queue('loading');
+      },
+      { rootMargin: '100%' },
+    );
     this.nearScreen.observe(this);
     // The pipeline's attributes are the table's: watched here, not in observedAttributes.
     this.parameterObserver = new MutationObserver((records) => {
@@ -289,7 +292,9 @@ export class CrestlineViewer extends HTMLElement {
     const { width, height } = this.getBoundingClientRect();
     const css = getComputedStyle(this).getPropertyValue('--crestline-silhouette-color').trim();
     const style = { ...this.displayStyle(), silhouette: silhouette === true ? css || '#3a3a3a' : silhouette || null };
-    return /** @type {Promise<string>} */ (this.session.exportFile('svg', svgView(this.view, style, Math.max(1, Math.round(width)), Math.max(1, Math.round(height)))));
+    return /** @type {Promise<string>} */ (
+      this.session.exportFile('svg', svgView(this.view, style, Math.max(1, Math.round(width)), Math.max(1, Math.round(height))))
+    );
   }
 
   /** PNG of the current view; {width, height} in pixels (default: the element's size × devicePixelRatio). */

@@ -133,7 +133,14 @@ export class Engine {
   adopt(session, name, loaded, start) {
     this.dispose();
     this.session = session;
-    return { name, vertices: loaded.vertices, triangles: loaded.triangles, notes: loaded.notes, report: loaded.report, milliseconds: performance.now() - start };
+    return {
+      name,
+      vertices: loaded.vertices,
+      triangles: loaded.triangles,
+      notes: loaded.notes,
+      report: loaded.report,
+      milliseconds: performance.now() - start,
+    };
   }
 
   /**

@@ -166,7 +166,8 @@ export function createHandler({ startModule, post, startDecoders }) {
         queue = queue.then(() =>
           /** @type {Promise<CrestlineModule>} */ (starting).then(
             () => post({ type: 'ready' }),
-            (error) => post({ type: 'error', message: `The WebAssembly module failed to start (${error.message}).`, kind: 'internal', named: false, fatal: true }),
+            (error) =>
+              post({ type: 'error', message: `The WebAssembly module failed to start (${error.message}).`, kind: 'internal', named: false, fatal: true }),
           ),
         );
         return queue;

@@ -128,4 +128,3 @@ export function pickMainFile(files) {
   const isGlb = (/** @type {NamedBytes} */ f) => f.bytes.byteLength >= 4 && new TextDecoder().decode(toUint8(f.bytes).subarray(0, 4)) === 'glTF';
   return files.find(isGlb) ?? files[0];
 }
-
