@@ -6,5 +6,10 @@ import { SurfaceIndex } from './surface-index.js';
 
 self.onmessage = ({ data: { id, positions, indices } }) => {
   const parts = SurfaceIndex.parts(new SurfaceIndex(positions, indices));
-  self.postMessage({ id, parts }, Object.values(parts).filter(ArrayBuffer.isView).map((a) => a.buffer));
+  self.postMessage(
+    { id, parts },
+    Object.values(parts)
+      .filter(ArrayBuffer.isView)
+      .map((a) => a.buffer),
+  );
 };

@@ -72,7 +72,14 @@ export class Viewer {
 
   /** No lines and no creases (a new surface whose lines are to come). */
   clearLines() {
-    const none = { points: new Float64Array(0), offsets: new Uint32Array(1), types: new Uint8Array(0), strengths: new Float64Array(0), lengths: new Float64Array(0), closed: new Uint8Array(0) };
+    const none = {
+      points: new Float64Array(0),
+      offsets: new Uint32Array(1),
+      types: new Uint8Array(0),
+      strengths: new Float64Array(0),
+      lengths: new Float64Array(0),
+      closed: new Uint8Array(0),
+    };
     this.lines.setLines(none, this.origin);
     this.setCreases({ ...none, convex: new Uint8Array(0), angles: new Float64Array(0) });
   }
