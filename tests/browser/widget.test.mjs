@@ -110,14 +110,30 @@ test('a viewer from another origin loads a GLB, re-thresholds and exports', asyn
   await page.evaluate(() => {
     const v = document.getElementById('v');
     window.during = [];
-    v.addEventListener('progress', (e) => window.during.push({ stage: e.detail.stage, poster: !v.parts.poster.hidden, vertices: v.view.surface.mesh.geometry.getAttribute('position')?.count ?? 0 }));
+    v.addEventListener('progress', (e) =>
+      window.during.push({
+        stage: e.detail.stage,
+        poster: !v.parts.poster.hidden,
+        vertices: v.view.surface.mesh.geometry.getAttribute('position')?.count ?? 0,
+      }),
+    );
   });
   await page.evaluate((src) => (document.getElementById('v').src = src), MAIN_MESH);
   await waitForEvents(page, 'v', 'lines', 1);
   const during = await page.evaluate(() => window.during);
-  assert.ok(during.some((p) => p.stage === 'fairing'), 'progress through the pipeline, after the surface was loaded');
-  assert.deepEqual(during.filter((p) => !p.poster || p.vertices), [], 'no surface before the lines');
-  const shown = await page.evaluate(() => ({ vertices: document.getElementById('v').view.surface.mesh.geometry.getAttribute('position').count, stats: document.getElementById('v').stats.vertices }));
+  assert.ok(
+    during.some((p) => p.stage === 'fairing'),
+    'progress through the pipeline, after the surface was loaded',
+  );
+  assert.deepEqual(
+    during.filter((p) => !p.poster || p.vertices),
+    [],
+    'no surface before the lines',
+  );
+  const shown = await page.evaluate(() => ({
+    vertices: document.getElementById('v').view.surface.mesh.geometry.getAttribute('position').count,
+    stats: document.getElementById('v').stats.vertices,
+  }));
   assert.equal(shown.vertices, shown.stats, 'the surface came with the first lines');
   for (const file of ['crestline-viewer-worker.js', 'crestline.wasm'])
     assert.ok(page.requested.includes(`${cdnUrl}/${file}`), `${file} was not fetched from the module's origin: ${page.requested}`);
