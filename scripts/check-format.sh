@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Fails when a tracked C++ file differs from what clang-format (.clang-format)
 # would make of it, or a JavaScript file under web/src, wasm/, tests/ or bench/
-# from what Prettier (.prettierrc.json, .prettierignore) would make of it
+# from what Prettier (.prettierrc.json) would make of it
 # (the lock file's version; fetched by npx where node_modules lacks it).
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -75,7 +75,9 @@ test('a thin slab: the brush paints the top face only, and only the touched colo
     const { viewer, brush } = window.crestline;
     const positions = viewer.surface.mesh.geometry.getAttribute('position').array;
     const radius = brush.radius * viewer.surface.mesh.geometry.boundingSphere.radius;
-    let top = 0, bottom = 0, bottomInStraightReach = 0;
+    let top = 0,
+      bottom = 0,
+      bottomInStraightReach = 0;
     brush.weights.forEach((w, v) => {
       const [x, y, z] = [positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]];
       if (w < 1) z > 0 ? top++ : bottom++;
@@ -84,7 +86,9 @@ test('a thin slab: the brush paints the top face only, and only the touched colo
     });
     return { top, bottom, bottomInStraightReach, radius, ran: window.crestline.lastResult.ran };
   });
-  console.log(`# slab: ${painted.top} top vertices painted, ${painted.bottom} bottom; a straight-line radius would reach ${painted.bottomInStraightReach} bottom ones; 4 moves sent ${colours.ranges.length} colour ranges (${colours.ranges.reduce((a, b) => a + b, 0)} of ${colours.length} floats)`);
+  console.log(
+    `# slab: ${painted.top} top vertices painted, ${painted.bottom} bottom; a straight-line radius would reach ${painted.bottomInStraightReach} bottom ones; 4 moves sent ${colours.ranges.length} colour ranges (${colours.ranges.reduce((a, b) => a + b, 0)} of ${colours.length} floats)`,
+  );
   assert.ok(painted.radius > 4 * 0.05, `the radius ${painted.radius} is several times the thickness`);
   assert.ok(painted.top > 50, `top vertices painted: ${painted.top}`);
   assert.ok(painted.bottomInStraightReach > 50, 'a straight-line radius would paint through');
@@ -92,7 +96,10 @@ test('a thin slab: the brush paints the top face only, and only the touched colo
   assert.equal(painted.ran[0], 'smoothing', 'one recompute per stroke, from smoothing');
   const sent = colours.ranges.reduce((a, b) => a + b, 0);
   assert.equal(colours.same, true, 'the moves update the colour buffer in place');
-  assert.ok(colours.ranges.length >= 4 && sent < colours.length, `4 moves send only the touched colours (${sent} floats in ${colours.ranges.length} ranges; the buffer has ${colours.length})`);
+  assert.ok(
+    colours.ranges.length >= 4 && sent < colours.length,
+    `4 moves send only the touched colours (${sent} floats in ${colours.ranges.length} ranges; the buffer has ${colours.length})`,
+  );
 });
 
 test('no uncaught errors in the page', () => {

@@ -61,7 +61,10 @@ test('a generated box: its 12 convex edges as creases, as many as the native CLI
   assert.equal(result.stats.creases, 12, 'a box has 12 sharp edges');
   assert.equal(shown.statsCount, result.stats.creases, 'the stats line shows the count');
   assert.equal(shown.types.length, result.stats.creases, 'every crease is drawn');
-  assert.ok(shown.types.every((t) => t === 0), 'a box has only convex creases');
+  assert.ok(
+    shown.types.every((t) => t === 0),
+    'a box has only convex creases',
+  );
   // Each box edge is 24 segments long: 12 edges, 288 segments, all convex.
   assert.deepEqual(shown.segments, [288, 0]);
   if (noCli) return console.log(`# ${noCli}`);
@@ -106,7 +109,10 @@ test('fandisk: the crease count shown matches the native CLI; the toggle hides t
   const angle = 60;
   const steeper = await nextResult(() => page.evaluate((a) => window.crestline.update({ autoCreaseAngle: false, creaseAngle: a }), angle));
   assert.deepEqual(steeper.ran, ['creases']);
-  assert.ok(steeper.stats.creases !== result.stats.creases || steeper.stats.creaseLength < result.stats.creaseLength, 'a steeper angle selects fewer crease edges');
+  assert.ok(
+    steeper.stats.creases !== result.stats.creases || steeper.stats.creaseLength < result.stats.creaseLength,
+    'a steeper angle selects fewer crease edges',
+  );
   assert.equal((await shownCreases()).statsCount, steeper.stats.creases);
   if (!noCli) assert.equal(steeper.stats.creases, nativeStats(FANDISK, ['--crease-angle', String(angle)]).creases);
   await nextResult(() => page.evaluate(() => window.crestline.update({ autoCreaseAngle: true })));

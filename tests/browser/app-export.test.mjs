@@ -29,10 +29,7 @@ async function openExportFolder() {
 
 async function exported(label) {
   await openExportFolder();
-  const [download] = await Promise.all([
-    page.waitForEvent('download', { timeout: 60000 }),
-    page.getByRole('button', { name: label }).click(),
-  ]);
+  const [download] = await Promise.all([page.waitForEvent('download', { timeout: 60000 }), page.getByRole('button', { name: label }).click()]);
   const bytes = await readFile(await download.path());
   const error = await page.textContent('#error');
   assert.equal(error, '', `the page shows an error: ${error}`);
@@ -111,7 +108,10 @@ test('a box seen obliquely: SVG (creases, back edges hidden) and GLB equal the c
   const svg = (await exported('SVG (visible lines)')).bytes.toString('utf8');
   const glb = (await exported('GLB (mesh + lines)')).bytes;
   const requested = await page.evaluate(() => window.requested);
-  assert.deepEqual(requested.map((r) => r.format), ['svg', 'glb']);
+  assert.deepEqual(
+    requested.map((r) => r.format),
+    ['svg', 'glb'],
+  );
   assert.equal(requested[0].view.camera.matrix.length, 16);
 
   const module = await loadCrestline();
@@ -120,8 +120,8 @@ test('a box seen obliquely: SVG (creases, back edges hidden) and GLB equal the c
     assert.ok(session.loadFile('box.obj', new TextEncoder().encode(text), [], {}).ok);
     assert.ok(session.setOptions(Object.fromEntries(Object.entries(options).filter(([, v]) => v !== undefined))).ok);
     assert.ok(session.run(() => true).ok);
-    assert.equal(svg, session.linesSvg(requested[0].view), 'the page SVG is the core writer\'s for that camera');
-    assert.deepEqual(new Uint8Array(glb), session.linesGlb(requested[1].view), 'the page GLB is the CLI\'s --with-mesh GLB');
+    assert.equal(svg, session.linesSvg(requested[0].view), "the page SVG is the core writer's for that camera");
+    assert.deepEqual(new Uint8Array(glb), session.linesGlb(requested[1].view), "the page GLB is the CLI's --with-mesh GLB");
   } finally {
     session.delete();
   }
@@ -130,13 +130,21 @@ test('a box seen obliquely: SVG (creases, back edges hidden) and GLB equal the c
   const paths = group.match(/<path class="convex" d="[^"]*"/g) ?? [];
   const [, width, height] = /viewBox="0 0 ([\d.]+) ([\d.]+)"/.exec(svg).map(Number);
   const points = [...group.matchAll(/(-?[\d.]+),(-?[\d.]+)/g)].map((m) => [Number(m[1]), Number(m[2])]);
-  assert.ok(points.every(([x, y]) => x >= 0 && y >= 0 && x <= width && y <= height), 'inside the frame');
+  assert.ok(
+    points.every(([x, y]) => x >= 0 && y >= 0 && x <= width && y <= height),
+    'inside the frame',
+  );
   const drawn = paths.reduce((sum, path) => sum + pathLength(path), 0);
   const all = await page.evaluate(() => window.crestline.lastResult.stats.creaseLength);
-  console.log(`box: ${paths.length} crease paths, ${drawn.toFixed(0)} px drawn; crease length ${all.toFixed(2)}; ${paths.map(pathLength).map((x) => x.toFixed(0))}`);
+  console.log(
+    `box: ${paths.length} crease paths, ${drawn.toFixed(0)} px drawn; crease length ${all.toFixed(2)}; ${paths.map(pathLength).map((x) => x.toFixed(0))}`,
+  );
   // The far corner's 3 edges are hidden but for stubs of a few pixels where they meet the outline.
   assert.equal(paths.filter((path) => pathLength(path) > 20).length, 9, 'visible crease edges');
-  assert.ok(paths.every((path) => pathLength(path) > 20 || pathLength(path) < 8), 'no partly hidden edge');
+  assert.ok(
+    paths.every((path) => pathLength(path) > 20 || pathLength(path) < 8),
+    'no partly hidden edge',
+  );
   assert.match(glb.toString('latin1'), /"name":"creases"/);
 });
 

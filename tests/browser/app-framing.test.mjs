@@ -16,7 +16,11 @@ before(async () => {
 
 after(() => app?.close());
 
-const near = (a, b, message) => assert.ok(a.every((x, i) => Math.abs(x - b[i]) < 1e-3), `${message}: ${a.map((x) => x.toFixed(4))} ≠ ${b}`);
+const near = (a, b, message) =>
+  assert.ok(
+    a.every((x, i) => Math.abs(x - b[i]) < 1e-3),
+    `${message}: ${a.map((x) => x.toFixed(4))} ≠ ${b}`,
+  );
 const camera = (partial) => page.evaluate((p) => window.crestline.update(p), partial);
 
 test('1280×800: the bunny is framed clear of the info box and the panel', async () => {
@@ -27,7 +31,10 @@ test('1280×800: the bunny is framed clear of the info box and the panel', async
   // Opening the statistics makes the info box taller: "fit to view" avoids it again.
   await page.evaluate(() => {
     document.getElementById('details').open = true;
-    window.crestline.gui.controllersRecursive().find((c) => c.property === 'fit').$button.click();
+    window.crestline.gui
+      .controllersRecursive()
+      .find((c) => c.property === 'fit')
+      .$button.click();
   });
   assertUncovered(await framing(page));
 });
@@ -37,7 +44,12 @@ test('1280×800: the panel fits the window as it opens; with every folder open i
     page.evaluate(() => {
       const root = window.crestline.gui.domElement;
       const children = root.querySelector(':scope > .lil-children');
-      return { bottom: root.getBoundingClientRect().bottom, content: children.scrollHeight, shown: children.clientHeight, overflow: getComputedStyle(children).overflowY };
+      return {
+        bottom: root.getBoundingClientRect().bottom,
+        content: children.scrollHeight,
+        shown: children.clientHeight,
+        overflow: getComputedStyle(children).overflowY,
+      };
     });
   const start = await panel();
   assert.ok(start.bottom <= 800, `the panel ends at ${start.bottom}`);
@@ -76,15 +88,23 @@ test('view presets with Y up, then with Z up', async () => {
 });
 
 test('colour scale: κ max from −s to +s, |e max| from 0, s the 95th percentile of the values; hidden when shaded', async () => {
-  const scale = () => page.evaluate(() => {
-    const text = (id) => document.getElementById(id).textContent;
-    return { hidden: document.getElementById('scale').hidden, name: text('scale-name'), min: text('scale-min'), max: text('scale-max'), bar: getComputedStyle(document.getElementById('scale-bar')).backgroundImage };
-  });
+  const scale = () =>
+    page.evaluate(() => {
+      const text = (id) => document.getElementById(id).textContent;
+      return {
+        hidden: document.getElementById('scale').hidden,
+        name: text('scale-name'),
+        min: text('scale-min'),
+        max: text('scale-max'),
+        bar: getComputedStyle(document.getElementById('scale-bar')).backgroundImage,
+      };
+    });
   /** The 95th percentile of |values| (every value: the sample mesh is small). */
-  const percentile = (field) => page.evaluate((field) => {
-    const values = Array.from(window.crestline.fields[field], Math.abs).sort((a, b) => a - b);
-    return values[Math.floor(0.95 * (values.length - 1))];
-  }, field);
+  const percentile = (field) =>
+    page.evaluate((field) => {
+      const values = Array.from(window.crestline.fields[field], Math.abs).sort((a, b) => a - b);
+      return values[Math.floor(0.95 * (values.length - 1))];
+    }, field);
   await camera({ view: 'kappaMax' });
   await page.waitForFunction(() => window.crestline.fields && !document.getElementById('scale').hidden);
   const kappa = await scale();

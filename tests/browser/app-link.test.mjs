@@ -35,7 +35,11 @@ const settled = () => page.waitForFunction(() => ['ready', 'error'].includes(doc
 test('#src= with parameters: the linked mesh, computed with them, Z up', async () => {
   await page.waitForFunction(() => window.crestline?.lastResult, null, { timeout: 60000 });
   await settled();
-  const { result, params, up } = await page.evaluate(() => ({ result: window.crestline.lastResult, params: window.crestline.params, up: window.crestline.viewer.camera.up.toArray() }));
+  const { result, params, up } = await page.evaluate(() => ({
+    result: window.crestline.lastResult,
+    params: window.crestline.params,
+    up: window.crestline.viewer.camera.up.toArray(),
+  }));
   assert.equal(result.name, 'box.obj');
   assert.equal(result.stats.triangles, 6912);
   assert.equal(result.stats.threshold, 2.5);

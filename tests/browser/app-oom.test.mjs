@@ -40,13 +40,14 @@ after(async () => {
 
 test('out of WASM memory: one sentence naming the file, then the next file computes', async () => {
   const sentence = `tiles.glb: the browser ran out of memory for a mesh of ${TRIANGLES.toLocaleString('en-US')} triangles (a page has at most 2 GB); the command-line tool has no such limit.`;
-  const shown = () => page.evaluate(() => ({
-    state: document.body.dataset.state,
-    error: document.getElementById('error').textContent,
-    errorHidden: document.getElementById('error').hidden,
-    progressHidden: document.getElementById('progress').hidden,
-    canvas: Boolean(document.querySelector('#view canvas')),
-  }));
+  const shown = () =>
+    page.evaluate(() => ({
+      state: document.body.dataset.state,
+      error: document.getElementById('error').textContent,
+      errorHidden: document.getElementById('error').hidden,
+      progressHidden: document.getElementById('progress').hidden,
+      canvas: Boolean(document.querySelector('#view canvas')),
+    }));
   const outOfMemory = { state: 'error', error: sentence, errorHidden: false, progressHidden: true, canvas: true };
   const started = Date.now();
   await dropFiles(page, [{ name: 'tiles.glb', url: '/pages/tiles.glb' }]);

@@ -41,11 +41,7 @@ export function sampleReady(page) {
 export async function nextResult(page, action, timeout = 60000) {
   const count = await page.evaluate(() => window.crestline?.results.length ?? 0);
   await action();
-  await page.waitForFunction(
-    (n) => window.crestline.results.length > n || document.body.dataset.state === 'error',
-    count,
-    { timeout },
-  );
+  await page.waitForFunction((n) => window.crestline.results.length > n || document.body.dataset.state === 'error', count, { timeout });
   const error = await page.textContent('#error');
   assert.equal(error, '', `the page shows an error: ${error}`);
   return page.evaluate(() => window.crestline.lastResult);
@@ -89,7 +85,16 @@ export function framing(page) {
       return { left: r.left - canvas.left, top: r.top - canvas.top, right: r.right - canvas.left, bottom: r.bottom - canvas.top };
     });
     const direction = viewer.camera.position.clone().sub(viewer.controls.target).normalize().toArray();
-    return { box, covers, width: canvas.width, height: canvas.height, count: positions.count, direction, up: viewer.camera.up.toArray(), free: viewer.uncovered() };
+    return {
+      box,
+      covers,
+      width: canvas.width,
+      height: canvas.height,
+      count: positions.count,
+      direction,
+      up: viewer.camera.up.toArray(),
+      free: viewer.uncovered(),
+    };
   });
 }
 
@@ -100,7 +105,10 @@ export function assertUncovered({ box, covers, width, height, free }, fill = 0.6
   assert.ok(inside, `the model [${[b.left, b.top, b.right, b.bottom].map(Math.round)}] lies inside the ${width}×${height} canvas`);
   for (const c of covers) {
     const overlaps = b.left < c.right - 1 && c.left < b.right - 1 && b.top < c.bottom - 1 && c.top < b.bottom - 1;
-    assert.ok(!overlaps, `the model [${[b.left, b.top, b.right, b.bottom].map(Math.round)}] is clear of [${[c.left, c.top, c.right, c.bottom].map(Math.round)}]`);
+    assert.ok(
+      !overlaps,
+      `the model [${[b.left, b.top, b.right, b.bottom].map(Math.round)}] is clear of [${[c.left, c.top, c.right, c.bottom].map(Math.round)}]`,
+    );
   }
   const filled = Math.max((b.right - b.left) / (free.right - free.left), (b.bottom - b.top) / (free.bottom - free.top));
   assert.ok(filled > fill, `the model fills ${filled.toFixed(2)} of the free area's limiting side`);

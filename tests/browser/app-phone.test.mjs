@@ -65,7 +65,10 @@ test('390×844: the framed model\'s projected bounding box lies inside the canva
     const { viewer, gui } = window.crestline;
     viewer.camera.position.set(5, 1, 0.5); // orbit to the side, far off
     viewer.controls.update();
-    gui.controllersRecursive().find((c) => c.property === 'fit').$button.click();
+    gui
+      .controllersRecursive()
+      .find((c) => c.property === 'fit')
+      .$button.click();
   });
   assertInside(await projectedBox());
 });

@@ -56,7 +56,9 @@ const views = () =>
 const save = (format) =>
   page.evaluate(async (format) => {
     const saved = await window.crestline.save(format);
-    return saved ? { fileName: saved.fileName, text: format === 'png' ? '' : await saved.blob.text() } : { error: document.getElementById('error').textContent };
+    return saved
+      ? { fileName: saved.fileName, text: format === 'png' ? '' : await saved.blob.text() }
+      : { error: document.getElementById('error').textContent };
   }, format);
 
 let shownA, objA;
@@ -86,7 +88,11 @@ async function dropAndCancelAt(hook) {
     const cancelNow = () => {
       hooks.progress = hooks.loaded = null;
       // What the page shows at the moment of Cancel (B loading, A in view).
-      window.beforeCancel = { state: document.body.dataset.state, header: document.getElementById('file').firstChild.textContent, label: document.getElementById('view-label').textContent };
+      window.beforeCancel = {
+        state: document.body.dataset.state,
+        header: document.getElementById('file').firstChild.textContent,
+        label: document.getElementById('view-label').textContent,
+      };
       document.getElementById('cancel').click();
     };
     if (hook === 'loaded') hooks.loaded = cancelNow;
@@ -99,13 +105,13 @@ async function dropAndCancelAt(hook) {
   return { before, count };
 }
 
-test('Cancel while B is read: A\'s page comes back whole', async () => {
+test("Cancel while B is read: A's page comes back whole", async () => {
   const { before, count } = await dropAndCancelAt('read');
   assert.equal(before.state, 'loading');
   assert.match(before.header, /^waves\.obj: reading…/);
   assert.equal(before.label, 'Previous mesh: box.obj (shown until waves.obj is read)');
   const after = await views();
-  assert.deepEqual({ ...after }, { ...shownA }, 'header, state, stats, picture: A\'s');
+  assert.deepEqual({ ...after }, { ...shownA }, "header, state, stats, picture: A's");
   assert.match(await page.textContent('#notes'), /^Cancelled waves\.obj: back to box\.obj\.$/);
   // The worker still holds A: its core writer gives the same lines, byte for byte.
   const obj = await save('obj');
@@ -149,12 +155,17 @@ for (const hook of ['loaded', ...STAGES]) {
       surfaceVertices: B_VERTICES,
       linePoints: 0,
     });
-    assert.match(after.stats, /^waves\.obj\n12,321 vertices, 24,200 triangles\nlines: not computed \(cancelled; change a setting to compute them\)\nread and repair \d+ ms$/);
+    assert.match(
+      after.stats,
+      /^waves\.obj\n12,321 vertices, 24,200 triangles\nlines: not computed \(cancelled; change a setting to compute them\)\nread and repair \d+ ms$/,
+    );
     assert.equal(await page.textContent('#notes'), 'Cancelled: waves.obj has no lines yet; change a setting to compute them.');
     assert.equal(await page.evaluate(() => window.crestline.results.length), count, 'no result of B');
     // Exports say plainly that there are no lines (A is gone).
     for (const format of ['obj', 'svg']) {
-      assert.deepEqual(await save(format), { error: `Export ${format.toUpperCase()}: Nothing to export yet: the lines of waves.obj are not computed (cancelled); change a setting to compute them.` });
+      assert.deepEqual(await save(format), {
+        error: `Export ${format.toUpperCase()}: Nothing to export yet: the lines of waves.obj are not computed (cancelled); change a setting to compute them.`,
+      });
     }
     // A changed setting computes B's lines (every line, though some stages ran before the cancel).
     const result = await nextResult(page, () => page.evaluate(() => window.crestline.update({ threshold: window.crestline.params.threshold * 1.01 })));
@@ -169,7 +180,7 @@ for (const hook of ['loaded', ...STAGES]) {
   });
 }
 
-test('while B is read: A labelled and dimmed, exports A\'s; once loaded: B\'s surface, counts, lines pending; then all B', async () => {
+test("while B is read: A labelled and dimmed, exports A's; once loaded: B's surface, counts, lines pending; then all B", async () => {
   await showA();
   await page.evaluate(() => {
     const { hooks, viewer } = window.crestline;
@@ -202,20 +213,23 @@ test('while B is read: A labelled and dimmed, exports A\'s; once loaded: B\'s su
   assert.match(reading.header, /^waves\.obj: reading… — /);
   assert.equal(reading.label, 'Previous mesh: box.obj (shown until waves.obj is read)');
   assert.equal(reading.dimmed, true);
-  assert.match(reading.stats, /^box\.obj\n/, 'the stats are A\'s, named');
+  assert.match(reading.stats, /^box\.obj\n/, "the stats are A's, named");
   assert.equal(reading.surfaceVertices, shownA.surfaceVertices);
-  assert.equal(reading.svg, 'box-lines.svg', 'an export while B is read is A\'s, as the label says');
+  assert.equal(reading.svg, 'box-lines.svg', "an export while B is read is A's, as the label says");
   // Loaded: B's surface is in the picture before any of its lines.
-  assert.deepEqual({ ...loaded, stats: '' }, {
-    state: 'computing',
-    header: 'waves.obj: 24,200 triangles, computing its lines… — drop another mesh or ',
-    label: '',
-    dimmed: false,
-    stats: '',
-    surfaceVertices: B_VERTICES,
-    results: count,
-    svg: 'Export SVG: Nothing to export yet: wait for the lines of waves.obj (or Cancel).',
-  });
+  assert.deepEqual(
+    { ...loaded, stats: '' },
+    {
+      state: 'computing',
+      header: 'waves.obj: 24,200 triangles, computing its lines… — drop another mesh or ',
+      label: '',
+      dimmed: false,
+      stats: '',
+      surfaceVertices: B_VERTICES,
+      results: count,
+      svg: 'Export SVG: Nothing to export yet: wait for the lines of waves.obj (or Cancel).',
+    },
+  );
   assert.match(loaded.stats, /^waves\.obj\n12,321 vertices, 24,200 triangles\nlines: computing…\n/);
   await page.evaluate(() => window.crestline.save('svg')); // clears the export error
   assert.equal(result.name, 'waves.obj');
@@ -231,13 +245,16 @@ test('while B is read: A labelled and dimmed, exports A\'s; once loaded: B\'s su
 
 /** Changes the smoothing steps by `delta` and presses Cancel at once (the worker sees the flag at its first check). */
 const recomputeAndCancel = (delta, between = async () => null) =>
-  page.evaluate(async ([delta, between]) => {
-    window.crestline.update({ smoothingSteps: window.crestline.params.smoothingSteps + delta });
-    const state = document.body.dataset.state;
-    const inBetween = await eval(between)();
-    document.getElementById('cancel').click();
-    return { state, inBetween };
-  }, [delta, between.toString()]);
+  page.evaluate(
+    async ([delta, between]) => {
+      window.crestline.update({ smoothingSteps: window.crestline.params.smoothingSteps + delta });
+      const state = document.body.dataset.state;
+      const inBetween = await eval(between)();
+      document.getElementById('cancel').click();
+      return { state, inBetween };
+    },
+    [delta, between.toString()],
+  );
 
 test('Cancel of a recompute: the lines, stats, panel and exports stay those of the lines shown', async () => {
   const before = await views();

@@ -19,12 +19,15 @@ after(() => app?.close());
 
 /** Drops `files` (name + bytes given as numbers) and returns the error sentence. */
 async function errorFor(name, bytes) {
-  await page.evaluate(({ name, bytes }) => {
-    const transfer = new DataTransfer();
-    transfer.items.add(new File([new Uint8Array(bytes)], name));
-    document.getElementById('error').textContent = '';
-    document.body.dispatchEvent(new DragEvent('drop', { dataTransfer: transfer, bubbles: true, cancelable: true }));
-  }, { name, bytes });
+  await page.evaluate(
+    ({ name, bytes }) => {
+      const transfer = new DataTransfer();
+      transfer.items.add(new File([new Uint8Array(bytes)], name));
+      document.getElementById('error').textContent = '';
+      document.body.dispatchEvent(new DragEvent('drop', { dataTransfer: transfer, bubbles: true, cancelable: true }));
+    },
+    { name, bytes },
+  );
   await page.waitForFunction(() => document.body.dataset.state === 'error' && document.getElementById('error').textContent);
   return page.textContent('#error');
 }
@@ -46,7 +49,9 @@ test('a random blob named x.glb and a zero-byte x.stl: one clean sentence each n
   assert.equal(glb, "x.glb: the file is neither a GLB (which starts with the bytes 'glTF') nor glTF JSON.");
   assertCleanSentence(stl, 'x.stl');
   // The page recovers: the bunny is still loaded and re-filters.
-  const result = await nextResult(page, () => page.evaluate(() => window.crestline.update({ autoThreshold: false, threshold: window.crestline.lastResult.stats.threshold * 0.9 })));
+  const result = await nextResult(page, () =>
+    page.evaluate(() => window.crestline.update({ autoThreshold: false, threshold: window.crestline.lastResult.stats.threshold * 0.9 })),
+  );
   assert.deepEqual(result.ran, ['filter']);
   await nextResult(page, () => page.evaluate(() => window.crestline.update({ autoThreshold: true })));
 });
@@ -86,11 +91,20 @@ test('glTF + .bin + texture + an unrelated OBJ: the glTF loads with its buffers,
 });
 
 test('a legend names ridges and valleys in their colours and follows the panel', async () => {
-  const legend = () => page.evaluate(() => ['ridge', 'valley'].map((k) => {
-    const entry = document.getElementById(`legend-${k}`);
-    const box = entry.getBoundingClientRect();
-    return { text: entry.textContent.trim(), color: getComputedStyle(entry.querySelector('.swatch')).backgroundColor, off: entry.classList.contains('off'), visible: box.width > 0 && box.height > 0, title: entry.title };
-  }));
+  const legend = () =>
+    page.evaluate(() =>
+      ['ridge', 'valley'].map((k) => {
+        const entry = document.getElementById(`legend-${k}`);
+        const box = entry.getBoundingClientRect();
+        return {
+          text: entry.textContent.trim(),
+          color: getComputedStyle(entry.querySelector('.swatch')).backgroundColor,
+          off: entry.classList.contains('off'),
+          visible: box.width > 0 && box.height > 0,
+          title: entry.title,
+        };
+      }),
+    );
   const [ridge, valley] = await legend();
   assert.equal(ridge.text, 'ridges');
   assert.equal(valley.text, 'valleys');
@@ -105,14 +119,16 @@ test('a legend names ridges and valleys in their colours and follows the panel',
   await page.evaluate(() => window.crestline.update({ ridgeColor: '#d62d20', showValleys: true }));
 });
 
-test('every panel control has a plain-words tooltip; the pipeline ones are the parameter table\'s help', async () => {
+test("every panel control has a plain-words tooltip; the pipeline ones are the parameter table's help", async () => {
   const problems = await page.evaluate(() => {
     const { gui, parameters } = window.crestline;
     const out = [];
     for (const c of gui.controllersRecursive()) {
       const title = c.domElement.title;
       if (!title || title.length < 12) out.push(`${c._name}: no tooltip`);
-      const p = parameters.filter((q) => q.group === 'pipeline' && q.stage).find((q) => q.key === c.property || `auto${q.key[0].toUpperCase()}${q.key.slice(1)}` === c.property);
+      const p = parameters
+        .filter((q) => q.group === 'pipeline' && q.stage)
+        .find((q) => q.key === c.property || `auto${q.key[0].toUpperCase()}${q.key.slice(1)}` === c.property);
       if (p && !title.startsWith(p.help)) out.push(`${c._name}: "${title}" is not the table's help "${p.help}"`);
       if (p && p.unit && !title.includes(p.unit)) out.push(`${c._name}: no unit ${p.unit}`);
     }

@@ -107,8 +107,7 @@ test('threshold change re-filters only, and changes the count', { skip: noMeshes
   // The ridge geometry before: a threshold change must keep it and only hide lines.
   await page.evaluate(() => (window.ridgeGeometry = window.crestline.viewer.lines.objects[0].geometry));
   const pixelsBefore = await linePixels();
-  const result = await nextResult(() =>
-    page.evaluate((t) => window.crestline.update({ autoThreshold: false, threshold: t }), before.stats.threshold * 3));
+  const result = await nextResult(() => page.evaluate((t) => window.crestline.update({ autoThreshold: false, threshold: t }), before.stats.threshold * 3));
   assert.deepEqual(result.ran, ['filter'], 'only the filter ran');
   assert.ok(result.lineCount < before.lineCount, `${result.lineCount} < ${before.lineCount} lines`);
   assert.equal(result.linesChanged, false, 'no lines were sent');
@@ -148,18 +147,22 @@ test('OBJ (mannequin): lines match the native CLI', { skip: noMeshes }, async ()
   await checkAgainstNative('classic/mannequin.obj', result);
 });
 
-test('concave L-shaped octagons (OBJ polygons): the C++ reader in the page gives the CLI\'s lines, byte for byte', { skip: !haveNativeCli && `SKIPPED: ${NATIVE_CLI} is not built` }, async () => {
-  const text = concaveOctagonObj();
-  mkdirSync(SHOTS, { recursive: true });
-  const input = join(SHOTS, 'concave-octagons.obj');
-  const output = join(SHOTS, 'concave-octagons-lines.obj');
-  writeFileSync(input, text);
-  execFileSync(NATIVE_CLI, [input, '-o', output, '-q']);
-  const result = await nextResult(() => drop([{ name: 'concave-octagons.obj', text }]));
-  assert.ok(result.stats.ridges > 0 && result.stats.valleys > 0, JSON.stringify(result.stats));
-  const obj = await page.evaluate(() => window.crestline.client.exportText('obj'));
-  assert.equal(obj, readFileSync(output, 'utf8'));
-});
+test(
+  "concave L-shaped octagons (OBJ polygons): the C++ reader in the page gives the CLI's lines, byte for byte",
+  { skip: !haveNativeCli && `SKIPPED: ${NATIVE_CLI} is not built` },
+  async () => {
+    const text = concaveOctagonObj();
+    mkdirSync(SHOTS, { recursive: true });
+    const input = join(SHOTS, 'concave-octagons.obj');
+    const output = join(SHOTS, 'concave-octagons-lines.obj');
+    writeFileSync(input, text);
+    execFileSync(NATIVE_CLI, [input, '-o', output, '-q']);
+    const result = await nextResult(() => drop([{ name: 'concave-octagons.obj', text }]));
+    assert.ok(result.stats.ridges > 0 && result.stats.valleys > 0, JSON.stringify(result.stats));
+    const obj = await page.evaluate(() => window.crestline.client.exportText('obj'));
+    assert.equal(obj, readFileSync(output, 'utf8'));
+  },
+);
 
 test('Draco GLB (pmndrs bunny): decompressed in the worker by the npm decoders, lines match the native CLI', { skip: noMeshes }, async () => {
   const result = await nextResult(() => drop(['glb/pmndrs-bunny-draco.glb']));
@@ -205,15 +208,17 @@ test('smoothing brush: painting frozen weights re-runs from the smoothing stage'
   assert.ok(!result.ran.includes('curvature'));
   const frozen = await page.evaluate(() => window.crestline.brush.weights.filter((w) => w < 0.5).length);
   assert.ok(frozen > 0, 'some vertices were painted');
-  assert.notDeepEqual([result.stats.ridges, result.stats.valleys, result.stats.ridgeLength], [before.stats.ridges, before.stats.valleys, before.stats.ridgeLength]);
+  assert.notDeepEqual(
+    [result.stats.ridges, result.stats.valleys, result.stats.ridgeLength],
+    [before.stats.ridges, before.stats.valleys, before.stats.ridgeLength],
+  );
   await page.evaluate(() => window.crestline.brush.setEnabled(false));
 });
 
 test('the file picker opens an OFF file (an octahedron)', async () => {
   mkdirSync(SHOTS, { recursive: true });
   const path = join(SHOTS, 'octahedron.off');
-  writeFileSync(path, 'OFF\n6 8 0\n1 0 0\n-1 0 0\n0 1 0\n0 -1 0\n0 0 1\n0 0 -1\n' +
-    '3 0 2 4\n3 2 1 4\n3 1 3 4\n3 3 0 4\n3 2 0 5\n3 1 2 5\n3 3 1 5\n3 0 3 5\n');
+  writeFileSync(path, 'OFF\n6 8 0\n1 0 0\n-1 0 0\n0 1 0\n0 -1 0\n0 0 1\n0 0 -1\n' + '3 0 2 4\n3 2 1 4\n3 1 3 4\n3 3 0 4\n3 2 0 5\n3 1 2 5\n3 3 1 5\n3 0 3 5\n');
   const result = await nextResult(() => page.setInputFiles('#picker', path));
   assert.equal(result.name, 'octahedron.off');
   assert.equal(result.stats.triangles, 8);
@@ -227,18 +232,21 @@ test('cancel stops a long computation and the page stays usable', { skip: noMesh
   await page.waitForFunction(() => window.sawSmoothing, null, { timeout: 60000 });
   await page.evaluate(() => (window.crestline.hooks.progress = null));
   // The main thread keeps drawing frames while the worker computes.
-  const longestFrame = await page.evaluate(() => new Promise((resolve) => {
-    let last = performance.now();
-    let longest = 0;
-    const end = last + 1000;
-    const tick = (now) => {
-      longest = Math.max(longest, now - last);
-      last = now;
-      if (now < end) requestAnimationFrame(tick);
-      else resolve(longest);
-    };
-    requestAnimationFrame(tick);
-  }));
+  const longestFrame = await page.evaluate(
+    () =>
+      new Promise((resolve) => {
+        let last = performance.now();
+        let longest = 0;
+        const end = last + 1000;
+        const tick = (now) => {
+          longest = Math.max(longest, now - last);
+          last = now;
+          if (now < end) requestAnimationFrame(tick);
+          else resolve(longest);
+        };
+        requestAnimationFrame(tick);
+      }),
+  );
   assert.ok(longestFrame < 250, `longest frame while computing: ${longestFrame} ms`);
   const started = Date.now();
   await page.evaluate(() => (window.workerBeforeCancel = window.crestline.client.connection.worker));
@@ -276,8 +284,9 @@ test('871k triangles (large/dragon.glb): lines, then an instant re-threshold', {
   assert.equal(result.stats.triangles, 871298);
   assert.ok(result.lineCount > 100);
   const mesh = await page.evaluate(() => window.crestline.mesh);
-  console.log(`# dragon.glb: drop to lines ${Date.now() - started} ms: read and repair ${mesh.loadMs.toFixed(0)} ms, ` +
-    `pipeline ${result.milliseconds.toFixed(0)} ms`);
+  console.log(
+    `# dragon.glb: drop to lines ${Date.now() - started} ms: read and repair ${mesh.loadMs.toFixed(0)} ms, ` + `pipeline ${result.milliseconds.toFixed(0)} ms`,
+  );
   await checkAgainstNative('large/dragon.glb', result);
   const filtered = await nextResult(() => page.evaluate(() => window.crestline.update({ autoThreshold: false, threshold: 3 })));
   assert.deepEqual(filtered.ran, ['filter']);

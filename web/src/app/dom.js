@@ -16,7 +16,7 @@ export function render(state) {
   $('view-label').hidden = !label;
   $('view-label').textContent = label;
   document.body.classList.toggle('previous', Boolean(label));
-  const progress = phase === 'loading' || phase === 'computing' ? state.progress ?? { stage: 'waiting', fraction: 0 } : null;
+  const progress = phase === 'loading' || phase === 'computing' ? (state.progress ?? { stage: 'waiting', fraction: 0 }) : null;
   $('progress').hidden = !progress;
   if (progress) {
     $('progress-bar').value = progress.fraction;
@@ -34,9 +34,7 @@ const fmt = (x, digits = 3) => (Number.isFinite(x) ? Number(x.toPrecision(digits
 
 /** Pipeline statistics; `mesh` adds the time to read the file and to repair the mesh. */
 function showStats({ stats, ran, milliseconds }, mesh = {}) {
-  const times = ran
-    .map((stage) => `${stage} ${(1000 * (stats.seconds[stage] ?? 0)).toFixed(1)} ms`)
-    .join(', ');
+  const times = ran.map((stage) => `${stage} ${(1000 * (stats.seconds[stage] ?? 0)).toFixed(1)} ms`).join(', ');
   $('stats').textContent = [
     mesh.name,
     `${stats.vertices.toLocaleString()} vertices, ${stats.triangles.toLocaleString()} triangles`,
@@ -46,14 +44,20 @@ function showStats({ stats, ran, milliseconds }, mesh = {}) {
     `threshold ${fmt(stats.threshold)}, singular triangles ${stats.singularMax} max / ${stats.singularMin} min`,
     `ran: ${times} — ${milliseconds.toFixed(1)} ms in total`,
     mesh.loadMs === undefined ? '' : `read and repair ${mesh.loadMs.toFixed(0)} ms`,
-  ].filter(Boolean).join('\n');
+  ]
+    .filter(Boolean)
+    .join('\n');
 }
 
 /** The legend: each line kind in its colour, struck through when hidden. */
 export function showLegend({ ridgeColor, valleyColor, creaseColor, showRidges, showValleys, showCreases }, concaveColor) {
   // The crease swatch: convex (the crease colour) | concave (its darker shade).
   const crease = `linear-gradient(90deg, ${creaseColor} 50%, ${concaveColor} 50%)`;
-  for (const [id, color, shown] of [['legend-ridge', ridgeColor, showRidges], ['legend-valley', valleyColor, showValleys], ['legend-crease', crease, showCreases]]) {
+  for (const [id, color, shown] of [
+    ['legend-ridge', ridgeColor, showRidges],
+    ['legend-valley', valleyColor, showValleys],
+    ['legend-crease', crease, showCreases],
+  ]) {
     $(id).querySelector('.swatch').style.background = color;
     $(id).classList.toggle('off', !shown);
   }

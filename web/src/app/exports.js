@@ -6,7 +6,10 @@ import { renderPng, svgView } from '../three/exports.js';
 
 /** "feline.obj" → "feline", "bunny (built-in sample)" → "bunny". */
 export function baseName(name) {
-  const base = String(name ?? '').replace(/\s*\(.*\)\s*$/, '').replace(/\.[a-z0-9]+$/i, '').trim();
+  const base = String(name ?? '')
+    .replace(/\s*\(.*\)\s*$/, '')
+    .replace(/\.[a-z0-9]+$/i, '')
+    .trim();
   return base.replace(/[^\w.-]+/g, '_') || 'mesh';
 }
 

@@ -95,7 +95,10 @@ export function createGui(params, table, { onCompute, onDisplay, onFit, onCamera
     // The three the paper's figures vary stay in view; the others fold away.
     const folder = ['smoothingSteps', 'threshold', 'hausdorffBound', 'presmoothSteps', 'creaseAngle'].includes(p.key) ? lines : more;
     if (p.automatic) {
-      folder.add(params, autoKey(p)).name(`automatic ${label(p)}`).onChange(onCompute).domElement.title = describeParameter(p);
+      folder
+        .add(params, autoKey(p))
+        .name(`automatic ${label(p)}`)
+        .onChange(onCompute).domElement.title = describeParameter(p);
     }
     const max = Number.isFinite(p.max) ? p.max : Math.max(1, p.min * 10);
     const controller = p.kind === 'boolean' ? folder.add(params, p.key) : folder.add(params, p.key, p.min, max, stepOf(p, max));
@@ -112,27 +115,49 @@ export function createGui(params, table, { onCompute, onDisplay, onFit, onCamera
   const display = gui.addFolder('Display');
   tip(display.add(params, 'showRidges').name('ridges'), 'Show the ridges: lines where the surface bends most sharply outward (crests)').onChange(onDisplay);
   tip(display.add(params, 'showValleys').name('valleys'), 'Show the valleys: lines where the surface bends most sharply inward (grooves)').onChange(onDisplay);
-  tip(display.add(params, 'showCreases').name('creases'), 'Show the creases: sharp edges of the mesh (convex in the crease colour, concave in a darker shade)').onChange(onDisplay);
+  tip(
+    display.add(params, 'showCreases').name('creases'),
+    'Show the creases: sharp edges of the mesh (convex in the crease colour, concave in a darker shade)',
+  ).onChange(onDisplay);
   tip(display.add(params, 'lineWidth', 0.5, 8, 0.1).name('line width (px)'), 'Width of the drawn lines, in screen pixels').onChange(onDisplay);
   tip(display.addColor(params, 'ridgeColor').name('ridge colour'), 'Colour of the ridges, on the page and in the exports').onChange(onDisplay);
   tip(display.addColor(params, 'valleyColor').name('valley colour'), 'Colour of the valleys, on the page and in the exports').onChange(onDisplay);
-  tip(display.addColor(params, 'creaseColor').name('crease colour'), 'Colour of the convex creases (concave ones are a darker shade), on the page and in the exports').onChange(onDisplay);
-  tip(display.add(params, 'view', VIEWS).name('surface'), 'What the surface shows: plain shading, a principal curvature κ or extremality (how fast κ changes along its direction), the triangles where the directions cannot be ordered consistently (singular), or the brushed smoothing weights').onChange(onDisplay);
+  tip(
+    display.addColor(params, 'creaseColor').name('crease colour'),
+    'Colour of the convex creases (concave ones are a darker shade), on the page and in the exports',
+  ).onChange(onDisplay);
+  tip(
+    display.add(params, 'view', VIEWS).name('surface'),
+    'What the surface shows: plain shading, a principal curvature κ or extremality (how fast κ changes along its direction), the triangles where the directions cannot be ordered consistently (singular), or the brushed smoothing weights',
+  ).onChange(onDisplay);
   tip(display.add(params, 'dark').name('dark background'), 'Dark or light background').onChange(onDisplay);
   const brush = gui.addFolder('Smoothing brush (paper Fig. 6)');
-  tip(brush.add(params, 'brush').name('paint (drag on surface)'), 'Drag on the surface to paint how much smoothing each area gets (the smoothing weight): 0 turns it off there, 1 is normal').onChange(onBrush);
+  tip(
+    brush.add(params, 'brush').name('paint (drag on surface)'),
+    'Drag on the surface to paint how much smoothing each area gets (the smoothing weight): 0 turns it off there, 1 is normal',
+  ).onChange(onBrush);
   tip(brush.add(params, 'brushRadius', 0.01, 0.5, 0.01).name('radius (of model size)'), 'Brush radius, as a fraction of the model’s size').onChange(onBrush);
-  tip(brush.add(params, 'brushValue', 0, 3, 0.05).name('strength painted'), 'Smoothing weight the brush paints: 0 none, 1 the normal amount, above 1 more').onChange(onBrush);
+  tip(
+    brush.add(params, 'brushValue', 0, 3, 0.05).name('strength painted'),
+    'Smoothing weight the brush paints: 0 none, 1 the normal amount, above 1 more',
+  ).onChange(onBrush);
   tip(brush.add({ clear: onClearWeights }, 'clear').name('clear weights'), 'Forget the painted weights: every vertex smoothed normally again');
   brush.close();
   const exports = gui.addFolder('Export');
   tip(exports.add(params, 'exportSilhouette').name('SVG: silhouette'), 'Add the model’s outline to the SVG export');
   tip(exports.add(params, 'pngScale', PNG_SCALES).name('PNG resolution'), 'Size of the PNG export, as a multiple of the canvas');
-  for (const [format, label] of Object.entries(EXPORTS)) tip(exports.add({ [format]: () => onExport(format) }, format).name(label), `Download the ${EXPORT_TIPS[format]}`);
+  for (const [format, label] of Object.entries(EXPORTS))
+    tip(exports.add({ [format]: () => onExport(format) }, format).name(label), `Download the ${EXPORT_TIPS[format]}`);
   exports.close(); // with it closed the panel fits a 1280×800 window without scrolling
   const camera = gui.addFolder('Camera');
-  tip(camera.add(params, 'preset', VIEW_PRESETS).name('view from'), 'Look at the model from the front, back, left, right, top, bottom or at an angle (iso), relative to its up axis').onChange(onCamera);
-  tip(camera.add(params, 'upAxis', { 'Y up (glTF)': 'y', 'Z up (CAD, scans)': 'z' }).name('up axis'), 'Which axis of the file points up: glTF says Y; many CAD and scanned models use Z (seen from the top with Y)').onChange(onCamera);
+  tip(
+    camera.add(params, 'preset', VIEW_PRESETS).name('view from'),
+    'Look at the model from the front, back, left, right, top, bottom or at an angle (iso), relative to its up axis',
+  ).onChange(onCamera);
+  tip(
+    camera.add(params, 'upAxis', { 'Y up (glTF)': 'y', 'Z up (CAD, scans)': 'z' }).name('up axis'),
+    'Which axis of the file points up: glTF says Y; many CAD and scanned models use Z (seen from the top with Y)',
+  ).onChange(onCamera);
   camera.close();
   tip(gui.add({ fit: onFit }, 'fit').name('fit to view'), 'Frame the whole model in the part of the view the panels leave free');
   tip(gui.add({ open: onOpen }, 'open').name('open mesh…'), 'Open a mesh file: glTF/GLB (with its .bin), OBJ, PLY, STL or OFF');

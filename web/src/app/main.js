@@ -39,7 +39,7 @@ const active = () => state.loading?.session ?? state.shown?.session ?? null;
 /** What the worker gets: the panel's values and the brushed weights of the shown mesh (a copy: it is transferred). */
 const currentOptions = () => ({
   ...pipelineOptions(params, table),
-  vertexWeights: state.loading ? null : brush.current()?.slice() ?? null,
+  vertexWeights: state.loading ? null : (brush.current()?.slice() ?? null),
 });
 
 /** A client session whose replies update the page only while it is the loading or the shown one. */
@@ -78,7 +78,8 @@ function newSession() {
  */
 function forget(session) {
   session.cancel();
-  if (exporting.has(session)) retired.add(session); // an export still waits for it
+  if (exporting.has(session))
+    retired.add(session); // an export still waits for it
   else session.dispose();
 }
 /** Sessions with exports on their way (how many), and those to free after them. */
@@ -153,7 +154,8 @@ function ofPrevious(session) {
 /** A result: the shown mesh's lines (the first ones after a load, or new ones after a change). */
 function received(session, result) {
   if (ofPrevious(session)) return;
-  if (session === state.loading?.session) promote(result.surface); // no 'loaded' seen (not expected)
+  if (session === state.loading?.session)
+    promote(result.surface); // no 'loaded' seen (not expected)
   else if (session !== state.shown?.session) return forget(session);
   const shown = /** @type {import('./page-state.js').MeshState} */ (state.shown);
   dropPrevious(shown);
@@ -176,9 +178,23 @@ function received(session, result) {
   const { lines, kept } = result;
   let selected = null;
   // What the exports save: the lines shown, selected on first use.
-  app.shown = { name: shown.name, get lines() { return (selected ??= selectLines(lines, kept)); } };
+  app.shown = {
+    name: shown.name,
+    get lines() {
+      return (selected ??= selectLines(lines, kept));
+    },
+  };
   app.mesh = { name: shown.name, vertices: shown.vertices, triangles: shown.triangles, loadMs: shown.loadMs };
-  app.lastResult = { name: shown.name, ran: result.ran, stats: result.stats, lineCount: kept.length, linesChanged: result.linesChanged, creaseCount: result.creases?.convex.length ?? 0, drawMs, milliseconds: result.milliseconds };
+  app.lastResult = {
+    name: shown.name,
+    ran: result.ran,
+    stats: result.stats,
+    lineCount: kept.length,
+    linesChanged: result.linesChanged,
+    creaseCount: result.creases?.convex.length ?? 0,
+    drawMs,
+    milliseconds: result.milliseconds,
+  };
   app.results.push(app.lastResult);
   showAddress();
   gui.showUsed(result.stats, rescaleThreshold);
@@ -251,7 +267,11 @@ function cancelled(session) {
   // The worker may hold a half-run pipeline: an OBJ/JSON export re-runs first.
   state.shown.stale = true;
   state.progress = null;
-  state.notes = [state.shown.result ? 'Cancelled: the lines shown are those of the values in the panel.' : `Cancelled: ${state.shown.name} has no lines yet; change a setting to compute them.`];
+  state.notes = [
+    state.shown.result
+      ? 'Cancelled: the lines shown are those of the values in the panel.'
+      : `Cancelled: ${state.shown.name} has no lines yet; change a setting to compute them.`,
+  ];
   release(state.shown);
   showOptions(state.shown.options);
   render();
@@ -334,7 +354,13 @@ function applyView() {
   let map = null;
   if (view === 'weights' && brush.weights) {
     viewer.surface.setSingular(null);
-    map = { scale: viewer.surface.setColors(brush.weights.map((w) => w - 1), WEIGHT_SCALE), positive: false };
+    map = {
+      scale: viewer.surface.setColors(
+        brush.weights.map((w) => w - 1),
+        WEIGHT_SCALE,
+      ),
+      positive: false,
+    };
   } else if (view === 'shaded' || view === 'weights' || !session) {
     viewer.surface.setColors(null);
     viewer.surface.setSingular(null);
@@ -365,10 +391,13 @@ function applyBrush() {
   if (params.brush && state.shown && !brush.surfaceIndex()) {
     state.notes = [...state.notes.filter((n) => n !== PREPARING), PREPARING];
     render();
-    brush.ready().then(() => {
-      state.notes = state.notes.filter((n) => n !== PREPARING);
-      render();
-    }, (error) => fail(error.message));
+    brush.ready().then(
+      () => {
+        state.notes = state.notes.filter((n) => n !== PREPARING);
+        render();
+      },
+      (error) => fail(error.message),
+    );
   }
   brush.radius = params.brushRadius;
   brush.value = params.brushValue;

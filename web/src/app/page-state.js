@@ -61,7 +61,12 @@ export function viewLabelOf({ shown, loading }) {
 export function countsOf(shown) {
   if (shown.vertices === undefined) return '';
   const lines = shown.session.busy ? 'lines: computing…' : 'lines: not computed (cancelled; change a setting to compute them)';
-  return [shown.name, `${shown.vertices.toLocaleString('en-US')} vertices, ${count(shown.triangles)}`, lines, shown.loadMs === undefined ? '' : `read and repair ${shown.loadMs.toFixed(0)} ms`]
+  return [
+    shown.name,
+    `${shown.vertices.toLocaleString('en-US')} vertices, ${count(shown.triangles)}`,
+    lines,
+    shown.loadMs === undefined ? '' : `read and repair ${shown.loadMs.toFixed(0)} ms`,
+  ]
     .filter(Boolean)
     .join('\n');
 }
