@@ -31,8 +31,8 @@ std::string noisy_surface_help() {
   char text[256];
   std::snprintf(text, sizeof text,
                 "Implicit mean-curvature-flow steps on the surface before curvature; 0: off; auto: %d steps when "
-                "the measured noise exceeds %g mean edge lengths, else none",
-                kNoisySurfaceSteps, kNoisySurface);
+                "the measured noise exceeds %g mean edge lengths (up to %d above %g), else none",
+                kNoisySurfaceSteps, kNoisySurface, kVeryNoisySurfaceSteps, kVeryNoisySurface);
   return text;
 }
 

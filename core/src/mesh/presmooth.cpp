@@ -68,7 +68,12 @@ double surface_noise_level(const Mesh& mesh, const Topology& topology) {
   return surface_noise_levels(mesh, topology, std::vector<uint32_t>(mesh.positions.size(), 0), 1)[0];
 }
 
-int automatic_presmooth_steps(double noise_level) { return noise_level > kNoisySurface ? kNoisySurfaceSteps : 0; }
+int automatic_presmooth_steps(double noise_level) {
+  if (!(noise_level > kNoisySurface)) return 0;
+  if (!(noise_level > kVeryNoisySurface)) return kNoisySurfaceSteps;
+  const double extra = std::ceil((noise_level - kVeryNoisySurface) / kNoisyStepLevel);
+  return static_cast<int>(std::min<double>(kVeryNoisySurfaceSteps, kNoisySurfaceSteps + extra));
+}
 
 // Solves the SPD system given by `triplets` for the three coordinates at once
 // (one factorization or preconditioner), starting from and replacing x.

@@ -56,6 +56,11 @@ TEST_CASE("noise level measures normal noise in edge lengths, not curvature", "[
     }
   }
   CHECK(automatic_presmooth_steps(0.01) == 0);
+  // Heavier noise, more steps (issue 13): one per 0.02 above 0.24, at most 6.
+  CHECK(automatic_presmooth_steps(0.24) == kNoisySurfaceSteps);
+  CHECK(automatic_presmooth_steps(0.25) == 4);
+  CHECK(automatic_presmooth_steps(0.29) == 6);
+  CHECK(automatic_presmooth_steps(0.5) == kVeryNoisySurfaceSteps);
 }
 
 TEST_CASE("a boundary edge far shorter than the rest neither overflows nor stops pre-smoothing", "[presmooth]") {
