@@ -11,7 +11,7 @@ import { existsSync, mkdirSync, mkdtempSync, rmSync, writeFileSync } from 'node:
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { after, describe, it } from 'node:test';
-import { NATIVE_CLI, ROOT, haveNativeCli } from './helpers.mjs';
+import { NATIVE_CLI, ROOT, haveNativeCli, sineHeightField } from './helpers.mjs';
 
 const dir = mkdtempSync(join(tmpdir(), 'crestline-hostile-'));
 after(() => rmSync(dir, { recursive: true, force: true }));
@@ -126,4 +126,68 @@ describe('hostile files: one outcome natively and in WASM', { skip: !haveNativeC
       assert.equal(firstSentence(wasm.message), firstSentence(native.message), both);
     });
   }
+});
+
+/** Runs one CLI with --stats; resolves to {code, stats, message}. */
+function statsOf(command, args, input, output) {
+  return new Promise((resolve) => {
+    execFile(command, [...args, input, '-o', output, '-q', '--stats'], { timeout: 120_000 }, (error, stdout, stderr) => {
+      const message = stderr.trim().split('\n').filter(Boolean).at(-1) ?? '';
+      resolve({ code: error ? (error.code ?? error.signal) : 0, stats: error ? null : JSON.parse(stdout), message });
+    });
+  });
+}
+
+/** An OBJ of `meshes`, each {positions, indices}, one after the other. */
+function objOf(...meshes) {
+  let text = '';
+  let base = 1;
+  for (const { positions, indices } of meshes) {
+    for (let v = 0; v < positions.length; v += 3) text += `v ${positions[v]} ${positions[v + 1]} ${positions[v + 2]}\n`;
+    for (let t = 0; t < indices.length; t += 3) text += `f ${indices[t] + base} ${indices[t + 1] + base} ${indices[t + 2] + base}\n`;
+    base += positions.length / 3;
+  }
+  return text;
+}
+
+// Items 9 and 10 through both CLIs (tests/unit/pipeline/invariance_test.cpp
+// natively, tests/node/invariance.test.mjs through the page's Session): a
+// second object 100 times smaller changes no line of the first, and
+// coordinates from 1e-100 to 1e100 give the lines of scale 1.
+describe('components and extreme scales: the same lines natively and in WASM', { skip: !haveNativeCli && `SKIPPED: ${NATIVE_CLI} is not built` }, () => {
+  const field = sineHeightField({ n: 24, size: 2, wavelength: 1, amplitude: 0.15 });
+  const counts = (stats) => stats && [stats.components, stats.ridges, stats.valleys];
+  const runBoth = async (name, text) => {
+    const input = join(dir, name);
+    writeFileSync(input, text);
+    const stem = join(dir, name.replace(/\W/g, '_'));
+    return Promise.all([
+      statsOf(NATIVE_CLI, [], input, `${stem}.native.obj`),
+      statsOf(process.execPath, [join(ROOT, 'wasm/cli.mjs')], input, `${stem}.wasm.obj`),
+    ]);
+  };
+  it('a copy 100 times smaller beside the mesh', async () => {
+    const [alone] = await runBoth('alone.obj', objOf(field));
+    assert.equal(alone.code, 0, alone.message);
+    assert.ok(alone.stats.ridges > 0 && alone.stats.valleys > 0, JSON.stringify(alone.stats));
+    const small = { ...field, positions: field.positions.map((x) => 0.01 * x + 3) };
+    for (const result of await runBoth('two.obj', objOf(field, small))) {
+      assert.equal(result.code, 0, result.message);
+      assert.deepEqual(counts(result.stats), [2, 2 * alone.stats.ridges, 2 * alone.stats.valleys]);
+    }
+  });
+  it('coordinates of 1e-100 and 1e100; 1e-200 refused in one sentence', async () => {
+    const [reference] = await runBoth('unit.obj', objOf(field));
+    for (const scale of [1e-100, 1e100]) {
+      for (const result of await runBoth(`scale${scale}.obj`, objOf({ ...field, positions: field.positions.map((x) => x * scale) }))) {
+        assert.equal(result.code, 0, `scale ${scale}: ${result.message}`);
+        assert.deepEqual(counts(result.stats), counts(reference.stats), `scale ${scale}`);
+      }
+    }
+    const [native, wasm] = await runBoth('tiny.obj', objOf({ ...field, positions: field.positions.map((x) => x * 1e-200) }));
+    assert.equal(native.code, 1, native.message);
+    assert.notEqual(wasm.code, 0, wasm.message);
+    assert.match(native.message, /the coordinates are out of range/);
+    assert.equal(firstSentence(wasm.message), firstSentence(native.message));
+  });
 });
