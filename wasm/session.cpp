@@ -392,10 +392,13 @@ val Session::fields() const {
   const Curvature& c = pipeline_->curvature();
   const Extremality& e = pipeline_->extremality();
   const Regularity& r = pipeline_->regularity();
-  out.set("kappaMax", copy_out(c.kappa_max.data(), c.kappa_max.size()));
-  out.set("kappaMin", copy_out(c.kappa_min.data(), c.kappa_min.size()));
-  out.set("eMax", copy_out(e.e_max.data(), e.e_max.size()));
-  out.set("eMin", copy_out(e.e_min.data(), e.e_min.size()));
+  // Per input vertex: a vertex on a boundary crease shows its first side
+  // (the copies of its other sides follow in the working mesh).
+  const size_t nv = std::min(pipeline_->input_mesh().positions.size(), c.kappa_max.size());
+  out.set("kappaMax", copy_out(c.kappa_max.data(), nv));
+  out.set("kappaMin", copy_out(c.kappa_min.data(), nv));
+  out.set("eMax", copy_out(e.e_max.data(), std::min(nv, e.e_max.size())));
+  out.set("eMin", copy_out(e.e_min.data(), std::min(nv, e.e_min.size())));
   out.set("regularMax", copy_out(r.regular_max.data(), r.regular_max.size()));
   out.set("regularMin", copy_out(r.regular_min.data(), r.regular_min.size()));
   return out;

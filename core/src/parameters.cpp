@@ -36,12 +36,23 @@ std::string noisy_surface_help() {
   return text;
 }
 
+// Numbers in help sentences as --help prints the defaults.
+std::string number_text(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", v);
+  return text;
+}
+
 // Ranges: counts are bounded so that no setting can hang a run on a small
 // mesh (each step or iteration costs at most one sparse solve or one pass
 // over the lines); time steps and lengths by what still makes sense on a
 // mesh measured in mean edge lengths.
 std::vector<Parameter> make_table() {
   static const std::string presmooth_help = noisy_surface_help();
+  static const std::string crease_filter_help_text =
+      "Steps of the feature-preserving normal filter before crease angles are measured; 0: raw normals; auto: " +
+      std::to_string(kNoisyCreaseFilterSteps) + " when the measured noise exceeds " + number_text(kNoisySurface) +
+      " mean edge lengths, else 0";
   std::vector<Parameter> t;
   t.push_back({"presmoothSteps",
                "--presmooth-steps",
@@ -186,6 +197,38 @@ std::vector<Parameter> make_table() {
                Stage::Creases,
                [](const Settings& s) { return number(s.pipeline.creases.max_turn); },
                [](Settings& s, const ParameterValue& v) { s.pipeline.creases.max_turn = v.number; }});
+  t.push_back({"creaseFilterSteps",
+               "--crease-filter-steps",
+               "pipeline",
+               ParameterKind::Integer,
+               true,
+               0,
+               50,
+               {},
+               "",
+               crease_filter_help_text.c_str(),
+               Stage::Creases,
+               [](const Settings& s) {
+                 const int steps = s.pipeline.creases.normal_filter_steps;
+                 return automatic_or(steps < 0 ? std::nullopt : std::optional<double>(steps));
+               },
+               [](Settings& s, const ParameterValue& v) {
+                 s.pipeline.creases.normal_filter_steps = v.automatic ? -1 : int(v.number);
+               }});
+  t.push_back({"creaseBoundaries",
+               "--crease-boundaries",
+               "pipeline",
+               ParameterKind::Boolean,
+               false,
+               0,
+               1,
+               {},
+               "",
+               "Ridges and valleys stop at the creases of the automatic angle: curvature and smoothing do not reach "
+               "across them and no smooth line is traced within the boundary rings of one",
+               Stage::Presmooth,
+               [](const Settings& s) { return number(s.pipeline.creases.boundaries ? 1 : 0); },
+               [](Settings& s, const ParameterValue& v) { s.pipeline.creases.boundaries = v.number != 0; }});
   t.push_back({"shortLineLength",
                "--short-line-length",
                "pipeline",

@@ -64,10 +64,54 @@ void Pipeline::set_options(const PipelineOptions& o) {
   if (changed != Stage::Count) mark_dirty(changed);
   // The creases depend on nothing upstream: their own flags (run() runs them last).
   if (o.creases.normal_filter_steps != options_.creases.normal_filter_steps)
-    crease_angles_valid_ = false, creases_dirty_ = true;
+    crease_angles_valid_ = false, creases_dirty_ = true, boundaries_dirty_ = true;
   if (o.creases.angle != options_.creases.angle || o.creases.max_turn != options_.creases.max_turn)
     creases_dirty_ = true;
+  // The boundary creases do not depend on the crease angle (a selection).
+  if (o.creases.max_turn != options_.creases.max_turn || o.creases.boundaries != options_.creases.boundaries)
+    boundaries_dirty_ = true;
   options_ = o;
+}
+
+void Pipeline::measure_creases() {
+  if (crease_angles_valid_) return;
+  // Measured on the input mesh (pre-smoothing rounds creases; angles do not
+  // depend on the frame), the automatic filter decided by the largest
+  // component's noise level, as stats() reports it.
+  const auto start = std::chrono::steady_clock::now();
+  CreaseMeasureOptions measure{options_.creases.normal_filter_steps};
+  const double noise = noise_levels_.empty() ? 0.0 : noise_levels_[frames_.largest()];
+  if (measure.normal_filter_steps < 0) measure.normal_filter_steps = automatic_normal_filter_steps(noise);
+  crease_angles_ = measure_crease_angles(input_, topology_, measure);
+  crease_angles_valid_ = true;
+  crease_measure_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void Pipeline::update_boundaries() {
+  if (!boundaries_dirty_) return;
+  std::vector<uint32_t> edges;
+  if (options_.creases.boundaries) {
+    measure_creases();
+    CreaseOptions automatic = options_.creases;
+    automatic.angle = -1;
+    edges = select_creases(input_, topology_, crease_angles_, automatic, mean_edge_).edges;
+    std::sort(edges.begin(), edges.end());
+  }
+  boundaries_dirty_ = false;
+  if (edges == boundary_edges_) return;
+  boundary_edges_ = std::move(edges);
+  mark_dirty(Stage::Presmooth);
+  cut_ = cut_along_edges(local_input_, topology_, boundary_edges_);
+  // Without copies the cut changed nothing: the input's mesh and adjacency
+  // serve, and the smooth stages run exactly as without creases.
+  cut_active_ = !cut_.copy_of.empty();
+  if (!cut_active_) cut_ = CutMesh();
+  cut_topology_ = cut_active_ ? build_topology(cut_.mesh) : Topology();
+  cut_components_.clear();
+  if (cut_active_) {
+    cut_components_ = frames_.vertex_component;
+    for (uint32_t v : cut_.copy_of) cut_components_.push_back(frames_.vertex_component[v]);
+  }
 }
 
 void Pipeline::run(const ProgressCallback& progress) {
@@ -80,6 +124,8 @@ void Pipeline::run(const ProgressCallback& progress) {
       };
     return report;
   };
+  crease_measure_seconds_ = 0;
+  update_boundaries();
   auto step = [&](Stage stage, auto&& work) {
     if (static_cast<int>(stage) < static_cast<int>(first_dirty_)) return;
     if (progress && !progress(stage, 0.0)) throw Cancelled();
@@ -105,20 +151,26 @@ void Pipeline::run(const ProgressCallback& progress) {
       surface_ = Mesh();
       return;
     }
-    std::vector<int> vertex_steps(input_.positions.size());
-    for (size_t v = 0; v < vertex_steps.size(); ++v) vertex_steps[v] = presmooth_steps_[frames_.vertex_component[v]];
-    working_surface_.triangles = input_.triangles;
-    working_surface_.positions = presmooth_surface(local_input_, topology_, presmooth.time_step, vertex_steps);
+    const Mesh& in = smooth_input();
+    const std::vector<uint32_t>& component = smooth_components();
+    std::vector<int> vertex_steps(in.positions.size());
+    for (size_t v = 0; v < vertex_steps.size(); ++v) vertex_steps[v] = presmooth_steps_[component[v]];
+    working_surface_.triangles = in.triangles;
+    working_surface_.positions = presmooth_surface(in, working_topology(), presmooth.time_step, vertex_steps);
+    // Each side of a crease smooths its copy of a crease vertex along the
+    // crease; they meet again at the mean.
+    if (cut_active_) merge_copies(cut_, working_surface_.positions);
     surface_.triangles = input_.triangles;
     surface_.positions.resize(input_.positions.size());
     for (size_t v = 0; v < surface_.positions.size(); ++v)
       surface_.positions[v] = frames_.to_user(working_surface_.positions[v], frames_.vertex_component[v]);
   });
   const Mesh& surface = working_surface();
+  const Topology& topology = working_topology();
   step(Stage::Curvature, [&] {
-    curvature_ = compute_curvature(surface, topology_);
+    curvature_ = compute_curvature(surface, topology);
     if (options_.averaging.rings > 0)
-      curvature_ = average_shape_operator(surface, topology_, curvature_, options_.averaging.rings);
+      curvature_ = average_shape_operator(surface, topology, curvature_, options_.averaging.rings);
   });
   step(Stage::Extremality, [&] { raw_extremality_ = compute_extremality(surface, curvature_); });
   step(Stage::Regularity, [&] { regularity_ = classify_triangles(surface, curvature_); });
@@ -126,20 +178,19 @@ void Pipeline::run(const ProgressCallback& progress) {
     ExtremalitySmoothingOptions smoothing = options_.smoothing;
     smoothing.frozen_boundary_rings = options_.trace.boundary_rings;
     extremality_ =
-        smooth_extremality(surface, topology_, curvature_, raw_extremality_, smoothing, within(Stage::Smoothing));
+        smooth_extremality(surface, topology, curvature_, raw_extremality_, smoothing, within(Stage::Smoothing));
   });
   step(Stage::Tracing, [&] {
-    traced_ = trace_regular_triangles(surface, topology_, curvature_, extremality_, regularity_, options_.trace,
+    traced_ = trace_regular_triangles(surface, topology, curvature_, extremality_, regularity_, options_.trace,
                                       within(Stage::Tracing));
   });
-  step(Stage::Singular, [&] { singular_ = connect_singular_triangles(surface, topology_, regularity_, traced_); });
+  step(Stage::Singular, [&] { singular_ = connect_singular_triangles(surface, topology, regularity_, traced_); });
   step(Stage::Polylines, [&] {
     PolylinesInput input;
-    if (presmoothed_) input.place_on = &local_input_;
-    input.vertex_component = &frames_.vertex_component;
+    if (presmoothed_) input.place_on = &smooth_input();
+    input.vertex_component = &smooth_components();
     input.components = frames_.count();
-    PolylinesResult joined =
-        build_polylines(singular_.lines.ridges, singular_.lines.valleys, surface, topology_, input);
+    PolylinesResult joined = build_polylines(singular_.lines.ridges, singular_.lines.valleys, surface, topology, input);
     joined_ = std::move(joined.lines);
     line_component_ = std::move(joined.component);
   });
@@ -176,19 +227,16 @@ void Pipeline::run(const ProgressCallback& progress) {
   });
   if (creases_dirty_) {
     // Outside step(): no other stage makes it dirty, and a new crease angle
-    // re-runs nothing else. Measured on the input mesh (pre-smoothing rounds
-    // creases; angles do not depend on the frame), the automatic filter
-    // decided by the largest component's noise level, as stats() reports it.
+    // re-runs nothing else. Its time includes the measure, whether it ran
+    // here or for the boundaries before pre-smoothing.
     if (progress && !progress(Stage::Creases, 0.0)) throw Cancelled();
-    StageTimer timer(seconds_[static_cast<int>(Stage::Creases)]);
-    if (!crease_angles_valid_) {
-      CreaseMeasureOptions measure{options_.creases.normal_filter_steps};
-      const double noise = noise_levels_.empty() ? 0.0 : noise_levels_[frames_.largest()];
-      if (measure.normal_filter_steps < 0) measure.normal_filter_steps = automatic_normal_filter_steps(noise);
-      crease_angles_ = measure_crease_angles(input_, topology_, measure);
-      crease_angles_valid_ = true;
+    measure_creases();
+    double seconds = 0;
+    {
+      StageTimer timer(seconds);
+      creases_ = select_creases(input_, topology_, crease_angles_, options_.creases, mean_edge_);
     }
-    creases_ = select_creases(input_, topology_, crease_angles_, options_.creases, mean_edge_);
+    seconds_[static_cast<int>(Stage::Creases)] = seconds + crease_measure_seconds_;
     creases_dirty_ = false;
   }
 }

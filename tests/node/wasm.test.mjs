@@ -261,6 +261,8 @@ test('without a mesh, Session.options() reports the core defaults; the app panel
     threshold: 'auto',
     creaseAngle: 'auto',
     creaseMaxTurn: 60,
+    creaseFilterSteps: 'auto',
+    creaseBoundaries: true,
     shortLineLength: 6,
     view: 'front',
     svgWidth: 1000,

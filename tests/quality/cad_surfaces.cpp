@@ -6,7 +6,9 @@
 #include <sstream>
 
 #include "analytic_meshes.h"
+#include "crestline/mesh/repair.h"
 #include "point_grid.h"
+#include "quality_metrics.h"
 
 namespace crestline::quality {
 namespace {
@@ -293,17 +295,80 @@ CadSurface make_cad_surface(const std::string& name, const CadParams& p) {
   return notched_prism(p);
 }
 
+CadCase make_cad_case(const std::string& name, Triangulation t, double noise, unsigned noise_seed, CadParams params) {
+  CadCase c;
+  params.triangulation = t;
+  c.surface = make_cad_surface(name, params);
+  c.clean = repair_mesh(c.surface.soup).mesh;
+  c.h = mean_edge_length(c.clean);
+  c.mesh = c.clean;
+  if (noise > 0) testing::add_normal_noise(c.mesh, noise * c.h, noise_seed);
+  return c;
+}
+
+CreaseResult find_creases(const Mesh& mesh, const Topology& topology, const CreaseOptions& options, double h,
+                          CreaseAngles* angles) {
+  const CreaseAngles measured = measure_crease_angles(mesh, topology, {options.normal_filter_steps});
+  CreaseResult result = select_creases(mesh, topology, measured, options, h);
+  if (angles) *angles = measured;
+  return result;
+}
+
+CreaseResult smooth_surface_creases(const std::string& name, Triangulation t, double noise,
+                                    const CreaseOptions& options, CreaseAngles* angles) {
+  SurfaceParams p;
+  p.triangulation = t;
+  double h = 0;
+  const Mesh mesh = noisy_mesh(make_surface(name, p), noise, 101, h);
+  return find_creases(mesh, build_topology(mesh), options, h, angles);
+}
+
+std::vector<Polyline> sharp_edges_as_lines(const CadSurface& surface) {
+  std::vector<Polyline> out;
+  for (const SharpEdge& e : surface.edges) {
+    Polyline l;
+    l.type = LineType::Crease;
+    l.points = e.points;
+    l.closed = e.closed;
+    l.convex = e.convex;
+    out.push_back(std::move(l));
+  }
+  return out;
+}
+
+SmoothNearCreases smooth_lines_near(const std::vector<Polyline>& sharp, const std::vector<Polyline>& lines, double h) {
+  SmoothNearCreases out;
+  const double tol = 1.0 * h;
+  PointGrid truth(tol);
+  for (size_t e = 0; e < sharp.size(); ++e)
+    for (const Sample& s : resample(sharp[e], 0.1 * h)) truth.add(s.point, static_cast<uint32_t>(e));
+  for (const Polyline& line : lines) {
+    if (line.type == LineType::Crease) continue;
+    ++out.lines;
+    for (const Sample& s : resample(line, 0.25 * h)) {
+      out.length += s.length / h;
+      if (truth.any_near(s.point, tol)) out.near_length += s.length / h;
+    }
+  }
+  return out;
+}
+
+Pipeline run_cad_pipeline(const CadCase& c, const PipelineOptions& options) {
+  Pipeline p(c.mesh);
+  p.set_options(options);
+  p.run();
+  return p;
+}
+
 CreaseScore score_creases(const CadSurface& surface, const std::vector<Polyline>& creases, double h) {
   CreaseScore score;
   const double tol = 1.0 * h;
   // True edges as samples tagged by edge index.
   PointGrid truth(tol);
   std::vector<std::vector<Sample>> truth_samples;
-  for (size_t e = 0; e < surface.edges.size(); ++e) {
-    Polyline l;
-    l.points = surface.edges[e].points;
-    l.closed = surface.edges[e].closed;
-    truth_samples.push_back(resample(l, 0.1 * h));
+  const std::vector<Polyline> sharp = sharp_edges_as_lines(surface);
+  for (size_t e = 0; e < sharp.size(); ++e) {
+    truth_samples.push_back(resample(sharp[e], 0.1 * h));
     for (const Sample& s : truth_samples.back())
       truth.add(s.point, static_cast<uint32_t>(e)), score.true_length += s.length;
   }

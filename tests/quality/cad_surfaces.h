@@ -7,8 +7,10 @@
 #include <string>
 #include <vector>
 
+#include "crestline/lines/creases.h"
 #include "crestline/lines/polylines.h"
 #include "crestline/mesh/mesh.h"
+#include "crestline/pipeline.h"
 #include "quality_surfaces.h"
 
 namespace crestline::quality {
@@ -45,6 +47,41 @@ CadSurface notched_prism(const CadParams& p);
 
 std::vector<std::string> cad_surface_names();
 CadSurface make_cad_surface(const std::string& name, const CadParams& p);
+
+/// One case of the harness: a surface, its repaired mesh with normal noise
+/// σ = noise·h (h the clean mesh's mean edge length), and h.
+struct CadCase {
+  CadSurface surface;
+  Mesh clean, mesh;
+  double h = 0;
+};
+CadCase make_cad_case(const std::string& name, Triangulation t, double noise, unsigned noise_seed,
+                      CadParams params = {});
+
+/// The crease stage alone (measure, then select) on a mesh; the measured
+/// angles in `angles` if given.
+CreaseResult find_creases(const Mesh& mesh, const Topology& topology, const CreaseOptions& options, double h,
+                          CreaseAngles* angles = nullptr);
+
+/// The creases found on a smooth surface of the ridge/valley harness (none expected).
+CreaseResult smooth_surface_creases(const std::string& name, Triangulation t, double noise,
+                                    const CreaseOptions& options = {}, CreaseAngles* angles = nullptr);
+
+/// The true sharp edges as crease lines (type Crease, their sign).
+std::vector<Polyline> sharp_edges_as_lines(const CadSurface& surface);
+
+/// Ridges and valleys beside sharp edges, in mean edges h: how much of their
+/// length lies within 1 h of one of `sharp` (what crease boundaries should
+/// bring to ~0), and their whole length. Crease lines in `lines` are skipped.
+struct SmoothNearCreases {
+  double near_length = 0;
+  double length = 0;
+  int lines = 0;
+};
+SmoothNearCreases smooth_lines_near(const std::vector<Polyline>& sharp, const std::vector<Polyline>& lines, double h);
+
+/// Runs the whole pipeline on the case's noisy mesh.
+Pipeline run_cad_pipeline(const CadCase& c, const PipelineOptions& options = {});
 
 /// Scores of the crease lines of one surface. Distances in mean edges h.
 struct CreaseScore {

@@ -50,19 +50,20 @@ int main(int argc, char** argv) {
     for (const std::string& name : cad_surface_names())
       for (Triangulation t : {Triangulation::Uniform, Triangulation::Alternating, Triangulation::Irregular})
         for (double noise : {0.0, 0.1, 0.25}) {
-          CadParams p = base;
-          p.triangulation = t;
-          p.seed = static_cast<unsigned>(seed);
-          const CadSurface surface = make_cad_surface(name, p);
-          const Mesh clean = repair_mesh(surface.soup).mesh;
+          const CadCase c = make_cad_case(name, t, noise, 100 + seed, [&] {
+            CadParams p = base;
+            p.seed = static_cast<unsigned>(seed);
+            return p;
+          }());
+          const CadSurface& surface = c.surface;
+          const Mesh &clean = c.clean, &mesh = c.mesh;
+          const double h = c.h;
           const Topology topology = build_topology(clean);
-          const double h = mean_edge_length(clean);
-          Mesh mesh = clean;
-          testing::add_normal_noise(mesh, noise * h, 100 + seed);
           // Ground truth per edge from the clean mesh: its dihedral angles are exact.
           const CreaseAngles truth = measure_crease_angles(clean, topology, {0});
           const CreaseAngles raw = measure_crease_angles(mesh, topology, {0});
-          const CreaseAngles filtered = measure_crease_angles(mesh, topology, {options.normal_filter_steps});
+          CreaseAngles filtered;
+          const CreaseResult result = find_creases(mesh, topology, options, h, &filtered);
           const double limit = angle * testing::kPi / 180;
           int flat = 0, flat_on = 0, sharp = 0, sharp_off = 0;
           double max_off = 0;
@@ -76,7 +77,6 @@ int main(int argc, char** argv) {
               max_off = std::max(max_off, std::abs(filtered.angle[e]));
             }
           }
-          const CreaseResult result = select_creases(mesh, topology, filtered, options, h);
           const CreaseScore s = score_creases(surface, result.lines, h);
           ++cases;
           met += crease_target_failures(s).empty();
@@ -96,17 +96,34 @@ int main(int argc, char** argv) {
   for (const std::string& name : surface_names())
     for (Triangulation t : {Triangulation::Uniform, Triangulation::Alternating, Triangulation::Irregular})
       for (double noise : {0.0, 0.1, 0.25}) {
-        SurfaceParams sp;
-        sp.triangulation = t;
-        double h = 0;
-        const Mesh mesh = noisy_mesh(make_surface(name, sp), noise, 101, h);
-        const Topology topology = build_topology(mesh);
-        const CreaseAngles a = measure_crease_angles(mesh, topology, {options.normal_filter_steps});
+        CreaseAngles a;
+        const CreaseResult r = smooth_surface_creases(name, t, noise, options, &a);
         double max_angle = 0;
         for (double v : a.angle) max_angle = std::max(max_angle, std::abs(v));
-        const CreaseResult r = select_creases(mesh, topology, a, options, h);
         std::printf("| %s | %s | %.2f | %zu | %.1f° |\n", name.c_str(), triangulation_name(t), noise, r.lines.size(),
                     max_angle * 180 / testing::kPi);
+      }
+
+  // Ridges and valleys beside the sharp edges, without and with crease boundaries (seed 1).
+  std::printf(
+      "\n| surface | mesh | noise | smooth lines (off) | length (off) | within 1 h of a sharp edge (off) | smooth "
+      "lines "
+      "(on) | length (on) | within 1 h (on) |\n|---|---|---|---|---|---|---|---|---|\n");
+  for (const std::string& name : cad_surface_names())
+    for (Triangulation t : {Triangulation::Uniform, Triangulation::Alternating, Triangulation::Irregular})
+      for (double noise : {0.0, 0.1, 0.25}) {
+        const CadCase c = make_cad_case(name, t, noise, 101, base);
+        const std::vector<Polyline> sharp = sharp_edges_as_lines(c.surface);
+        SmoothNearCreases near[2];
+        for (int on = 0; on < 2; ++on) {
+          PipelineOptions o;
+          o.creases = options;
+          o.creases.boundaries = on;
+          near[on] = smooth_lines_near(sharp, run_cad_pipeline(c, o).lines(), c.h);
+        }
+        std::printf("| %s | %s | %.2f | %d | %.1f | %.1f | %d | %.1f | %.1f |\n", name.c_str(), triangulation_name(t),
+                    noise, near[0].lines, near[0].length, near[0].near_length, near[1].lines, near[1].length,
+                    near[1].near_length);
       }
   return 0;
 }

@@ -6,7 +6,10 @@
 // (Fairing runs on every line before filtering so that re-thresholding is a
 // pure selection: instant.) Beside them, on the input mesh and depending on
 // nothing else, the sharp creases (lines/creases.h): their stage runs last
-// and only when its own options changed.
+// and only when its own options changed. Unless CreaseOptions::boundaries is
+// off, the creases of the automatic angle are measured first and the smooth
+// stages run on the mesh cut open along them (mesh/cut.h); without such
+// creases they run on the input mesh itself, exactly as without the option.
 //
 // Every stage computes in the working frame of mesh/frame.h: each connected
 // component centred on its bounding box and measured in its own mean edge
@@ -28,6 +31,7 @@
 #include "crestline/lines/fairing.h"
 #include "crestline/lines/filter.h"
 #include "crestline/lines/singular.h"
+#include "crestline/mesh/cut.h"
 #include "crestline/mesh/frame.h"
 #include "crestline/mesh/presmooth.h"
 
@@ -106,10 +110,20 @@ class Pipeline {
   /// The mesh after optional pre-smoothing, in the input's coordinates.
   const Mesh& surface() const { return presmoothed_ ? surface_ : input_; }
   /// The same in the working frame: all curvature lives on it, and segments()
-  /// lie on its edges.
-  const Mesh& working_surface() const { return presmoothed_ ? working_surface_ : local_input_; }
+  /// lie on its edges. Its vertices are the input's, followed by one copy
+  /// per extra side of each vertex on a boundary crease (working_cut()); the
+  /// per-vertex fields (curvature(), extremality()) have its vertex count.
+  const Mesh& working_surface() const { return presmoothed_ ? working_surface_ : smooth_input(); }
   const ComponentFrames& frames() const { return frames_; }
+  /// The input mesh's adjacency.
   const Topology& topology() const { return topology_; }
+  /// working_surface()'s adjacency: topology() unless creases cut the mesh.
+  const Topology& working_topology() const { return cut_active_ ? cut_topology_ : topology_; }
+  /// The cut along the boundary creases (no copies when there is none).
+  const CutMesh& working_cut() const { return cut_; }
+  /// The crease edges (into topology().edges, ascending) the smooth stages
+  /// treat as boundaries; empty when CreaseOptions::boundaries is off.
+  const std::vector<uint32_t>& boundary_creases() const { return boundary_edges_; }
   const Curvature& curvature() const { return curvature_; }
   const Extremality& raw_extremality() const { return raw_extremality_; }
   const Extremality& extremality() const { return extremality_; }  // after smoothing
@@ -132,6 +146,12 @@ class Pipeline {
 
  private:
   void mark_dirty(Stage from);
+  void measure_creases();
+  void update_boundaries();
+  const Mesh& smooth_input() const { return cut_active_ ? cut_.mesh : local_input_; }
+  const std::vector<uint32_t>& smooth_components() const {
+    return cut_active_ ? cut_components_ : frames_.vertex_component;
+  }
 
   PipelineOptions options_;
   Stage first_dirty_ = Stage::Presmooth;
@@ -158,6 +178,13 @@ class Pipeline {
   FilterResult filtered_;
   bool creases_dirty_ = true;
   bool crease_angles_valid_ = false;
+  double crease_measure_seconds_ = 0;  // of this run's measure, added to the creases stage
+  bool boundaries_dirty_ = true;
+  std::vector<uint32_t> boundary_edges_;
+  bool cut_active_ = false;
+  CutMesh cut_;  // of local_input_, in the working frame
+  Topology cut_topology_;
+  std::vector<uint32_t> cut_components_;  // component of each cut vertex
   CreaseAngles crease_angles_;
   CreaseResult creases_;
   double seconds_[static_cast<int>(Stage::Count)] = {};

@@ -22,7 +22,6 @@ constexpr double kDegree = 3.14159265358979323846 / 180.0;
 // 0.25; a range of 30° lost the 45° chamfer, 20° kept it; 12 steps left fewer
 // false creases than 6 at σ = 0.25 (precision 0.96 against 0.86).
 constexpr double kRangeAngle = 20.0;
-constexpr int kNoisySurfaceFilterSteps = 12;
 
 // Spurs: a chain with a free end (or two) shorter than 12 mean edges is
 // dropped and the remaining crease edges are chained again, so that a spur
@@ -366,7 +365,7 @@ double chain_strength(const Mesh& mesh, const Topology& topology, const std::vec
 }  // namespace
 
 int automatic_normal_filter_steps(double noise_level) {
-  return noise_level > kNoisySurface ? kNoisySurfaceFilterSteps : 0;
+  return noise_level > kNoisySurface ? kNoisyCreaseFilterSteps : 0;
 }
 
 CreaseAngles measure_crease_angles(const Mesh& mesh, const Topology& topology, const CreaseMeasureOptions& options) {

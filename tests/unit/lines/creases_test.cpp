@@ -189,3 +189,101 @@ TEST_CASE("the pipeline reports creases and re-runs only their selection for a n
   CHECK(ran == std::vector<Stage>{Stage::Creases});
   CHECK(p.stats().creases == 0);
 }
+
+// Crease boundaries (mesh/cut.h): the cube cut along its 90° edges falls
+// into its six faces; a slit inside a flat grid opens between its ends.
+TEST_CASE("cutting along creases splits each crease vertex into its sides", "[creases][cut]") {
+  const Run r = measure(repair_mesh(cube(6)).mesh);
+  std::vector<uint32_t> sharp;
+  for (uint32_t e = 0; e < r.topology.edges.size(); ++e)
+    if (std::abs(r.angles.angle[e]) > 80 * testing::kPi / 180) sharp.push_back(e);
+  REQUIRE(sharp.size() == 12 * 6);
+  const CutMesh cut = cut_along_edges(r.mesh, r.topology, sharp);
+  // 8 corners with 3 sides, 12 × 5 edge vertices with 2.
+  CHECK(cut.copy_of.size() == 8 * 2 + 12 * 5);
+  CHECK(cut.mesh.triangles.size() == r.mesh.triangles.size());
+  const Topology t = build_topology(cut.mesh);
+  size_t boundary = 0;
+  for (uint32_t e = 0; e < t.edges.size(); ++e) boundary += t.is_boundary_edge(e);
+  CHECK(boundary == 2 * sharp.size());
+  // Every triangle keeps its corners' positions.
+  for (size_t f = 0; f < r.mesh.triangles.size(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      CHECK(cut.source(cut.mesh.triangles[f][k]) == r.mesh.triangles[f][k]);
+      CHECK(cut.mesh.positions[cut.mesh.triangles[f][k]] == r.mesh.positions[r.mesh.triangles[f][k]]);
+    }
+  // Copies meet again at their mean.
+  std::vector<Vec3> moved = cut.mesh.positions;
+  const uint32_t copy = static_cast<uint32_t>(cut.input_vertices);
+  moved[copy] += Vec3(0.3, 0, 0);
+  merge_copies(cut, moved);
+  const uint32_t v = cut.copy_of[0];
+  size_t sides = 1;
+  for (uint32_t s : cut.copy_of) sides += s == v;
+  CHECK((moved[v] - (r.mesh.positions[v] + Vec3(0.3 / sides, 0, 0))).norm() < 1e-12);
+  CHECK(moved[copy] == moved[v]);
+
+  // A slit of three edges through a flat grid: its two inner vertices split,
+  // its ends stay; three edges become six boundary edges.
+  testing::GridOptions grid;
+  grid.nu = grid.nv = 8;
+  const Mesh flat = repair_mesh(testing::parametric_grid([](double a, double b) { return Vec3(a, b, 0); }, grid)).mesh;
+  const Topology ft = build_topology(flat);
+  std::vector<uint32_t> slit;
+  for (uint32_t e = 0; e < ft.edges.size(); ++e) {
+    const Vec3 &a = flat.positions[ft.edges[e][0]], &b = flat.positions[ft.edges[e][1]];
+    if (std::abs(a.y() - 0.5) < 1e-9 && std::abs(b.y() - 0.5) < 1e-9 && std::min(a.x(), b.x()) > 0.3 &&
+        std::max(a.x(), b.x()) < 0.8)
+      slit.push_back(e);
+  }
+  REQUIRE(slit.size() == 3);
+  const CutMesh open = cut_along_edges(flat, ft, slit);
+  CHECK(open.copy_of.size() == 2);
+  const Topology ot = build_topology(open.mesh);
+  size_t flat_boundary = 0, open_boundary = 0;
+  for (uint32_t e = 0; e < ft.edges.size(); ++e) flat_boundary += ft.is_boundary_edge(e);
+  for (uint32_t e = 0; e < ot.edges.size(); ++e) open_boundary += ot.is_boundary_edge(e);
+  CHECK(open_boundary == flat_boundary + 6);
+  // Nothing to cut: the same mesh.
+  CHECK(cut_along_edges(flat, ft, {}).copy_of.empty());
+}
+
+TEST_CASE("crease boundaries: without creases the smooth stages run on the input mesh itself", "[creases][cut]") {
+  const Mesh sphere = repair_mesh(testing::icosphere(3)).mesh;
+  for (bool on : {false, true}) {
+    Pipeline p(sphere);
+    PipelineOptions o;
+    o.creases.boundaries = on;
+    p.set_options(o);
+    p.run();
+    INFO("boundaries " << on);
+    CHECK(p.boundary_creases().empty());
+    CHECK(&p.working_topology() == &p.topology());
+    CHECK(p.working_surface().positions.size() == sphere.positions.size());
+  }
+  // The cube: its 12 edges are boundaries; the working mesh has the copies,
+  // the lines and the pre-smoothed surface stay on the input's vertices.
+  const Mesh box = repair_mesh(cube(12)).mesh;
+  Pipeline p(box);
+  p.run();
+  CHECK(p.boundary_creases().size() >= 12 * 10);
+  CHECK(&p.working_topology() != &p.topology());
+  CHECK(p.working_surface().positions.size() == box.positions.size() + p.working_cut().copy_of.size());
+  CHECK(p.curvature().kappa_max.size() == p.working_surface().positions.size());
+  CHECK(p.surface().positions.size() == box.positions.size());
+  // Flat faces, boundaries along every edge: no smooth line anywhere.
+  CHECK(p.lines().empty());
+  // The crease angle stays a selection: the boundaries do not follow it.
+  const std::vector<uint32_t> before = p.boundary_creases();
+  PipelineOptions steep;
+  steep.creases.angle = 120;
+  p.set_options(steep);
+  std::vector<Stage> ran;
+  p.run([&](Stage s, double) {
+    if (ran.empty() || ran.back() != s) ran.push_back(s);
+    return true;
+  });
+  CHECK(ran == std::vector<Stage>{Stage::Creases});
+  CHECK(p.creases().empty());
+  CHECK(p.boundary_creases() == before);
+}

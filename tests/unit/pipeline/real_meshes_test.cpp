@@ -36,7 +36,7 @@ void check_on_surface(const Pipeline& p, const FeatureGraph& g, double tolerance
       CHECK((q - (m.positions[t[0]] + m.positions[t[1]] + m.positions[t[2]]) / 3).norm() < tolerance);
       continue;
     }
-    const auto& e = p.topology().edges[g.source[i]];
+    const auto& e = p.working_topology().edges[g.source[i]];
     const Vec3 a = m.positions[e[0]], b = m.positions[e[1]];
     const double t = (q - a).dot(b - a) / (b - a).squaredNorm();
     CHECK(t >= -1e-9);

@@ -32,6 +32,9 @@ struct CreaseMeasureOptions {
   int normal_filter_steps = -1;
 };
 
+/// Normal filter steps on a noisy surface (creases.cpp says why 12).
+constexpr int kNoisyCreaseFilterSteps = 12;
+
 /// 0 on a clean surface (surface_noise_level ≤ kNoisySurface): raw normals
 /// are exact on a CAD tessellation; on a noisy one, enough steps that the
 /// dihedral of flat parts no longer reaches the default angle (creases.cpp).
@@ -72,6 +75,11 @@ struct CreaseOptions {
   double max_turn = 60.0;
   /// Steps of the normal filter (measure_crease_angles); negative automatic.
   int normal_filter_steps = -1;
+  /// The smooth lines stop at the creases (Pipeline, mesh/cut.h): the mesh is
+  /// cut open along the creases of the automatic angle before pre-smoothing,
+  /// so curvature, both smoothings and the tracer's boundary band treat them
+  /// as boundaries. Independent of `angle`, which stays a selection.
+  bool boundaries = true;
 };
 
 struct CreaseResult {

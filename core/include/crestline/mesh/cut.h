@@ -1,0 +1,39 @@
+#pragma once
+// Cutting a mesh open along chosen edges: how sharp creases become
+// boundaries for the smooth lines (issue 16). The one-ring of a vertex on a
+// cut is split into its sides, each side getting a vertex of its own at the
+// same position, so that every stage that works on vertex stars — the shape
+// operator (§3), pre-smoothing and extremality smoothing (§5.1), the tracer's
+// boundary band (§4) — sees each side of a crease as a surface with a
+// boundary, and nothing reaches across it.
+#include <cstdint>
+#include <vector>
+
+#include "crestline/mesh/mesh.h"
+#include "crestline/mesh/topology.h"
+
+namespace crestline {
+
+struct CutMesh {
+  /// The same triangles in the same order; positions: the input's, then one
+  /// copy per extra side of a split vertex.
+  Mesh mesh;
+  /// The input vertex of each copy: vertex input_vertices + k is a copy of copy_of[k].
+  std::vector<uint32_t> copy_of;
+  size_t input_vertices = 0;
+  uint32_t source(uint32_t v) const { return v < input_vertices ? v : copy_of[v - input_vertices]; }
+};
+
+/// Splits every vertex whose triangles fall into several sides once the
+/// given edges (indices into topology.edges) no longer connect them: the
+/// side holding the vertex's first triangle keeps its index, each further
+/// side (in the order of its first triangle) gets a copy. A cut that ends
+/// inside the surface opens up to its last split vertex; a single cut edge
+/// whose ends split nothing stays closed. Boundary edges in `edges` change
+/// nothing. Linear in the mesh size.
+CutMesh cut_along_edges(const Mesh& mesh, const Topology& topology, const std::vector<uint32_t>& edges);
+
+/// Gives all copies of a vertex (and the vertex itself) their mean position.
+void merge_copies(const CutMesh& cut, std::vector<Vec3>& positions);
+
+}  // namespace crestline
