@@ -20,6 +20,16 @@ constexpr uint32_t kFloat = 5126, kUnsignedInt = 5125;
 constexpr int kTriangles = 4, kLineStrip = 3;
 constexpr int kRidgeMaterial = 0, kValleyMaterial = 1, kSurfaceMaterial = 2, kCreaseMaterial = 3;
 
+// "#rrggbb" as a glTF baseColorFactor "r,g,b,1" (each channel / 255, as the
+// ridge and valley materials are written).
+std::string color_factor(const char* hex) {
+  unsigned r = 0, g = 0, b = 0;
+  std::sscanf(hex, "#%02x%02x%02x", &r, &g, &b);
+  char out[64];
+  std::snprintf(out, sizeof out, "%.3g,%.3g,%.3g,1", r / 255.0, g / 255.0, b / 255.0);
+  return out;
+}
+
 // float32 printed so that it reads back to the same float.
 void append_float(std::string& out, float value) {
   char buffer[32];
@@ -155,7 +165,8 @@ std::vector<uint8_t> write_glb(const Mesh* mesh, const std::vector<Polyline>& li
       scene_nodes + "]}],\"nodes\":[" + nodes + "]";
   if (mesh_count) json += ",\"meshes\":[" + meshes + "]";
   json += ",\"materials\":[" + material("ridge", "0.75,0.22,0.17,1") + ',' + material("valley", "0.14,0.45,0.64,1") +
-          ',' + material("surface", "0.8,0.8,0.8,1") + ',' + material("crease", "0.13,0.13,0.13,1") + ']';
+          ',' + material("surface", "0.8,0.8,0.8,1") + ',' + material("crease", color_factor(kCreaseColor).c_str()) +
+          ']';
   if (!builder.bin.empty()) {
     json += ",\"buffers\":[{\"byteLength\":" + std::to_string(builder.bin.size()) + "}],\"bufferViews\":[" +
             builder.views + "],\"accessors\":[" + builder.accessors + ']';

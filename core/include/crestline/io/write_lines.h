@@ -13,6 +13,11 @@
 
 namespace crestline::io {
 
+/// The creases' default colour (amber), in every writer: the SVG's
+/// SvgOptions::crease_color and the GLB's "crease" material. The page and the
+/// widget use the same one (web/src: their crease-colour defaults).
+constexpr const char* kCreaseColor = "#e08a00";
+
 /// OBJ contract: `v` lines, then `o ridges` with one `l i j k …` per
 /// polyline (closed ones repeat their first index at the end), then
 /// `o valleys` likewise, then `o creases` likewise if there are any.
@@ -29,7 +34,7 @@ std::string write_mesh_and_lines_obj(const Mesh& mesh, const std::vector<Polylin
 /// LINE_STRIP primitive (mode 3) per polyline (red and blue materials);
 /// closed lines repeat their first point at the end. Lines with fewer than
 /// two points are left out; an empty group is still a node without a mesh.
-/// Node "creases" (dark grey) follows only if there are creases; each of its
+/// Node "creases" (kCreaseColor) follows only if there are creases; each of its
 /// primitives has extras {"convex": b}.
 std::vector<uint8_t> write_glb(const Mesh* mesh, const std::vector<Polyline>& lines);
 
@@ -59,9 +64,9 @@ struct SvgOptions {
   double stroke_width = 1.5;
   std::string ridge_color = "#c0392b";
   std::string valley_color = "#2471a3";
-  std::string crease_color = "#222222";  // group "creases", each path class "convex" or "concave"
-  std::string concave_color;             // concave creases get their own stroke; empty: crease_color
-  bool silhouette = false;               // also draw the surface's outline (group "silhouette")
+  std::string crease_color = kCreaseColor;  // group "creases", each path class "convex" or "concave"
+  std::string concave_color;                // concave creases get their own stroke; empty: crease_color
+  bool silhouette = false;                  // also draw the surface's outline (group "silhouette")
   std::string silhouette_color = "#555555";
   bool ridges = true, valleys = true, creases = true;  // which groups are drawn
   std::string background;                              // a rectangle under the lines; empty: none
