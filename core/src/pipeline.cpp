@@ -75,14 +75,15 @@ void Pipeline::set_options(const PipelineOptions& o) {
 
 void Pipeline::measure_creases() {
   if (crease_angles_valid_) return;
-  // Measured on the input mesh (pre-smoothing rounds creases; angles do not
-  // depend on the frame), the automatic filter decided by the largest
+  // Measured on the input mesh (pre-smoothing rounds creases) in the working
+  // frame (angles do not depend on it, but the normals of a model at 1e-100
+  // would underflow), the automatic filter decided by the largest
   // component's noise level, as stats() reports it.
   const auto start = std::chrono::steady_clock::now();
   CreaseMeasureOptions measure{options_.creases.normal_filter_steps};
   const double noise = noise_levels_.empty() ? 0.0 : noise_levels_[frames_.largest()];
   if (measure.normal_filter_steps < 0) measure.normal_filter_steps = automatic_normal_filter_steps(noise);
-  crease_angles_ = measure_crease_angles(input_, topology_, measure);
+  crease_angles_ = measure_crease_angles(local_input_, topology_, measure);
   crease_angles_valid_ = true;
   crease_measure_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -94,7 +95,7 @@ void Pipeline::update_boundaries() {
     measure_creases();
     CreaseOptions automatic = options_.creases;
     automatic.angle = -1;
-    edges = select_creases(input_, topology_, crease_angles_, automatic, mean_edge_).edges;
+    edges = select_creases(local_input_, topology_, crease_angles_, automatic, 1.0).edges;
     std::sort(edges.begin(), edges.end());
   }
   boundaries_dirty_ = false;
@@ -234,7 +235,13 @@ void Pipeline::run(const ProgressCallback& progress) {
     double seconds = 0;
     {
       StageTimer timer(seconds);
-      creases_ = select_creases(input_, topology_, crease_angles_, options_.creases, mean_edge_);
+      // In the working frame (every component's mean edge 1, as the spur
+      // and turn lengths expect), then mapped back per component.
+      creases_ = select_creases(local_input_, topology_, crease_angles_, options_.creases, 1.0);
+      for (size_t i = 0; i < creases_.lines.size(); ++i) {
+        const uint32_t component = frames_.vertex_component[creases_.line_vertex[i]];
+        creases_.lines[i] = to_user(std::move(creases_.lines[i]), frames_, component);
+      }
     }
     seconds_[static_cast<int>(Stage::Creases)] = seconds + crease_measure_seconds_;
     creases_dirty_ = false;

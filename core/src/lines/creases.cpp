@@ -483,6 +483,7 @@ CreaseResult select_creases(const Mesh& mesh, const Topology& topology, const Cr
     }
     measure_polyline(line);
     out.edges.insert(out.edges.end(), c.edges.begin(), c.edges.end());
+    out.line_vertex.push_back(c.vertices.front());
     out.lines.push_back(std::move(line));
   }
   return out;

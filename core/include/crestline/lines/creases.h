@@ -90,6 +90,8 @@ struct CreaseResult {
   std::vector<Polyline> lines;
   /// The crease edges the lines run along (after spurs were dropped).
   std::vector<uint32_t> edges;
+  /// A vertex of each line (its first point's), e.g. to find its component.
+  std::vector<uint32_t> line_vertex;
   double angle = 0;  // degrees, the threshold used
 };
 
