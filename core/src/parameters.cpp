@@ -53,6 +53,11 @@ std::vector<Parameter> make_table() {
       "Steps of the feature-preserving normal filter before crease angles are measured; 0: raw normals; auto: " +
       std::to_string(kNoisyCreaseFilterSteps) + " when the measured noise exceeds " + number_text(kNoisySurface) +
       " mean edge lengths, else 0";
+  static const std::string boundaries_help =
+      "Ridges and valleys stop at the creases of the automatic angle: curvature and smoothing do not reach across "
+      "them and no smooth line is traced within the boundary rings of one (not on surfaces whose measured noise "
+      "exceeds " +
+      number_text(kBoundaryNoiseLimit) + " mean edge lengths)";
   std::vector<Parameter> t;
   t.push_back({"presmoothSteps",
                "--presmooth-steps",
@@ -224,8 +229,7 @@ std::vector<Parameter> make_table() {
                1,
                {},
                "",
-               "Ridges and valleys stop at the creases of the automatic angle: curvature and smoothing do not reach "
-               "across them and no smooth line is traced within the boundary rings of one",
+               boundaries_help.c_str(),
                Stage::Presmooth,
                [](const Settings& s) { return number(s.pipeline.creases.boundaries ? 1 : 0); },
                [](Settings& s, const ParameterValue& v) { s.pipeline.creases.boundaries = v.number != 0; }});

@@ -96,6 +96,13 @@ void Pipeline::update_boundaries() {
     CreaseOptions automatic = options_.creases;
     automatic.angle = -1;
     edges = select_creases(local_input_, topology_, crease_angles_, automatic, 1.0).edges;
+    // Not on noisy components, where creases are not to be trusted.
+    edges.erase(std::remove_if(edges.begin(), edges.end(),
+                               [&](uint32_t e) {
+                                 const uint32_t c = frames_.vertex_component[topology_.edges[e][0]];
+                                 return noise_levels_[c] > kBoundaryNoiseLimit;
+                               }),
+                edges.end());
     std::sort(edges.begin(), edges.end());
   }
   boundaries_dirty_ = false;

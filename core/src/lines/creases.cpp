@@ -71,6 +71,28 @@ bool small_fan(const Topology& topology, uint32_t v) {
   return topology.vertex_offsets[v + 1] - topology.vertex_offsets[v] <= kMaxFan;
 }
 
+// atan2(y, x) for y ≥ 0 (an angle in [0, π]) from +, −, ×, ÷ and sqrt only,
+// which IEEE rounds exactly everywhere: glibc's and Emscripten's atan2
+// differ in the last bit for some arguments, and the CLI and the page must
+// write the same bytes. atan(t) = π/6 + atan((√3 t − 1)/(t + √3)) brings t ≤ 1
+// below tan(π/12), where 17 terms of the series leave less than 1e-19.
+double portable_angle(double y, double x) {
+  constexpr double kPi = 3.14159265358979323846, kSqrt3 = 1.7320508075688772;
+  if (!(y > 0)) return x < 0 ? kPi : 0.0;
+  if (x == 0) return kPi / 2;
+  double t = y / std::abs(x);
+  const bool inverted = t > 1;
+  if (inverted) t = 1 / t;
+  const bool shifted = t > 0.2679491924311227;  // tan(π/12)
+  if (shifted) t = (kSqrt3 * t - 1) / (t + kSqrt3);
+  const double t2 = t * t;
+  double series = 0;
+  for (int k = 16; k >= 0; --k) series = series * t2 + (k % 2 ? -1.0 : 1.0) / (2 * k + 1);
+  double a = t * series + (shifted ? kPi / 6 : 0.0);
+  if (inverted) a = kPi / 2 - a;
+  return x < 0 ? kPi - a : a;
+}
+
 struct FaceNormals {
   std::vector<Vec3> normal;  // unit (zero for degenerate faces)
   std::vector<double> area;
@@ -179,7 +201,7 @@ double side_support(const Mesh& mesh, const Topology& topology, const FaceNormal
     side[(centre - mid).dot(across) > 0] += faces.area[g] * faces.normal[g];
   }
   if (side[0].squaredNorm() == 0 || side[1].squaredNorm() == 0) return 0;
-  return std::atan2(side[0].cross(side[1]).norm(), side[0].dot(side[1]));
+  return portable_angle(side[0].cross(side[1]).norm(), side[0].dot(side[1]));
 }
 
 struct Chain {
@@ -399,7 +421,7 @@ CreaseAngles measure_crease_angles(const Mesh& mesh, const Topology& topology, c
     while (k < 2 && topology.triangle_edges[f0][k] != e) ++k;
     const Vec3 d = mesh.positions[t[(k + 1) % 3]] - mesh.positions[t[k]];
     const Vec3 cross = n0.cross(n1);
-    const double a = std::atan2(cross.norm(), cosine);
+    const double a = portable_angle(cross.norm(), cosine);
     out.angle[e] = cross.dot(d) >= 0 ? a : -a;
     if (a >= kCandidateAngle * kDegree)
       out.support[e] = side_support(mesh, topology, faces, e, n0 + n1, rings, scratch);

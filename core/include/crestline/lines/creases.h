@@ -32,6 +32,14 @@ struct CreaseMeasureOptions {
   int normal_filter_steps = -1;
 };
 
+/// Crease boundaries (CreaseOptions::boundaries) only on components whose
+/// surface_noise_level is at most this: above it the crease stage draws false
+/// creases on smooth surfaces (tests/quality: none up to normal noise σ = 0.1
+/// mean edges, level ~0.075; some at σ = 0.25 on anisotropic meshes, level
+/// 0.20, and at σ = 0.5, level 0.31–0.36), and cutting along them would break
+/// the smooth lines.
+constexpr double kBoundaryNoiseLimit = 0.15;
+
 /// Normal filter steps on a noisy surface (creases.cpp says why 12).
 constexpr int kNoisyCreaseFilterSteps = 12;
 
@@ -78,7 +86,8 @@ struct CreaseOptions {
   /// The smooth lines stop at the creases (Pipeline, mesh/cut.h): the mesh is
   /// cut open along the creases of the automatic angle before pre-smoothing,
   /// so curvature, both smoothings and the tracer's boundary band treat them
-  /// as boundaries. Independent of `angle`, which stays a selection.
+  /// as boundaries. Independent of `angle`, which stays a selection; only on
+  /// components no noisier than kBoundaryNoiseLimit.
   bool boundaries = true;
 };
 
