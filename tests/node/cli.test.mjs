@@ -157,6 +157,7 @@ test('data safety: same sentences; the input is never overwritten; no file is le
     ['missing input', [join(dir, 'missing.obj'), '-o', out('missing.obj')], 1],
     ['/dev/zero', ['/dev/zero', '-o', out('zero.obj')], 1],
     ['missing weights file', [input, '-o', out('weights.obj'), '--weights', join(dir, 'missing.txt')], 1],
+    ['weights from a device', [input, '-o', out('device-weights.obj'), '--weights', '/dev/zero'], 1],
   ];
   for (const [name, args, code] of cases) {
     const result = await both(name, args);
