@@ -262,7 +262,7 @@ test('without a mesh, Session.options() reports the core defaults; the app panel
     creaseAngle: 'auto',
     creaseMaxTurn: 60,
     creaseFilterSteps: 'auto',
-    creaseBoundaries: true,
+    creaseBoundaries: false,
     shortLineLength: 6,
     view: 'front',
     svgWidth: 1000,

@@ -265,6 +265,9 @@ TEST_CASE("crease boundaries: without creases the smooth stages run on the input
   // the lines and the pre-smoothed surface stay on the input's vertices.
   const Mesh box = repair_mesh(cube(12)).mesh;
   Pipeline p(box);
+  PipelineOptions with_boundaries;
+  with_boundaries.creases.boundaries = true;
+  p.set_options(with_boundaries);
   p.run();
   CHECK(p.boundary_creases().size() >= 12 * 10);
   CHECK(&p.working_topology() != &p.topology());
@@ -275,7 +278,7 @@ TEST_CASE("crease boundaries: without creases the smooth stages run on the input
   CHECK(p.lines().empty());
   // The crease angle stays a selection: the boundaries do not follow it.
   const std::vector<uint32_t> before = p.boundary_creases();
-  PipelineOptions steep;
+  PipelineOptions steep = with_boundaries;
   steep.creases.angle = 120;
   p.set_options(steep);
   std::vector<Stage> ran;
