@@ -80,7 +80,8 @@ test('the panel is made from Session.describe(): a control per pipeline paramete
         out.push(`${p.key}: no control`);
         continue;
       }
-      if (c._min !== p.min) out.push(`${p.key}: min ${c._min} ≠ ${p.min}`);
+      // A Boolean (creaseBoundaries) is a checkbox: no range.
+      if (p.min !== null && c._min !== p.min) out.push(`${p.key}: min ${c._min} ≠ ${p.min}`);
       if (Number.isFinite(p.max) && c._max !== p.max) out.push(`${p.key}: max ${c._max} ≠ ${p.max}`);
       const auto = controllers.find((k) => k.property === `auto${p.key[0].toUpperCase()}${p.key.slice(1)}`);
       if (p.automatic !== Boolean(auto)) out.push(`${p.key}: automatic ${p.automatic}, switch ${Boolean(auto)}`);
