@@ -11,6 +11,7 @@ import { after, test } from 'node:test';
 import { computeFeatureLines, FeatureLines } from 'crestline';
 import { NATIVE_CLI, ROOT, haveNativeCli, parseLinesObj, sineHeightField } from './helpers.mjs';
 import { readmeExample } from './readme-example.mjs';
+import { loadCrestline } from '../../wasm/node.mjs';
 
 const dir = mkdtempSync(join(tmpdir(), 'crestline-api-'));
 after(() => rmSync(dir, { recursive: true, force: true }));
@@ -127,4 +128,26 @@ test('FeatureLines: LineSegments2 objects, shown or hidden line by line on a thr
   assert.equal(shown(), all);
   assert.equal(changes, 2);
   lines.dispose();
+});
+
+test('the types name every pipeline parameter of describe(), with "auto" where it is automatic', async () => {
+  const module = await loadCrestline();
+  const session = new module.Session();
+  const table = session.describe().filter((p) => p.group === 'pipeline');
+  session.delete();
+  const types = readFileSync(join(ROOT, 'web', 'types', 'crestline.d.ts'), 'utf8');
+  const body = types.match(/export interface PipelineOptions \{([\s\S]*?)\n\}/)[1];
+  const declared = new Map([...body.matchAll(/^ {2}(\w+)\?: ([^;]+);/gm)].map((m) => [m[1], m[2]]));
+  assert.ok(table.length >= 10, `${table.length} pipeline parameters`);
+  for (const p of table) {
+    assert.ok(declared.has(p.key), `${p.key} is missing from PipelineOptions in web/types/crestline.d.ts`);
+    const type = p.kind === 'boolean' ? 'boolean' : p.automatic ? "number | 'auto'" : 'number';
+    assert.equal(declared.get(p.key), type, `the type of ${p.key}`);
+  }
+  const keys = new Set(table.map((p) => p.key));
+  assert.deepEqual(
+    [...declared.keys()].filter((k) => !keys.has(k)),
+    ['vertexWeights'],
+    'declared options the table lacks',
+  );
 });

@@ -24,6 +24,14 @@ export interface PipelineOptions {
   /** Weak lines (strength below 1) shorter than this many mean edges are dropped too; 0 keeps them. */
   shortLineLength?: number;
   boundaryRings?: number;
+  /** Sharp creases: edges whose dihedral angle is at least this many degrees (20–180; 180: none). */
+  creaseAngle?: number | 'auto';
+  /** A crease line is split where it turns by more than this many degrees. */
+  creaseMaxTurn?: number;
+  /** Steps of the normal filter before crease angles are measured (0: raw normals). */
+  creaseFilterSteps?: number | 'auto';
+  /** Ridges and valleys stop at the creases of the automatic angle. */
+  creaseBoundaries?: boolean;
   /** Per-vertex smoothing strength (0 freezes a vertex, 1 is the global time step). */
   vertexWeights?: Float64Array | null;
 }

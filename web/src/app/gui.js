@@ -4,6 +4,7 @@
 // params object.
 import GUI from 'lil-gui';
 import { describeParameter, label, pipelineParameters } from '../client/parameters.js';
+import { LINE_COLORS } from '../three/colors.js';
 import { VIEW_PRESETS } from '../three/fit.js';
 
 export const VIEWS = {
@@ -39,9 +40,9 @@ export function defaultParams(table) {
     showValleys: true,
     showCreases: true,
     lineWidth: 2.5,
-    ridgeColor: '#d62d20',
-    valleyColor: '#1f5fbf',
-    creaseColor: '#e08a00',
+    ridgeColor: LINE_COLORS.ridge,
+    valleyColor: LINE_COLORS.valley,
+    creaseColor: LINE_COLORS.crease,
     dark: false,
     view: 'shaded',
     brush: false,

@@ -5,6 +5,7 @@
 // lines (line-layer.js).
 import { Group } from 'three';
 import { meshArrays, pipelineOptions } from '../client/api.js';
+import { LINE_COLORS } from './colors.js';
 
 const DISPLAY = ['ridgeColor', 'valleyColor', 'lineWidth'];
 import { LineLayer } from './line-layer.js';
@@ -22,7 +23,7 @@ export class FeatureLines extends Group {
     this.name = 'FeatureLines';
     const connection = FeatureLines.connection?.();
     if (!connection) throw new Error('FeatureLines: import it from "crestline" (its entry starts the worker).');
-    const { ridgeColor = '#d62d20', valleyColor = '#1f5fbf', lineWidth = 2.5 } = options;
+    const { ridgeColor = LINE_COLORS.ridge, valleyColor = LINE_COLORS.valley, lineWidth = 2.5 } = options;
     this.layer = new LineLayer({ ridgeColor, valleyColor, width: lineWidth });
     this.add(this.layer.group);
     this.options = pipelineOptions(options, DISPLAY);

@@ -7,6 +7,7 @@ import { Color, Group, InstancedBufferAttribute } from 'three';
 import { LineMaterial } from 'three/examples/jsm/lines/LineMaterial.js';
 import { LineSegments2 } from 'three/examples/jsm/lines/LineSegments2.js';
 import { LineSegmentsGeometry } from 'three/examples/jsm/lines/LineSegmentsGeometry.js';
+import { LINE_COLORS } from './colors.js';
 
 export const RIDGE = 0;
 export const VALLEY = 1;
@@ -61,7 +62,7 @@ function hidingLineMaterial(parameters) {
 }
 
 export class LineLayer {
-  constructor({ ridgeColor = '#d62d20', valleyColor = '#1f5fbf', width = 2.5 } = {}) {
+  constructor({ ridgeColor = LINE_COLORS.ridge, valleyColor = LINE_COLORS.valley, width = 2.5 } = {}) {
     this.group = new Group();
     this.objects = [ridgeColor, valleyColor].map((color) => {
       const material = hidingLineMaterial({ color, linewidth: width, worldUnits: false });

@@ -5,6 +5,7 @@ import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import { fitDistance, presetDirection, setUpAxis, uncoveredRect } from './fit.js';
 import { LineLayer, concaveShade, creasesAsLines } from './line-layer.js';
 import { SurfaceLayer } from './surface-layer.js';
+import { LINE_COLORS } from './colors.js';
 
 const BACKGROUND = { light: 0xf4f4f2, dark: 0x1d1f24 };
 
@@ -26,7 +27,7 @@ export class Viewer {
     this.controls.addEventListener('change', () => this.render());
     this.surface = new SurfaceLayer();
     this.lines = new LineLayer();
-    this.creases = new LineLayer({ ridgeColor: '#e08a00', valleyColor: concaveShade('#e08a00') });
+    this.creases = new LineLayer({ ridgeColor: LINE_COLORS.crease, valleyColor: concaveShade(LINE_COLORS.crease) });
     this.scene.add(this.surface.mesh, this.lines.group, this.creases.group);
     this.origin = [0, 0, 0];
     /** The canvas's rectangles that the page covers (panels), in CSS pixels of the canvas: framing avoids them. */

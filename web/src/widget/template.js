@@ -1,5 +1,7 @@
 // The element's shadow DOM: the canvas, the poster, the progress bar and the
 // error line, with the CSS custom properties it reads.
+import { LINE_COLORS } from '../three/colors.js';
+
 const STYLES = `
   :host {
     display: inline-block;
@@ -62,9 +64,9 @@ export function fillShadowRoot(root) {
 
 /** Display defaults; the CSS custom properties (--crestline-ridge-color, …) override them, attributes override both. */
 export const DISPLAY_DEFAULTS = {
-  'ridge-color': '#d62d20',
-  'valley-color': '#1f5fbf',
-  'crease-color': '#e08a00',
+  'ridge-color': LINE_COLORS.ridge,
+  'valley-color': LINE_COLORS.valley,
+  'crease-color': LINE_COLORS.crease,
   'line-width': 2,
   background: 'transparent',
 };
