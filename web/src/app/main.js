@@ -1,6 +1,7 @@
 // Wires the page: files → the client (../client) → the worker (C++ readers,
 // repair, Pipeline) → viewer; the panel re-runs only what a changed parameter needs.
-import { sharedConnection } from '../client/browser.js';
+import { sharedConnection, startModuleWorker } from '../client/browser.js';
+import indexWorkerUrl from '../three/surface-index-worker.js?worker&url';
 import { overallFraction, selectLines } from '../client/client.js';
 import { sampleMesh } from './sample.js';
 import { WEIGHT_SCALE, WeightBrush } from '../three/brush.js';
@@ -27,7 +28,7 @@ const viewer = new Viewer(document.getElementById('view'), {
   onContextRestored: () => fail(null),
 });
 
-const brush = new WeightBrush(viewer, { onStroke: () => compute() });
+const brush = new WeightBrush(viewer, { onStroke: () => compute(), startIndexWorker: () => startModuleWorker(indexWorkerUrl) });
 
 /** The one page state (page-state.js); `render()` draws it. */
 const state = emptyState();

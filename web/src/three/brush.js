@@ -14,16 +14,12 @@ const pointer = new Vector2();
 /** The weights' colour map saturates at ±1 around the normal weight 1 (0 = frozen, 2 = twice). */
 export const WEIGHT_SCALE = 1;
 
-/** The index builder's worker, started on first use and kept (builds run in turn; a stale one's result is dropped). */
-let indexWorker = null;
 let nextBuild = 1;
 
-/** The SurfaceIndex arrays of the surface (copies of its arrays go to the worker). */
-function buildOffThread(positions, indices) {
-  indexWorker ??= new Worker(new URL('./surface-index-worker.js', import.meta.url), { type: 'module' });
+/** The SurfaceIndex arrays of the surface, built by `worker` (copies of the surface's arrays go to it). */
+function buildOffThread(worker, positions, indices) {
   const id = nextBuild++;
   return new Promise((resolve, reject) => {
-    const worker = indexWorker;
     const failed = (event) => {
       worker.removeEventListener('message', done);
       reject(new Error(`the brush's surface index could not be built (${event.message ?? 'worker error'})`));
@@ -42,10 +38,18 @@ function buildOffThread(positions, indices) {
 }
 
 export class WeightBrush {
-  /** @param {import('./viewer.js').Viewer} viewer  @param {{onStroke: (weights) => void}} handlers */
-  constructor(viewer, { onStroke }) {
+  /**
+   * `startIndexWorker` starts a worker running surface-index-worker.js (the
+   * page's client/browser.js has it); without one (node) the index is built
+   * in place.
+   * @param {import('./viewer.js').Viewer} viewer
+   * @param {{onStroke: (weights) => void, startIndexWorker?: () => Worker}} handlers
+   */
+  constructor(viewer, { onStroke, startIndexWorker }) {
     this.viewer = viewer;
     this.onStroke = onStroke;
+    this.startIndexWorker = startIndexWorker;
+    this.indexWorker = null;
     this.enabled = false;
     this.radius = 0.05; // fraction of the bounding-sphere radius
     this.value = 0;
@@ -76,9 +80,11 @@ export class WeightBrush {
     if (this.index?.geometry === geometry) return this.index;
     const positions = geometry.getAttribute('position').array;
     const indices = geometry.index.array;
-    if (typeof Worker !== 'function') return this.adopt(new SurfaceIndex(positions, indices), geometry);
+    if (!this.startIndexWorker) return this.adopt(new SurfaceIndex(positions, indices), geometry);
     if (this.building?.geometry !== geometry) {
-      const building = buildOffThread(positions, indices).then((parts) => {
+      // Started on first use and kept: builds run in turn; a stale one's result is dropped.
+      this.indexWorker ??= this.startIndexWorker();
+      const building = buildOffThread(this.indexWorker, positions, indices).then((parts) => {
         if (this.building === building) this.adopt(new SurfaceIndex(positions, indices, parts), geometry, true);
         return this.index;
       });
