@@ -185,6 +185,13 @@ void Pipeline::run(const ProgressCallback& progress) {
   step(Stage::Smoothing, [&] {
     ExtremalitySmoothingOptions smoothing = options_.smoothing;
     smoothing.frozen_boundary_rings = options_.trace.boundary_rings;
+    // Weights are painted on the input's vertices; the copies a crease cut
+    // made take the weight of the vertex they split from.
+    std::vector<double>& weights = smoothing.vertex_weights;
+    if (cut_active_ && weights.size() == cut_.input_vertices) {
+      weights.resize(cut_.mesh.positions.size());
+      for (size_t k = 0; k < cut_.copy_of.size(); ++k) weights[cut_.input_vertices + k] = weights[cut_.copy_of[k]];
+    }
     extremality_ =
         smooth_extremality(surface, topology, curvature_, raw_extremality_, smoothing, within(Stage::Smoothing));
   });

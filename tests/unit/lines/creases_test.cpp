@@ -289,4 +289,13 @@ TEST_CASE("crease boundaries: without creases the smooth stages run on the input
   CHECK(ran == std::vector<Stage>{Stage::Creases});
   CHECK(p.creases().empty());
   CHECK(p.boundary_creases() == before);
+  // Brush weights are painted on the input's vertices; the copies take
+  // their vertex's (weight 0 everywhere: nothing is smoothed).
+  PipelineOptions frozen = with_boundaries;
+  frozen.smoothing.vertex_weights.assign(box.positions.size(), 0.0);
+  p.set_options(frozen);
+  REQUIRE_NOTHROW(p.run());
+  CHECK(p.extremality().e_max.size() == p.working_surface().positions.size());
+  CHECK(p.extremality().e_max == p.raw_extremality().e_max);
+  CHECK(p.extremality().e_min == p.raw_extremality().e_min);
 }
