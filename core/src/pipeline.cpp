@@ -116,10 +116,7 @@ void Pipeline::update_boundaries() {
   if (!cut_active_) cut_ = CutMesh();
   cut_topology_ = cut_active_ ? build_topology(cut_.mesh) : Topology();
   cut_components_.clear();
-  if (cut_active_) {
-    cut_components_ = frames_.vertex_component;
-    for (uint32_t v : cut_.copy_of) cut_components_.push_back(frames_.vertex_component[v]);
-  }
+  if (cut_active_) cut_components_ = on_cut_vertices(cut_, frames_.vertex_component);
 }
 
 void Pipeline::run(const ProgressCallback& progress) {
@@ -188,10 +185,7 @@ void Pipeline::run(const ProgressCallback& progress) {
     // Weights are painted on the input's vertices; the copies a crease cut
     // made take the weight of the vertex they split from.
     std::vector<double>& weights = smoothing.vertex_weights;
-    if (cut_active_ && weights.size() == cut_.input_vertices) {
-      weights.resize(cut_.mesh.positions.size());
-      for (size_t k = 0; k < cut_.copy_of.size(); ++k) weights[cut_.input_vertices + k] = weights[cut_.copy_of[k]];
-    }
+    if (cut_active_ && weights.size() == cut_.input_vertices) weights = on_cut_vertices(cut_, std::move(weights));
     extremality_ =
         smooth_extremality(surface, topology, curvature_, raw_extremality_, smoothing, within(Stage::Smoothing));
   });

@@ -33,6 +33,15 @@ struct CutMesh {
 /// nothing. Linear in the mesh size.
 CutMesh cut_along_edges(const Mesh& mesh, const Topology& topology, const std::vector<uint32_t>& edges);
 
+/// A per-vertex array of the input extended to the cut mesh: each copy takes
+/// the value of the vertex it split from.
+template <typename T>
+std::vector<T> on_cut_vertices(const CutMesh& cut, std::vector<T> values) {
+  values.reserve(values.size() + cut.copy_of.size());  // the references below stay valid
+  for (uint32_t v : cut.copy_of) values.push_back(values[v]);
+  return values;
+}
+
 /// Gives all copies of a vertex (and the vertex itself) their mean position.
 void merge_copies(const CutMesh& cut, std::vector<Vec3>& positions);
 
