@@ -21,8 +21,8 @@ export default [
     files: ['web/*.config.js', 'wasm/*.mjs', 'tests/**/*.mjs', 'bench/*.mjs', 'scripts/*.mjs', 'eslint.config.js', 'web/src/client/node.js', 'web/src/worker/node-worker.js', 'web/src/index.node.js'],
     languageOptions: { globals: globals.node },
   },
-  // Browser tests: functions passed to page.evaluate run in the page.
-  { files: ['tests/browser/**/*.mjs'], languageOptions: { globals: { ...globals.node, ...globals.browser } } },
+  // Browser tests and the browser benchmark: functions passed to page.evaluate run in the page.
+  { files: ['tests/browser/**/*.mjs', 'bench/browser.mjs'], languageOptions: { globals: { ...globals.node, ...globals.browser } } },
   // Emscripten's --pre-js runs inside the module factory.
   { files: ['wasm/pre.js'], languageOptions: { sourceType: 'script', globals: { Module: 'writable' } } },
 ];

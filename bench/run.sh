@@ -1,10 +1,14 @@
 #!/usr/bin/env bash
 # The benchmark in one command: native (build-bench/) then the WASM build in
-# node on the same meshes. Results: build-bench/bench/{native,wasm}.json.
+# node on the same meshes, then the page in headless Chromium (bench/browser.mjs:
+# the dragon dropped on the built app, web/dist). Results:
+# build-bench/bench/{native,wasm,browser}.json.
 #   bash bench/run.sh            all meshes, 5 runs native, 3 in WASM, 1 thread;
 #                                then the bunny and the 1.1M mesh again on 2
-#                                threads, and on every core where there are more
-#   bash bench/run.sh --smoke    the bunny once each (< 20 s once built); for CI
+#                                threads, and on every core where there are more;
+#                                the browser row: the dragon, 3 runs
+#   bash bench/run.sh --smoke    the bunny once each, in the browser too (< 1 min
+#                                once built); for CI
 # Extra arguments go to crestline_bench (e.g. --only bunny,feline --runs 3).
 # Timings are wall-clock: run it on an otherwise idle machine.
 set -euo pipefail
@@ -44,4 +48,12 @@ if [[ -f $dist/crestline.wasm ]]; then
   node bench/wasm.mjs --native "$out/native.json" --dist "$dist" --runs "$wasm_runs" --json "$out/wasm.json"
 else
   echo "bench: no WASM build in $dist (npm run build:wasm); skipped the WASM column." >&2
+fi
+
+# The browser row; it says SKIPPED itself without Chromium, the meshes or web/dist.
+echo
+if [[ $smoke == 1 ]]; then
+  node bench/browser.mjs --mesh classic/stanford-bunny.obj --runs 1 --rethresholds 2 --json "$out/browser.json"
+else
+  node bench/browser.mjs --runs 3 --json "$out/browser.json"
 fi

@@ -7,6 +7,7 @@ import { readFileSync, writeFileSync } from 'node:fs';
 import { createRequire } from 'node:module';
 import { resolve } from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
+import { table } from './table.mjs';
 
 const STAGES = ['presmooth', 'curvature', 'extremality', 'regularity', 'smoothing', 'tracing', 'singular', 'polylines', 'fairing', 'filter'];
 
@@ -92,13 +93,6 @@ async function measure(mesh, options, runs, dist) {
     heap_bytes: module.HEAPU8.length,
     lines: { ridges: stats.ridges, valleys: stats.valleys, ridge_length: stats.ridgeLength, valley_length: stats.valleyLength },
   };
-}
-
-function table(rows) {
-  const widths = rows[0].map((_, c) => Math.max(...rows.map((r) => String(r[c]).length)));
-  const line = (r) => `| ${r.map((cell, c) => (c ? String(cell).padStart(widths[c]) : String(cell).padEnd(widths[c]))).join(' | ')} |`;
-  const rule = `|${widths.map((w, c) => (c ? '-'.repeat(w + 1) + ':' : ':' + '-'.repeat(w + 1))).join('|')}|`;
-  return [line(rows[0]), rule, ...rows.slice(1).map(line)].join('\n');
 }
 
 const args = parseArgs(process.argv.slice(2));

@@ -1,0 +1,276 @@
+#!/usr/bin/env node
+// The browser row of the benchmark: the built app (web/dist) in headless
+// Chromium (playwright-core, /usr/bin/chromium, a fresh profile per run), a
+// mesh dropped on the page as a user drops it, timed from the drop to the
+// frame that shows its lines, and then a threshold change's main-thread work.
+//   node bench/browser.mjs [--mesh large/dragon.glb] [--runs 3] [--rethresholds 4]
+//                          [--dist web/dist] [--json OUT.json]
+// The mesh is a path under ../shared/meshes. Without Chromium, the meshes or
+// web/dist it says so and exits 0 (skipped), as the other benchmark rows do.
+// Every time is the page's (performance.now() on the main thread), except the
+// worker's own figures: `read+repair` (Session.loadFile) and `pipeline`
+// (Session.run and the copies of lines and creases out of the WASM heap),
+// with the stage split of its --stats.
+import { existsSync, writeFileSync } from 'node:fs';
+import { loadavg } from 'node:os';
+import { join, resolve } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { CHROMIUM, launch } from '../tests/browser/browser.mjs';
+import { serve } from '../tests/browser/server.mjs';
+import { table } from './table.mjs';
+
+const ROOT = fileURLToPath(new URL('../', import.meta.url));
+const MESHES = resolve(ROOT, '../shared/meshes');
+const STAGES = ['presmooth', 'curvature', 'extremality', 'regularity', 'smoothing', 'tracing', 'singular', 'polylines', 'fairing', 'filter', 'creases'];
+
+function parseArgs(argv) {
+  const args = { mesh: 'large/dragon.glb', runs: 3, rethresholds: 4, dist: join(ROOT, 'web/dist') };
+  for (let i = 0; i < argv.length; i++) {
+    const value = () => argv[++i];
+    if (argv[i] === '--mesh') args.mesh = value();
+    else if (argv[i] === '--runs') args.runs = Math.max(1, Number(value()));
+    else if (argv[i] === '--rethresholds') args.rethresholds = Math.max(1, Number(value()));
+    else if (argv[i] === '--dist') args.dist = resolve(value());
+    else if (argv[i] === '--json') args.json = value();
+    else throw new Error(`unknown argument ${argv[i]}`);
+  }
+  return args;
+}
+
+const median = (values) => {
+  const s = values.filter(Number.isFinite).sort((a, b) => a - b);
+  const n = s.length;
+  if (!n) return NaN;
+  return n % 2 ? s[(n - 1) / 2] : 0.5 * (s[n / 2 - 1] + s[n / 2]);
+};
+const load = () => loadavg()[0].toFixed(1);
+
+/**
+ * Installed in the page once the sample is shown: timestamps and durations of
+ * what the main thread does for the worker's replies (per message type), of
+ * every WebGL render, of posts to the worker, and the long tasks.
+ */
+function instrument() {
+  const app = window.crestline;
+  const log = (window.__bench = { messages: [], renders: [], posts: [], longTasks: [] });
+  const worker = app.client.connection.worker;
+  const receive = worker.onmessage;
+  worker.onmessage = (event) => {
+    const at = performance.now();
+    receive.call(worker, event);
+    const { type, stage, milliseconds } = event.data;
+    log.messages.push({ type, stage, milliseconds, at, ms: performance.now() - at });
+  };
+  const post = worker.postMessage.bind(worker);
+  worker.postMessage = (message, transfer) => {
+    const at = performance.now();
+    post(message, transfer);
+    log.posts.push({ type: message.type, at, ms: performance.now() - at });
+  };
+  const renderer = app.viewer.renderer;
+  const render = renderer.render.bind(renderer);
+  renderer.render = (scene, camera) => {
+    const at = performance.now();
+    render(scene, camera);
+    log.renders.push({ at, ms: performance.now() - at });
+  };
+  new PerformanceObserver((list) => log.longTasks.push(...list.getEntries().map((e) => ({ at: e.startTime, ms: e.duration })))).observe({
+    type: 'longtask',
+  });
+  /**
+   * Resolves once a frame has been shown after the page handled its next
+   * result: the time of the animation frame that follows the render drawing it.
+   */
+  window.__benchFramed = (count) =>
+    new Promise((resolve, reject) => {
+      const poll = () => {
+        if (document.body.dataset.state === 'error') return reject(new Error(document.getElementById('error').textContent));
+        const handled = window.__bench.messages.findLast((m) => m.type === 'result');
+        const drawn = handled && window.__bench.renders.find((r) => r.at >= handled.at + handled.ms);
+        if (app.results.length > count && drawn) requestAnimationFrame(() => resolve(performance.now()));
+        else setTimeout(poll, 5);
+      };
+      poll();
+    });
+}
+
+/** Drops `bytes` (fetched beforehand: not timed) named `name` as one file on the page; returns the page's timeline. */
+async function dropAndTime(page, url, name) {
+  await page.evaluate(async (url) => (window.__benchBytes = await (await fetch(url)).arrayBuffer()), url);
+  return page.evaluate(async (name) => {
+    const app = window.crestline;
+    const log = window.__bench;
+    const count = app.results.length;
+    const file = new File([window.__benchBytes], name);
+    delete window.__benchBytes;
+    const transfer = new DataTransfer();
+    transfer.items.add(file);
+    log.messages.length = log.renders.length = log.posts.length = log.longTasks.length = 0;
+    const start = performance.now();
+    document.body.dispatchEvent(new DragEvent('drop', { dataTransfer: transfer, bubbles: true, cancelable: true }));
+    const end = await window.__benchFramed(count);
+    window.__benchThreshold = app.lastResult.stats.threshold;
+    return { start, end, ...structuredClone(log), result: app.lastResult, mesh: app.mesh };
+  }, name);
+}
+
+/** A threshold change as the panel makes it, then the frame that shows it. */
+function rethresholdAndTime(page, factor) {
+  return page.evaluate(async (factor) => {
+    const app = window.crestline;
+    const log = window.__bench;
+    const count = app.results.length;
+    log.messages.length = log.renders.length = log.posts.length = log.longTasks.length = 0;
+    const start = performance.now();
+    app.update({ autoThreshold: false, threshold: window.__benchThreshold * factor });
+    const handler = performance.now() - start;
+    const end = await window.__benchFramed(count);
+    return { start, end, handler, ...structuredClone(log), result: app.lastResult };
+  }, factor);
+}
+
+/** The drop's timeline as a split of drop-to-lines (ms). */
+function dropSplit(t) {
+  const first = (type, stage) => t.messages.find((m) => m.type === type && (!stage || m.stage === stage));
+  const open = t.posts.find((p) => p.type === 'open');
+  const reading = first('progress', 'read');
+  const loaded = first('loaded');
+  const result = t.messages.findLast((m) => m.type === 'result');
+  const firstRender = (after) => t.renders.find((r) => r.at >= after.at + after.ms);
+  const surfaceRender = firstRender(loaded);
+  const linesRender = firstRender(result);
+  const loadMs = t.mesh.loadMs;
+  const pipelineMs = t.result.milliseconds;
+  const inWindow = t.longTasks.filter((l) => l.at >= t.start && l.at <= t.end);
+  return {
+    dropToLines: t.end - t.start,
+    // Main thread: the File's bytes, the client's copies, the post.
+    pageRead: open.at + open.ms - t.start,
+    // The 'open' message reaching the worker (and the worker's queue).
+    toWorker: reading.at - (open.at + open.ms),
+    readRepair: loadMs,
+    // Session.surface() out of the heap, posting it, and its arrival.
+    surfaceOut: loaded.at - reading.at - loadMs,
+    surfaceHandler: loaded.ms,
+    surfaceRender: surfaceRender?.ms ?? NaN,
+    pipeline: pipelineMs,
+    // From the surface's arrival to the result's (the worker's run, its post and the page's own work meanwhile).
+    linesOut: result.at - loaded.at - pipelineMs,
+    linesHandler: result.ms,
+    linesRender: linesRender?.ms ?? NaN,
+    // From the render call that draws the lines to the next animation frame.
+    frame: t.end - (linesRender ? linesRender.at + linesRender.ms : result.at + result.ms),
+    longTasks: inWindow.reduce((s, l) => s + l.ms, 0),
+    longestTask: Math.max(0, ...inWindow.map((l) => l.ms)),
+    stages: Object.fromEntries(STAGES.map((s) => [s, 1000 * (t.result.stats.seconds?.[s] ?? NaN)])),
+  };
+}
+
+function rethresholdSplit(t) {
+  const result = t.messages.findLast((m) => m.type === 'result');
+  const render = t.renders.find((r) => r.at >= result.at + result.ms);
+  const mainThread = t.handler + result.ms + (render?.ms ?? 0);
+  const inWindow = t.longTasks.filter((l) => l.at >= t.start && l.at <= t.end);
+  return {
+    toFrame: t.end - t.start,
+    handler: t.handler,
+    resultHandler: result.ms,
+    render: render?.ms ?? NaN,
+    mainThread,
+    worker: t.result.milliseconds,
+    longTasks: inWindow.reduce((s, l) => s + l.ms, 0),
+    lines: t.result.lineCount,
+    ran: t.result.ran,
+  };
+}
+
+async function measureRun(args, server) {
+  const browser = await launch();
+  try {
+    const page = await browser.newPage({ viewport: { width: 1000, height: 750 } });
+    const errors = [];
+    page.on('pageerror', (error) => errors.push(error.message));
+    const origin = `http://127.0.0.1:${server.address().port}`;
+    await page.goto(`${origin}/`);
+    await page.waitForFunction(() => window.crestline?.lastResult && document.body.dataset.state === 'ready', null, { timeout: 120000 });
+    await page.evaluate(instrument);
+    const loadBefore = load();
+    const drop = await dropAndTime(page, `${origin}/meshes/${args.mesh}`, args.mesh.split('/').pop());
+    const rethresholds = [];
+    for (let i = 0; i < args.rethresholds; i++) rethresholds.push(rethresholdSplit(await rethresholdAndTime(page, i % 2 ? 1 : 1.5)));
+    if (errors.length) throw new Error(`the page failed: ${errors.join('; ')}`);
+    return {
+      load: [loadBefore, load()],
+      triangles: drop.result.stats.triangles,
+      lines: drop.result.lineCount,
+      drop: dropSplit(drop),
+      rethreshold: rethresholds,
+    };
+  } finally {
+    await browser.close();
+  }
+}
+
+const args = parseArgs(process.argv.slice(2));
+const missing = [
+  [existsSync(CHROMIUM), `no Chromium at ${CHROMIUM}`],
+  [existsSync(join(MESHES, args.mesh)), `no ${args.mesh} in ${MESHES}`],
+  [existsSync(join(args.dist, 'index.html')), `no web app in ${args.dist} (web/build.sh)`],
+].find(([present]) => !present);
+if (missing) {
+  console.log(`bench: browser row SKIPPED (${missing[1]}).`);
+  process.exit(0);
+}
+
+const server = await serve({ '/meshes/': MESHES, '/': args.dist });
+const runs = [];
+try {
+  for (let run = 0; run < args.runs; run++) {
+    process.stderr.write(`browser: ${args.mesh}, run ${run + 1} of ${args.runs} (load ${load()}) …\n`);
+    runs.push(await measureRun(args, server));
+  }
+} finally {
+  server.close();
+}
+
+const f = (ms) => (Number.isFinite(ms) ? ms.toFixed(0) : '-');
+const f1 = (ms) => (Number.isFinite(ms) ? ms.toFixed(1) : '-');
+const DROP = [
+  ['drop→lines', 'dropToLines'],
+  ['page read', 'pageRead'],
+  ['to worker', 'toWorker'],
+  ['read+repair', 'readRepair'],
+  ['surface out', 'surfaceOut'],
+  ['surface (main)', 'surfaceHandler'],
+  ['surface render', 'surfaceRender'],
+  ['pipeline', 'pipeline'],
+  ['lines out', 'linesOut'],
+  ['lines (main)', 'linesHandler'],
+  ['lines render', 'linesRender'],
+  ['frame', 'frame'],
+  ['long tasks', 'longTasks'],
+];
+const rows = [['run', 'load', ...DROP.map(([h]) => h), 'smoothing']];
+const row = (label, loadText, pick) => [label, loadText, ...DROP.map(([, k]) => f(pick((d) => d[k]))), f(pick((d) => d.stages.smoothing))];
+runs.forEach((r, i) => rows.push(row(String(i + 1), r.load.join('→'), (get) => get(r.drop))));
+rows.push(row('median', '', (get) => median(runs.map((r) => get(r.drop)))));
+const mesh = `${args.mesh} (${runs[0].triangles} triangles, ${runs[0].lines} lines)`;
+console.log(`Browser: headless Chromium, ${mesh}, dropped on the app; ms, page clock; load = 1-minute load average before→after`);
+console.log(table(rows));
+
+const all = runs.flatMap((r) => r.rethreshold);
+const RETHR = [
+  ['to frame', 'toFrame'],
+  ['update()', 'handler'],
+  ['result (main)', 'resultHandler'],
+  ['render', 'render'],
+  ['main thread', 'mainThread'],
+  ['worker', 'worker'],
+  ['long tasks', 'longTasks'],
+];
+const rrows = [['re-threshold', ...RETHR.map(([h]) => h)]];
+rrows.push(['median', ...RETHR.map(([, k]) => f1(median(all.map((r) => r[k]))))]);
+rrows.push(['max', ...RETHR.map(([, k]) => f1(Math.max(...all.map((r) => r[k]))))]);
+console.log(`\nRe-threshold (×1.5 and back, ${all.length} changes): ms; main thread = update() + the result's handling + its render call`);
+console.log(table(rrows));
+if (args.json) writeFileSync(args.json, JSON.stringify({ runner: 'browser-chromium', chromium: CHROMIUM, mesh: args.mesh, runs }, null, 2) + '\n');
