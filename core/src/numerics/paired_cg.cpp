@@ -5,6 +5,10 @@
 #include <cmath>
 #include <cstring>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "crestline/numerics/parallel.h"
 
 namespace crestline {
@@ -43,21 +47,49 @@ BlockSums sum_blocks(size_t rows, Sums& partial, const Body& body) {
   return total;
 }
 
-// ±1 for both fields, by the entry's sign mask: multiplying by them is
-// exact, and the pair of products is one SIMD multiplication.
-alignas(16) constexpr double kSigns[4][2] = {{1, 1}, {-1, 1}, {1, -1}, {-1, -1}};
+// The two fields' values of a row as one pair (x[2i], x[2i + 1]). Every
+// operation is lane by lane, so the SSE2 form and the scalar one (WASM
+// without SIMD) round identically: the same bits natively and in WASM.
+#if defined(__SSE2__)
+struct Pair {
+  __m128d v;
+  static Pair load(const double* p) { return {_mm_loadu_pd(p)}; }
+  static Pair both(double a) { return {_mm_set1_pd(a)}; }
+  static Pair of(double a, double b) { return {_mm_set_pd(b, a)}; }
+  void store(double* p) const { _mm_storeu_pd(p, v); }
+};
+inline Pair operator+(Pair a, Pair b) { return {_mm_add_pd(a.v, b.v)}; }
+inline Pair operator-(Pair a, Pair b) { return {_mm_sub_pd(a.v, b.v)}; }
+inline Pair operator*(Pair a, Pair b) { return {_mm_mul_pd(a.v, b.v)}; }
+// a with its lanes negated where the entry's sign mask says so: flipping the
+// sign bit is exactly a multiplication by −1.
+alignas(16) constexpr uint64_t kSignBits[4][2] = {{0, 0}, {1ull << 63, 0}, {0, 1ull << 63}, {1ull << 63, 1ull << 63}};
+inline Pair signed_weight(double w, uint32_t mask) {
+  const __m128d bits = _mm_load_pd(reinterpret_cast<const double*>(kSignBits[mask]));
+  return {_mm_xor_pd(_mm_set1_pd(w), bits)};
+}
+#else
+struct Pair {
+  double a, b;
+  static Pair load(const double* p) { return {p[0], p[1]}; }
+  static Pair both(double x) { return {x, x}; }
+  static Pair of(double x, double y) { return {x, y}; }
+  void store(double* p) const { p[0] = a, p[1] = b; }
+};
+inline Pair operator+(Pair x, Pair y) { return {x.a + y.a, x.b + y.b}; }
+inline Pair operator-(Pair x, Pair y) { return {x.a - y.a, x.b - y.b}; }
+inline Pair operator*(Pair x, Pair y) { return {x.a * y.a, x.b * y.b}; }
+inline Pair signed_weight(double w, uint32_t mask) { return {mask & 1 ? -w : w, mask & 2 ? -w : w}; }
+#endif
 
 // Σ a_ij v_j over entries [begin, end) of a row, both fields.
-inline void accumulate(const SignedPairMatrix& a, const double* v, uint32_t begin, uint32_t end, double& s0,
-                       double& s1) {
+inline Pair accumulate(const uint32_t* columns, const double* weights, const double* v, uint32_t begin, uint32_t end) {
+  Pair s = Pair::both(0.0);
   for (uint32_t e = begin; e < end; ++e) {
-    const uint32_t c = a.columns[e];
-    const double* sign = kSigns[c >> 30];
-    const double* vj = v + 2 * size_t{c & SignedPairMatrix::kColumnMask};
-    const double w = a.weights[e];
-    s0 += w * sign[0] * vj[0];
-    s1 += w * sign[1] * vj[1];
+    const uint32_t c = columns[e];
+    s = s + signed_weight(weights[e], c >> 30) * Pair::load(v + 2 * size_t{c & SignedPairMatrix::kColumnMask});
   }
+  return s;
 }
 
 // Calls body(begin, end, sums) over the rows of each colour in turn (last
@@ -181,19 +213,28 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
   const BlockSums b2 = sum_blocks(n, partial, [&](size_t begin, size_t end, BlockSums& sums) {
     for (size_t j = 2 * begin; j < 2 * end; ++j) sums[j & 1] += rt[j] * rt[j];
   });
+  // Raw pointers, captured by value: the sweeps' stores through double*
+  // would otherwise make the compiler reload every captured vector per row.
+  const double *const diagonal = a.diagonal.data(), *const inverse = inverse_diagonal.data();
+  const uint32_t *const offsets = a.offsets.data(), *const lower = lower_begin_.data();
+  const uint32_t* const columns = a.columns.data();
+  const double* const weights = a.weights.data();
+  double *const xv = xp.data(), *const rv = rt.data(), *const pv = p.data(), *const tv = t.data(), *const uv = u.data();
+  const auto row_sum = [columns, weights](const double* v, uint32_t begin, uint32_t end) {
+    return accumulate(columns, weights, v, begin, end);
+  };
   // r = b − A x, then r̃ = (D + L)⁻¹ r in place, colour by colour.
-  BlockSums rr = sweep(colour_begin_, false, partial, [&](size_t begin, size_t end, BlockSums& sums) {
+  BlockSums rr = sweep(colour_begin_, false, partial, [=](size_t begin, size_t end, BlockSums& sums) {
+    Pair rsum = Pair::load(&sums[0]), dsum = Pair::load(&sums[2]);
     for (size_t i = begin; i < end; ++i) {
-      double r0 = rt[2 * i] - a.diagonal[i] * xp[2 * i], r1 = rt[2 * i + 1] - a.diagonal[i] * xp[2 * i + 1];
-      double s0 = 0, s1 = 0;
-      accumulate(a, xp.data(), a.offsets[i], a.offsets[i + 1], s0, s1);
-      r0 -= s0, r1 -= s1;
-      sums[0] += r0 * r0, sums[1] += r1 * r1;
-      double l0 = 0, l1 = 0;
-      accumulate(a, rt.data(), lower_begin_[i], a.offsets[i + 1], l0, l1);
-      rt[2 * i] = (r0 - l0) * inverse_diagonal[i], rt[2 * i + 1] = (r1 - l1) * inverse_diagonal[i];
-      sums[2] += rt[2 * i] * rt[2 * i] * a.diagonal[i], sums[3] += rt[2 * i + 1] * rt[2 * i + 1] * a.diagonal[i];
+      const Pair d = Pair::both(diagonal[i]);
+      const Pair r = Pair::load(rv + 2 * i) - d * Pair::load(xv + 2 * i) - row_sum(xv, offsets[i], offsets[i + 1]);
+      rsum = rsum + r * r;
+      const Pair z = (r - row_sum(rv, lower[i], offsets[i + 1])) * Pair::both(inverse[i]);
+      z.store(rv + 2 * i);
+      dsum = dsum + z * z * d;
     }
+    rsum.store(&sums[0]), dsum.store(&sums[2]);
   });
   double rz[2] = {rr[2], rr[3]};  // ⟨r̃, D r̃⟩ per field
   bool active[2];
@@ -209,55 +250,56 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
   }
   double beta[2] = {0, 0};
   for (int it = 0; it < max_iterations && (active[0] || active[1]); ++it) {
-    const double keep[2] = {active[0] ? 1.0 : 0.0, active[1] ? 1.0 : 0.0};
+    const Pair keep = Pair::of(active[0] ? 1.0 : 0.0, active[1] ? 1.0 : 0.0), beta_pair = Pair::of(beta[0], beta[1]);
     // Last colour first: p = D r̃ + β p, t = (D + U)⁻¹ p.
-    sweep(colour_begin_, true, partial, [&](size_t begin, size_t end, BlockSums&) {
+    sweep(colour_begin_, true, partial, [=](size_t begin, size_t end, BlockSums&) {
       for (size_t i = begin; i < end; ++i) {
-        const double p0 = keep[0] * (rt[2 * i] * a.diagonal[i] + beta[0] * p[2 * i]);
-        const double p1 = keep[1] * (rt[2 * i + 1] * a.diagonal[i] + beta[1] * p[2 * i + 1]);
-        p[2 * i] = p0, p[2 * i + 1] = p1;
-        double s0 = 0, s1 = 0;
-        accumulate(a, t.data(), a.offsets[i], lower_begin_[i], s0, s1);
-        t[2 * i] = (p0 - s0) * inverse_diagonal[i], t[2 * i + 1] = (p1 - s1) * inverse_diagonal[i];
+        const Pair pi = keep * (Pair::load(rv + 2 * i) * Pair::both(diagonal[i]) + beta_pair * Pair::load(pv + 2 * i));
+        pi.store(pv + 2 * i);
+        ((pi - row_sum(tv, offsets[i], lower[i])) * Pair::both(inverse[i])).store(tv + 2 * i);
       }
     });
     // First colour first: u = (D + L)⁻¹ (p − D t); Ã p = t + u.
-    const BlockSums pq = sweep(colour_begin_, false, partial, [&](size_t begin, size_t end, BlockSums& sums) {
+    const BlockSums pq = sweep(colour_begin_, false, partial, [=](size_t begin, size_t end, BlockSums& sums) {
+      Pair sum = Pair::load(&sums[0]);
       for (size_t i = begin; i < end; ++i) {
-        double l0 = 0, l1 = 0;
-        accumulate(a, u.data(), lower_begin_[i], a.offsets[i + 1], l0, l1);
-        const double d = a.diagonal[i];
-        const double u0 = (p[2 * i] - d * t[2 * i] - l0) * inverse_diagonal[i];
-        const double u1 = (p[2 * i + 1] - d * t[2 * i + 1] - l1) * inverse_diagonal[i];
-        u[2 * i] = u0, u[2 * i + 1] = u1;
-        sums[0] += p[2 * i] * (t[2 * i] + u0), sums[1] += p[2 * i + 1] * (t[2 * i + 1] + u1);
+        const Pair pi = Pair::load(pv + 2 * i), ti = Pair::load(tv + 2 * i);
+        const Pair ui =
+            (pi - Pair::both(diagonal[i]) * ti - row_sum(uv, lower[i], offsets[i + 1])) * Pair::both(inverse[i]);
+        ui.store(uv + 2 * i);
+        sum = sum + pi * (ti + ui);
       }
+      sum.store(&sums[0]);
     });
     double alpha[2];
     for (int k = 0; k < 2; ++k) alpha[k] = active[k] ? rz[k] / pq[k] : 0.0;
+    const Pair alpha_pair = Pair::of(alpha[0], alpha[1]);
     // x += α t, r̃ −= α Ã p; sums: ‖D r̃‖², an estimate of ‖r‖², and ⟨r̃, D r̃⟩.
-    const BlockSums estimate = sum_blocks(n, partial, [&](size_t begin, size_t end, BlockSums& sums) {
+    const BlockSums estimate = sum_blocks(n, partial, [=](size_t begin, size_t end, BlockSums& sums) {
+      Pair norm = Pair::load(&sums[0]), dot = Pair::load(&sums[2]);
       for (size_t i = begin; i < end; ++i) {
-        const size_t j = 2 * i;
-        xp[j] += alpha[0] * t[j], xp[j + 1] += alpha[1] * t[j + 1];
-        rt[j] -= alpha[0] * (t[j] + u[j]), rt[j + 1] -= alpha[1] * (t[j + 1] + u[j + 1]);
-        const double d0 = a.diagonal[i] * rt[j], d1 = a.diagonal[i] * rt[j + 1];
-        sums[0] += d0 * d0, sums[1] += d1 * d1;
-        sums[2] += d0 * rt[j], sums[3] += d1 * rt[j + 1];
+        const Pair ti = Pair::load(tv + 2 * i);
+        (Pair::load(xv + 2 * i) + alpha_pair * ti).store(xv + 2 * i);
+        const Pair ri = Pair::load(rv + 2 * i) - alpha_pair * (ti + Pair::load(uv + 2 * i));
+        ri.store(rv + 2 * i);
+        const Pair di = Pair::both(diagonal[i]) * ri;
+        norm = norm + di * di;
+        dot = dot + di * ri;
       }
+      norm.store(&sums[0]), dot.store(&sums[2]);
     });
     // The stopping rule is on the true residual r = (D + L) r̃, one more
     // read of L, computed only once the estimate is near the tolerance.
     bool check = false;
     for (int k = 0; k < 2; ++k) check = check || (active[k] && estimate[k] <= kCheckMargin * limit[k]);
     if (check) {
-      rr = sweep(colour_begin_, false, partial, [&](size_t begin, size_t end, BlockSums& sums) {
+      rr = sweep(colour_begin_, false, partial, [=](size_t begin, size_t end, BlockSums& sums) {
+        Pair sum = Pair::load(&sums[0]);
         for (size_t i = begin; i < end; ++i) {
-          double l0 = 0, l1 = 0;
-          accumulate(a, rt.data(), lower_begin_[i], a.offsets[i + 1], l0, l1);
-          const double r0 = a.diagonal[i] * rt[2 * i] + l0, r1 = a.diagonal[i] * rt[2 * i + 1] + l1;
-          sums[0] += r0 * r0, sums[1] += r1 * r1;
+          const Pair r = Pair::both(diagonal[i]) * Pair::load(rv + 2 * i) + row_sum(rv, lower[i], offsets[i + 1]);
+          sum = sum + r * r;
         }
+        sum.store(&sums[0]);
       });
     }
     for (int k = 0; k < 2; ++k) {
