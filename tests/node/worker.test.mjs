@@ -9,6 +9,7 @@ import { test } from 'node:test';
 import { loadCrestline } from '../../wasm/node.mjs';
 import { Connection } from '../../web/src/client/client.js';
 import { createHandler } from '../../web/src/worker/handler.js';
+import { SurfaceIndex } from '../../web/src/worker/surface-index.js';
 import { MESHES, haveMeshes, sineHeightField } from './helpers.mjs';
 
 function session(startModule = loadCrestline) {
@@ -332,4 +333,38 @@ test('a threshold change on a large mesh posts only the kept line ids (no coordi
   // A smoothing change sends the new lines again.
   const smoothed = (await send({ type: 'options', id: 1, job: 4, options: { smoothingSteps: 1 } })).at(-1);
   assert.ok(smoothed.lines && smoothed.kept.length <= smoothed.lines.types.length);
+});
+
+test("the brush's surface index: built by a second instance of the worker through the client, with no WASM module started", async () => {
+  let modules = 0;
+  const workers = inProcessWorkers(() => ((modules += 1), loadCrestline()));
+  const connection = new Connection(workers.start, { preload: false });
+  const { positions, indices } = sineHeightField({ n: 40 });
+  const [surface, triangles] = [Float32Array.from(positions), Uint32Array.from(indices)];
+  const parts = await connection.surfaceIndex(surface, triangles);
+  assert.equal(modules, 0, 'the index needs no WASM module');
+  assert.deepEqual(triangles, Uint32Array.from(indices), "the caller's arrays stay (copies travel)");
+  const here = new SurfaceIndex(surface, triangles);
+  assert.deepEqual(parts, SurfaceIndex.parts(here), 'the arrays of an index built here');
+  // Picking and distances through the worker's arrays: those of the index built here.
+  const there = new SurfaceIndex(surface, triangles, parts);
+  const ray = [
+    { x: 1.3, y: 2.2, z: 5 },
+    { x: 0, y: 0, z: -1 },
+  ];
+  const hit = there.raycast(...ray);
+  assert.deepEqual(hit, here.raycast(...ray));
+  const reached = (index) => {
+    const out = [];
+    index.within(hit.triangle, hit.point, 0.5, (v, d) => out.push([v, d]));
+    return out;
+  };
+  assert.ok(reached(there).length > 10);
+  assert.deepEqual(reached(there), reached(here));
+  // The same connection runs a pipeline when asked: its module starts then.
+  const { session, next } = observed(connection);
+  session.load(sineHeightField({ n: 10 }), {});
+  assert.equal((await next('result')).stats.triangles, 200);
+  assert.equal(modules, 1);
+  assert.equal(connection.generation, 1, 'one worker throughout');
 });

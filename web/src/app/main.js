@@ -1,7 +1,6 @@
 // Wires the page: files → the client (../client) → the worker (C++ readers,
 // repair, Pipeline) → viewer; the panel re-runs only what a changed parameter needs.
-import { sharedConnection, startModuleWorker } from '../client/browser.js';
-import indexWorkerUrl from '../three/surface-index-worker.js?worker&url';
+import { sharedConnection, sideConnection } from '../client/browser.js';
 import { overallFraction, selectLines } from '../client/client.js';
 import { sampleMesh } from './sample.js';
 import { WEIGHT_SCALE, WeightBrush } from '../three/brush.js';
@@ -28,7 +27,8 @@ const viewer = new Viewer(document.getElementById('view'), {
   onContextRestored: () => fail(null),
 });
 
-const brush = new WeightBrush(viewer, { onStroke: () => compute(), startIndexWorker: () => startModuleWorker(indexWorkerUrl) });
+// The brush's surface index is built by a second worker: the first may be running the pipeline.
+const brush = new WeightBrush(viewer, { onStroke: () => compute(), buildIndex: (positions, indices) => sideConnection().surfaceIndex(positions, indices) });
 
 /** The one page state (page-state.js); `render()` draws it. */
 const state = emptyState();

@@ -11,7 +11,7 @@ import { Connection } from './client.js';
  * @param {string} url
  * @returns {Worker}
  */
-export function startModuleWorker(url) {
+function startModuleWorker(url) {
   const absolute = new URL(url, import.meta.url);
   if (absolute.origin === globalThis.location?.origin) return new Worker(absolute, { type: 'module' });
   const shim = URL.createObjectURL(new Blob([`import ${JSON.stringify(absolute.href)};`], { type: 'text/javascript' }));
@@ -30,4 +30,17 @@ let shared = null;
 export function sharedConnection() {
   shared ??= new Connection(startBrowserWorker);
   return shared;
+}
+
+/** @type {Connection | null} */
+let side = null;
+
+/**
+ * A second instance of the same worker, for work that must not wait behind a
+ * running pipeline (the brush's surface index); it starts its WASM module
+ * only if a pipeline is asked of it.
+ */
+export function sideConnection() {
+  side ??= new Connection(startBrowserWorker, { preload: false });
+  return side;
 }

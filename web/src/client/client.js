@@ -84,16 +84,29 @@ export function selectLines(lines, kept) {
 const copyFiles = (files) => files.map(({ name, bytes }) => ({ name, bytes: bytes.slice(0) }));
 
 export class Connection {
-  /** @param {() => WorkerLike} startWorker */
-  constructor(startWorker) {
+  /**
+   * @param {() => WorkerLike} startWorker
+   * @param {{preload?: boolean}} [options] preload: the worker starts its
+   *   WASM module at once (default); false for a connection that may never
+   *   run the pipeline (the brush's surface indices)
+   */
+  constructor(startWorker, { preload = true } = {}) {
     this.startWorker = startWorker;
+    this.preload = preload;
     /** @type {Map<number, Session>} */
     this.sessions = new Map();
     this.nextId = 1;
+    /** how many workers this connection started: 1 until a restart */
+    this.generation = 0;
     /** @type {Promise<import('./parameters.js').Parameter[]> | null} */
     this.table = null;
-    /** @type {Map<number, (table: import('./parameters.js').Parameter[]) => void>} */
-    this.describing = new Map();
+    /**
+     * Requests of the connection rather than of a session (no id). Those
+     * without arrays go again to a restarted worker; the others' arrays
+     * went to the old one (transferred): they fail.
+     * @type {Map<number, {message: any, resolve: (value: any) => void, reject: (error: Error) => void}>}
+     */
+    this.requests = new Map();
     this.start();
   }
 
@@ -102,15 +115,46 @@ export class Connection {
    * @returns {Promise<import('./parameters.js').Parameter[]>}
    */
   describe() {
-    this.table ??= new Promise((resolve) => {
-      const request = this.nextId++;
-      this.describing.set(request, resolve);
-      this.post({ type: 'describe', request });
-    });
+    this.table ??= this.request({ type: 'describe' });
     return this.table;
   }
 
+  /**
+   * The smoothing brush's surface index of a surface, built in the worker
+   * (../worker/surface-index.js; copies of the arrays go to it).
+   * @param {Float32Array} positions
+   * @param {Uint32Array} indices
+   * @returns {Promise<import('../worker/surface-index.js').SurfaceIndexParts>}
+   */
+  surfaceIndex(positions, indices) {
+    return this.request({ type: 'surface-index', positions: positions.slice(), indices: indices.slice() });
+  }
+
+  /**
+   * Sends a request of the connection; resolves to its reply's payload.
+   * @param {any} message
+   * @returns {Promise<any>}
+   */
+  request(message) {
+    return new Promise((resolve, reject) => {
+      const request = this.nextId++;
+      const sent = { ...message, request };
+      this.requests.set(request, { message: sent, resolve, reject });
+      this.post(sent);
+    });
+  }
+
+  /** Fails the pending requests that cannot be sent again (see `requests`). @param {string} message */
+  failRequests(message) {
+    for (const [request, { message: asked, reject }] of this.requests) {
+      if (transferables(asked).length === 0) continue;
+      this.requests.delete(request);
+      reject(new Error(message));
+    }
+  }
+
   start() {
+    this.generation += 1;
     /** @type {WorkerLike} */
     this.worker = this.startWorker();
     // Shared memory (cross-origin isolated pages, node) lets cancel reach the
@@ -121,16 +165,24 @@ export class Connection {
       event?.preventDefault?.();
       const message = `The Crestline worker failed (${event?.message || 'its script could not be loaded'}).`;
       for (const session of this.sessions.values()) session.fail({ message, kind: 'internal' });
+      this.failRequests(message);
     };
-    this.worker.postMessage({ type: 'init', cancelFlag: this.cancelFlag }, []);
+    this.worker.postMessage({ type: 'init', cancelFlag: this.cancelFlag, preload: this.preload }, []);
   }
 
   /** @param {Reply} message */
   receive(message) {
     if (message.type === 'ready') return;
-    if (message.type === 'described') {
-      this.describing.get(message.request)?.(message.table);
-      this.describing.delete(message.request);
+    if (
+      message.type === 'described' ||
+      message.type === 'surface-index' ||
+      (message.type === 'error' && message.id === undefined && message.request !== undefined)
+    ) {
+      const asked = this.requests.get(message.request ?? 0);
+      this.requests.delete(message.request ?? 0);
+      if (message.type === 'described') asked?.resolve(message.table);
+      else if (message.type === 'surface-index') asked?.resolve(message.parts);
+      else asked?.reject(new Error(message.message));
       return;
     }
     const session = message.id === undefined ? undefined : this.sessions.get(message.id);
@@ -154,7 +206,8 @@ export class Connection {
   restart(cause) {
     /** @type {WorkerLike} */ (this.worker).terminate();
     this.start();
-    for (const request of this.describing.keys()) this.post({ type: 'describe', request });
+    this.failRequests('The Crestline worker was restarted.');
+    for (const { message } of this.requests.values()) this.post(message);
     for (const session of this.sessions.values()) session.workerRestarted(session !== cause);
   }
 

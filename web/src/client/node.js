@@ -4,8 +4,8 @@ import { Worker } from 'node:worker_threads';
 import { Connection } from './client.js';
 
 /** Messages that get one final reply, and those replies. */
-const ASKS = new Set(['init', 'open', 'load', 'options', 'fields', 'export']);
-const ANSWERS = new Set(['ready', 'result', 'cancelled', 'lost', 'error', 'fields', 'export']);
+const ASKS = new Set(['init', 'open', 'load', 'options', 'fields', 'export', 'describe', 'surface-index']);
+const ANSWERS = new Set(['ready', 'result', 'cancelled', 'lost', 'error', 'fields', 'export', 'described', 'surface-index']);
 
 /**
  * Starts the worker. It keeps node running only while a reply is due, so a

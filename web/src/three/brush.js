@@ -3,10 +3,10 @@
 // 0 = frozen, >1 = stronger). A stroke ends on pointer-up; the app then
 // re-runs the pipeline from the smoothing stage with the new weights.
 // A pointer move picks through a BVH, measures the radius along the surface
-// (surface-index.js: a thin part's far side is not painted) and recolours
-// only the vertices it touched.
+// (../worker/surface-index.js: a thin part's far side is not painted) and
+// recolours only the vertices it touched.
 import { Raycaster, Vector2 } from 'three';
-import { SurfaceIndex } from './surface-index.js';
+import { SurfaceIndex } from '../worker/surface-index.js';
 
 const raycaster = new Raycaster();
 const pointer = new Vector2();
@@ -14,42 +14,19 @@ const pointer = new Vector2();
 /** The weights' colour map saturates at ±1 around the normal weight 1 (0 = frozen, 2 = twice). */
 export const WEIGHT_SCALE = 1;
 
-let nextBuild = 1;
-
-/** The SurfaceIndex arrays of the surface, built by `worker` (copies of the surface's arrays go to it). */
-function buildOffThread(worker, positions, indices) {
-  const id = nextBuild++;
-  return new Promise((resolve, reject) => {
-    const failed = (event) => {
-      worker.removeEventListener('message', done);
-      reject(new Error(`the brush's surface index could not be built (${event.message ?? 'worker error'})`));
-    };
-    function done({ data }) {
-      if (data.id !== id) return;
-      worker.removeEventListener('message', done);
-      worker.removeEventListener('error', failed);
-      resolve(data.parts);
-    }
-    worker.addEventListener('message', done);
-    worker.addEventListener('error', failed, { once: true });
-    const [p, i] = [positions.slice(), indices.slice()];
-    worker.postMessage({ id, positions: p, indices: i }, [p.buffer, i.buffer]);
-  });
-}
-
 export class WeightBrush {
   /**
-   * `startIndexWorker` starts a worker running surface-index-worker.js (the
-   * page's client/browser.js has it); without one (node) the index is built
+   * `buildIndex` builds the surface index's arrays elsewhere (the page: a
+   * worker, Connection.surfaceIndex); without it (node) the index is built
    * in place.
    * @param {import('./viewer.js').Viewer} viewer
-   * @param {{onStroke: (weights) => void, startIndexWorker?: () => Worker}} handlers
+   * @param {{onStroke: (weights) => void,
+   *          buildIndex?: (positions: Float32Array, indices: Uint32Array) => Promise<import('../worker/surface-index.js').SurfaceIndexParts>}} handlers
    */
-  constructor(viewer, { onStroke, startIndexWorker }) {
+  constructor(viewer, { onStroke, buildIndex }) {
     this.viewer = viewer;
     this.onStroke = onStroke;
-    this.startIndexWorker = startIndexWorker;
-    this.indexWorker = null;
+    this.buildIndex = buildIndex;
     this.enabled = false;
     this.radius = 0.05; // fraction of the bounding-sphere radius
     this.value = 0;
@@ -80,14 +57,16 @@ export class WeightBrush {
     if (this.index?.geometry === geometry) return this.index;
     const positions = geometry.getAttribute('position').array;
     const indices = geometry.index.array;
-    if (!this.startIndexWorker) return this.adopt(new SurfaceIndex(positions, indices), geometry);
+    if (!this.buildIndex) return this.adopt(new SurfaceIndex(positions, indices), geometry);
     if (this.building?.geometry !== geometry) {
-      // Started on first use and kept: builds run in turn; a stale one's result is dropped.
-      this.indexWorker ??= this.startIndexWorker();
-      const building = buildOffThread(this.indexWorker, positions, indices).then((parts) => {
-        if (this.building === building) this.adopt(new SurfaceIndex(positions, indices, parts), geometry, true);
-        return this.index;
-      });
+      // Builds run in turn; a stale one's result is dropped.
+      const building = this.buildIndex(positions, indices).then(
+        (parts) => {
+          if (this.building === building) this.adopt(new SurfaceIndex(positions, indices, parts), geometry, true);
+          return this.index;
+        },
+        (error) => Promise.reject(new Error(`the brush's surface index could not be built (${error.message})`)),
+      );
       this.building = Object.assign(building, { geometry });
     }
     return null;

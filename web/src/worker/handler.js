@@ -2,10 +2,12 @@
 // The worker's message handling as a plain object, independent of the
 // worker global and of how the WASM module is located, so node tests drive
 // it message by message; worker.js wires it to `self`. One WASM module
-// serves every session (viewer) of this worker, one Engine per session id.
+// serves every session (viewer) of this worker, one Engine per session id;
+// the smoothing brush's surface index (surface-index.js) needs none.
 // Messages: protocol.js.
 import { Engine, EngineError } from './engine.js';
 import { fetchFiles } from './fetch-files.js';
+import { SurfaceIndex } from './surface-index.js';
 
 /**
  * @typedef {import('./protocol.js').Request} Request
@@ -120,6 +122,10 @@ export function createHandler({ startModule, post, startDecoders }) {
         starting ??= startModule();
         return post({ type: 'described', request: message.request, table: Engine.describe(await starting) });
       }
+      case 'surface-index': {
+        const parts = SurfaceIndex.parts(new SurfaceIndex(message.positions, message.indices));
+        return post({ type: 'surface-index', request: message.request, parts });
+      }
       case 'export': {
         const engine = await engineFor(message.id);
         const file = engine.exportFile(message.format, message.view);
@@ -162,6 +168,7 @@ export function createHandler({ startModule, post, startDecoders }) {
     handle(message) {
       if (message.type === 'init') {
         cancelFlag = message.cancelFlag ?? null;
+        if (message.preload === false) return (queue = queue.then(() => post({ type: 'ready' })));
         starting ??= startModule();
         queue = queue.then(() =>
           /** @type {Promise<CrestlineModule>} */ (starting).then(

@@ -26,10 +26,12 @@
 
 /**
  * Page → worker.
- * @typedef {{type: 'init', cancelFlag?: Int32Array | null}} InitMessage
+ * @typedef {{type: 'init', cancelFlag?: Int32Array | null, preload?: boolean}} InitMessage
  *   cancelFlag (two Int32 over shared memory: cross-origin isolated pages,
  *   node): the page stores the job to cancel in [1], then its session id in
- *   [0]; the pipeline stops at its next progress report
+ *   [0]; the pipeline stops at its next progress report. preload (default
+ *   true): start the WASM module now; false for a worker that may never need
+ *   it (the brush's surface indices)
  * @typedef {{type: 'open', id: number, job: number, files?: NamedBytes[], url?: string,
  *            options: PipelineOptions}} OpenMessage
  *   read files (or fetch `url` and a .gltf's buffers) with the C++ readers, then run
@@ -50,8 +52,12 @@
  *   object, SVG of the view, GLB with the surface
  * @typedef {{type: 'dispose', id: number}} DisposeMessage
  * @typedef {{type: 'describe', request: number}} DescribeMessage  the parameter table
+ * @typedef {{type: 'surface-index', request: number, positions: Float32Array, indices: Uint32Array}} SurfaceIndexMessage
+ *   the smoothing brush's picking tree and vertex adjacency of a surface
+ *   (./surface-index.js; no WASM), asked of a second instance of this
+ *   worker so that it does not wait behind a running pipeline
  * @typedef {InitMessage | OpenMessage | LoadMessage | OptionsMessage | FieldsMessage | ExportMessage | DisposeMessage |
- *           DescribeMessage} Request
+ *           DescribeMessage | SurfaceIndexMessage} Request
  */
 
 /**
@@ -72,6 +78,8 @@
  * @typedef {{type: 'export', id: number, request: number, format: string, text?: string, bytes?: Uint8Array}} ExportReply
  *   text for every format but 'glb', which sends bytes
  * @typedef {{type: 'described', request: number, table: import('../client/parameters.js').Parameter[]}} DescribedReply
+ * @typedef {{type: 'surface-index', request: number, parts: import('./surface-index.js').SurfaceIndexParts}} SurfaceIndexReply
+ *   the arrays of the index (transferred): new SurfaceIndex(positions, indices, parts)
  * @typedef {{type: 'cancelled', id: number, job: number}} CancelledReply
  * @typedef {{type: 'lost', id: number, job: number}} LostReply
  *   the worker holds no mesh for this session (it was restarted): send it again
@@ -80,7 +88,7 @@
  *   named: the message already names the file; fatal: the WASM module is
  *   unusable or its heap full (trap, out of memory): the client restarts the worker
  * @typedef {ReadyReply | ProgressReply | LoadedReply | ResultReply | FieldsReply | ExportReply |
- *           CancelledReply | LostReply | ErrorReply | DescribedReply} Reply
+ *           CancelledReply | LostReply | ErrorReply | DescribedReply | SurfaceIndexReply} Reply
  */
 
 /** Pipeline stages in order (core stage_name()). */

@@ -3,8 +3,9 @@
 // dozen box tests instead of a test per triangle) and the vertex adjacency
 // for distances measured along the surface (Dijkstra over the edges, bounded
 // by the brush radius), so a brush does not paint through a thin part.
-// Built once per surface, lazily; in a browser off the main thread
-// (surface-index-worker.js sends the arrays back: SurfaceIndex.parts); no three.js objects.
+// Built once per surface, lazily; in a browser off the main thread, by a
+// second instance of the one worker (handler.js, 'surface-index': it sends
+// the arrays back, SurfaceIndex.parts); no three.js objects.
 
 const LEAF = 8; // triangles per leaf at most
 
@@ -105,6 +106,11 @@ class Heap {
   }
 }
 
+/**
+ * @typedef {{order: Uint32Array, bounds: Float32Array, first: Uint32Array, size: Uint32Array, nodes: number,
+ *            offsets: Uint32Array, neighbours: Uint32Array}} SurfaceIndexParts
+ */
+
 export class SurfaceIndex {
   /**
    * @param {Float32Array} positions xyz per vertex @param {Uint32Array} indices three per triangle
@@ -125,7 +131,11 @@ export class SurfaceIndex {
     this.heap = new Heap();
   }
 
-  /** What a copy of `index` needs besides the surface (typed arrays, and the node count). @param {SurfaceIndex} index */
+  /**
+   * What a copy of `index` needs besides the surface (typed arrays, and the node count).
+   * @param {SurfaceIndex} index
+   * @returns {SurfaceIndexParts}
+   */
   static parts({ order, bounds, first, size, nodes, offsets, neighbours }) {
     return { order, bounds, first, size, nodes, offsets, neighbours };
   }
