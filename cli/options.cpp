@@ -1,7 +1,11 @@
 #include "options.h"
 
+#include <CLI/App.hpp>
+#include <CLI/Config.hpp>
+#include <CLI/Formatter.hpp>
 #include <algorithm>
 #include <cctype>
+#include <map>
 
 namespace crestline::cli {
 namespace {
@@ -106,6 +110,35 @@ struct UsageFailure {
 const Parameter kThreads{"threads", "--threads", "run", ParameterKind::Integer, false,   0,      1024,
                          {},        "",          "",    Stage::Count,           nullptr, nullptr};
 
+ParameterValue checked(const Parameter& p, const std::string& text) {
+  try {
+    return parse_parameter(p, text);
+  } catch (const UsageError& e) {
+    fail(e.what());
+  }
+}
+
+/// CLI11's sentence for a parse error, in ours: the option or word it is
+/// about, then what is wrong with it.
+[[noreturn]] void fail_with(const CLI::ParseError& error, const CLI::App& app, const std::string& hint) {
+  if (dynamic_cast<const CLI::ExtrasError*>(&error)) {
+    const std::string word = app.remaining().empty() ? "" : app.remaining().front();
+    if (word.size() > 1 && word[0] == '-') fail("unknown option " + word + hint);
+    fail("unexpected argument \"" + word + "\"; give one input mesh" + hint);
+  }
+  const std::string what = error.what();
+  if (dynamic_cast<const CLI::ArgumentMismatch*>(&error)) {
+    // "stats was given a disallowed flag override": --stats=1
+    const std::string override = " was given a disallowed flag override";
+    if (const size_t at = what.find(override); at != std::string::npos)
+      fail("--" + what.substr(0, at) + " takes no value" + hint);
+    // "--smoothing-steps: 1 required TEXT missing"
+    if (const size_t colon = what.find(": "); colon != std::string::npos)
+      fail(what.substr(0, colon) + " needs a value" + hint);
+  }
+  fail(what + hint);
+}
+
 }  // namespace
 
 std::string help_text(const std::string& program) {
@@ -132,84 +165,48 @@ std::string help_text(const std::string& program) {
 ParseOutcome parse_arguments(const std::vector<std::string>& args, CliOptions& o, const std::string& program) {
   const std::string hint = " (see " + program + " --help).";
   try {
-    bool options_ended = false;
-    for (size_t i = 0; i < args.size(); ++i) {
-      const std::string& arg = args[i];
-      if (options_ended || arg.size() < 2 || arg[0] != '-') {
-        if (!o.input.empty()) fail("unexpected argument \"" + arg + "\"; give one input mesh" + hint);
-        o.input = arg;
-        continue;
-      }
-      if (arg == "--") {
-        options_ended = true;
-        continue;
-      }
-      // --flag=value or --flag value.
-      std::string name = arg, inline_value;
-      bool has_inline = false;
-      if (const size_t eq = arg.find('='); arg.rfind("--", 0) == 0 && eq != std::string::npos) {
-        name = arg.substr(0, eq);
-        inline_value = arg.substr(eq + 1);
-        has_inline = true;
-      }
-      auto value = [&]() -> std::string {
-        if (has_inline) return inline_value;
-        if (i + 1 >= args.size()) fail(name + " needs a value" + hint);
-        return args[++i];
-      };
-      auto no_value = [&] {
-        if (has_inline) fail(name + " takes no value" + hint);
-      };
-
-      const OwnOption* own = nullptr;
-      for (const OwnOption& candidate : kOwn)
-        if (name == candidate.name || name == candidate.short_name) own = &candidate;
-      if (own) {
-        switch (own->id) {
-          case Own::Help:
-            return {kExitOk, help_text(program)};
-          case Own::Output:
-            o.output = value();
-            break;
-          case Own::Weights:
-            o.weights = value();
-            break;
-          case Own::WithMesh:
-            no_value(), o.with_mesh = true;
-            break;
-          case Own::Stats:
-            no_value(), o.stats = true;
-            break;
-          case Own::RepairReport:
-            no_value(), o.repair_report = true;
-            break;
-          case Own::Threads:
-            try {
-              o.threads = static_cast<int>(parse_parameter(kThreads, value()).number);
-            } catch (const UsageError& e) {
-              fail(e.what());
-            }
-            break;
-          case Own::Quiet:
-            no_value(), o.quiet = true;
-            break;
-        }
-        continue;
-      }
-      const Parameter* p = find_parameter_by_flag(name);
-      if (!p) fail("unknown option " + name + hint);
-      if (p->kind == ParameterKind::Boolean && !has_inline) {
-        ParameterValue on;
-        on.number = 1;
-        p->set(o.settings, on);
-        continue;
-      }
-      try {
-        p->set(o.settings, parse_parameter(*p, value()));
-      } catch (const UsageError& e) {
-        fail(e.what());
-      }
+    // CLI11 splits the words; every value is then checked by the parameter
+    // table, so both builds refuse the same values with the same sentence.
+    CLI::App app;
+    app.set_help_flag();  // the help text comes from the table (help_text)
+    app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+    // The command's own options, named once in kOwn (which --help lists).
+    std::map<Own, std::string> own_words;
+    std::map<Own, CLI::Option*> own_given;
+    for (const OwnOption& own : kOwn) {
+      const std::string names = *own.short_name ? std::string(own.short_name) + "," + own.name : own.name;
+      own_given[own.id] =
+          *own.value ? app.add_option(names, own_words[own.id]) : app.add_flag(names)->disable_flag_override();
     }
+    app.add_option("INPUT", o.input);
+    // A table Boolean is on when given bare; "--silhouette=false" turns it off.
+    std::vector<std::string> words(parameters().size());
+    std::vector<CLI::Option*> given(parameters().size());
+    for (size_t i = 0; i < parameters().size(); ++i) {
+      const Parameter& p = parameters()[i];
+      given[i] = p.kind == ParameterKind::Boolean ? app.add_flag(std::string(p.flag) + "{true}", words[i])
+                                                  : app.add_option(p.flag, words[i]);
+    }
+    auto given_own = [&](Own id) { return own_given[id]->count() > 0; };
+    try {
+      // CLI11 takes the words last to first.
+      std::vector<std::string> reversed(args.rbegin(), args.rend());
+      app.parse(reversed);
+    } catch (const CLI::ParseError& error) {
+      if (given_own(Own::Help)) return {kExitOk, help_text(program)};
+      fail_with(error, app, hint);
+    }
+    if (given_own(Own::Help)) return {kExitOk, help_text(program)};
+    o.output = own_words[Own::Output];
+    o.weights = own_words[Own::Weights];
+    o.with_mesh = given_own(Own::WithMesh);
+    o.stats = given_own(Own::Stats);
+    o.repair_report = given_own(Own::RepairReport);
+    o.quiet = given_own(Own::Quiet);
+    if (given_own(Own::Threads)) o.threads = static_cast<int>(checked(kThreads, own_words[Own::Threads]).number);
+    for (size_t i = 0; i < parameters().size(); ++i)
+      if (given[i]->count() > 0) parameters()[i].set(o.settings, checked(parameters()[i], words[i]));
+
     if (o.input.empty() || o.output.empty()) fail("an INPUT mesh and -o OUTPUT are required" + hint);
 
     const std::string ext = lowercase_extension(o.output);

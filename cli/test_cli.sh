@@ -184,6 +184,18 @@ expect 2 "missing value" -- "$work/wave.obj" -o "$work/out.obj" --smoothing-step
 one_line_naming "missing value" "--smoothing-steps needs a value"
 expect 2 "a flag with a wrong value" -- "$work/wave.obj" -o "$work/out.svg" --silhouette=maybe
 one_line_naming "a flag with a wrong value" "--silhouette must be true or false"
+expect 2 "a command flag with a wrong value" -- "$work/wave.obj" -o "$work/out.obj" --stats=maybe
+one_line_naming "a command flag with a wrong value" "--stats takes no value"
+absent "a command flag with a wrong value" "$work/out.obj"
+expect 2 "a second input" -- "$work/wave.obj" "$work/wave.obj" -o "$work/out.obj"
+one_line_naming "a second input" "unexpected argument"
+expect 2 "-o without a value" -- "$work/wave.obj" -o
+one_line_naming "-o without a value" "--output needs a value"
+# "--" ends the options: a file whose name starts with a dash is an input.
+cp "$work/wave.obj" "$work/-dash.obj"
+command_path=$(cd "$(dirname "$crestline")" && pwd)/$(basename "$crestline")
+(cd "$work" && "$command_path" -q -o dash-out.obj -- -dash.obj) || fail "an input after -- was not read"
+[ -s "$work/dash-out.obj" ] || fail "an input after --: no output"
 # The bounds themselves are accepted, and "auto" where a parameter has it.
 expect 0 "range ends" -- "$work/wave.obj" -o "$work/ends.obj" --quiet --smoothing-steps 0 --presmooth-steps 0 \
   --fairing-iterations 1000 --boundary-rings 0 --threshold auto --presmooth-time-step 10

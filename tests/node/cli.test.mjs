@@ -115,6 +115,7 @@ const USAGE = [
   ['--smoothing-steps'],
   ['--threads', '-1'],
   ['--threads', '2000'],
+  ['--weights'],
 ];
 
 test('usage errors: the same exit code 2 and sentence in both builds', { skip: noNative }, async () => {
