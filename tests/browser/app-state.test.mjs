@@ -63,6 +63,9 @@ const save = (format) =>
 
 let shownA, objA;
 
+/** How many workers the page's connection started (1: never restarted). */
+const workerGeneration = () => page.evaluate(() => window.crestline.client.connection.generation);
+
 test('mesh A loaded: its header, stats, picture and exports agree', async () => {
   const result = await nextResult(page, () => dropFiles(page, [A]));
   assert.equal(result.name, 'box.obj');
@@ -80,8 +83,8 @@ test('mesh A loaded: its header, stats, picture and exports agree', async () => 
   assert.match(objA, /^o ridges$/m);
 });
 
-/** Drops B and cancels when `hook` ('read' | 'loaded' | a pipeline stage) is reached. */
-async function dropAndCancelAt(hook) {
+/** Drops `file` (B) and cancels when `hook` ('read' | 'loaded' | a pipeline stage) is reached. */
+async function dropAndCancelAt(hook, file = B) {
   const count = await page.evaluate(() => window.crestline.results.length);
   await page.evaluate((hook) => {
     const { hooks } = window.crestline;
@@ -92,13 +95,14 @@ async function dropAndCancelAt(hook) {
         state: document.body.dataset.state,
         header: document.getElementById('file').firstChild.textContent,
         label: document.getElementById('view-label').textContent,
+        at: performance.now(),
       };
       document.getElementById('cancel').click();
     };
     if (hook === 'loaded') hooks.loaded = cancelNow;
     else hooks.progress = (stage) => stage === hook && cancelNow();
   }, hook);
-  await dropFiles(page, [B]);
+  await dropFiles(page, [file]);
   await page.waitForFunction(() => window.beforeCancel, null, { timeout: 30000 });
   const before = await page.evaluate(() => window.beforeCancel);
   await page.evaluate(() => delete window.beforeCancel);
@@ -161,6 +165,7 @@ for (const hook of ['loaded', ...STAGES]) {
     );
     assert.equal(await page.textContent('#notes'), 'Cancelled: waves.obj has no lines yet; change a setting to compute them.');
     assert.equal(await page.evaluate(() => window.crestline.results.length), count, 'no result of B');
+    assert.equal(await workerGeneration(), 1, 'the pipeline saw the cancel flag: the worker was not restarted');
     // Exports say plainly that there are no lines (A is gone).
     for (const format of ['obj', 'svg']) {
       assert.deepEqual(await save(format), {
@@ -285,6 +290,38 @@ test('an export refused while lines are recomputed stays on screen until the nex
   assert.equal(saved.fileName, 'waves-lines.svg');
   assert.equal(await page.textContent('#error'), '');
   assert.equal(await page.evaluate(() => document.body.dataset.state), 'ready');
+});
+
+// The core checks the flag inside the smoothing solver's iterations (issue 15, item 7): a cancel
+// there stops the stage itself, and the same worker computes the mesh's lines afterwards.
+test('Cancel inside the smoothing of a 180,000-triangle mesh: it stops there, without a worker restart, and the same worker computes again', async () => {
+  // The most smoothing steps: about 3 s of smoothing, so the Cancel, pressed when the page sees the
+  // stage begin (it may be busy drawing the new surface then), lands inside it.
+  await nextResult(page, () => page.evaluate(() => window.crestline.update({ smoothingSteps: 50 })));
+  await page.evaluate(() => {
+    const { connection } = window.crestline.client;
+    const receive = connection.receive.bind(connection);
+    window.replies = [];
+    connection.receive = (message) => {
+      window.replies.push({ type: message.type, stage: message.stage, at: performance.now() });
+      receive(message);
+    };
+  });
+  const C = { name: 'ripples.obj', text: objText(sineHeightField({ n: 300, wavelength: 0.5 })) };
+  const { before } = await dropAndCancelAt('smoothing', C);
+  assert.match(before.header, /^ripples\.obj: 180,000 triangles, computing its lines/);
+  await page.waitForFunction(() => document.body.dataset.state === 'ready', null, { timeout: 30000 });
+  const replies = await page.evaluate(() => window.replies);
+  const cancelled = replies.findIndex((r) => r.type === 'cancelled');
+  assert.ok(cancelled > 0, `the worker replied 'cancelled': ${replies.map((r) => r.type).join(' ')}`);
+  const stages = replies.slice(0, cancelled).filter((r) => r.type === 'progress');
+  assert.equal(stages.at(-1).stage, 'smoothing', 'the last progress before the stop is the smoothing stage (no later stage began)');
+  assert.equal(await workerGeneration(), 1, 'the worker was not restarted');
+  console.log(`# cancel inside smoothing: 'cancelled' came ${(replies[cancelled].at - before.at).toFixed(0)} ms after the click`);
+  const result = await nextResult(page, () => page.evaluate(() => window.crestline.update({ smoothingSteps: 3 })));
+  assert.equal(result.name, 'ripples.obj');
+  assert.ok(result.ran.includes('smoothing') && result.lineCount > 0, `ran ${result.ran}, ${result.lineCount} lines`);
+  assert.equal(await workerGeneration(), 1, 'computed in the same worker');
 });
 
 test('no uncaught errors in the page', () => {
