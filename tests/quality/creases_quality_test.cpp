@@ -34,27 +34,19 @@ TEST_CASE("the crease metrics score the truth itself as perfect", "[quality][cre
   }
 }
 
-// Measured (crestline_crease_report, seed 1): at σ = 0 every case is exact;
-// at σ = 0.1 coverage ≥ 0.969, precision 1.000, fragments ≤ 1.67, every
-// sign right; at σ = 0.25
-// precision ≥ 0.99 but coverage falls to 0.40–0.96: the 45° chamfer and the
-// 62° concave edge are lost in the noise (see README).
-TEST_CASE("creases of the CAD-like surfaces: targets at σ = 0, measured limits at σ = 0.1", "[quality][creases]") {
+// Measured (crestline_crease_report, seeds 1–3): at σ = 0 and σ = 0.1 every
+// case meets issue 16's targets (at σ = 0.1 since gaps are bridged, 20 of 27
+// before); at σ = 0.25 precision ≥ 0.98 but coverage 0.47–1.0: the 45°
+// chamfer is lost in the noise (see README).
+TEST_CASE("creases of the CAD-like surfaces: targets at σ = 0 and 0.1", "[quality][creases]") {
   for (const std::string& name : cad_surface_names())
     for (Triangulation t : {Triangulation::Uniform, Triangulation::Alternating, Triangulation::Irregular})
       for (double noise : {0.0, 0.1}) {
         const CreaseScore s = run_crease_case(name, t, noise);
         INFO(name << " (" << triangulation_name(t) << "), noise " << noise << ": coverage " << s.coverage
                   << ", precision " << s.precision << ", fragments " << s.fragments << ", wrong sign " << s.wrong_sign);
-        if (noise == 0) {
-          CHECK(crease_target_failures(s) == "");
-          CHECK(s.fragments == 1.0);
-        } else {
-          CHECK(s.coverage >= 0.95);
-          CHECK(s.precision >= 0.95);
-          CHECK(s.fragments <= 1.7);
-          CHECK(s.wrong_sign == 0);
-        }
+        CHECK(crease_target_failures(s) == "");
+        if (noise == 0) CHECK(s.fragments == 1.0);
       }
 }
 
@@ -63,14 +55,20 @@ TEST_CASE("creases at σ = 0.25: what is found is right", "[quality][creases]") 
     const CreaseScore s = run_crease_case(name, Triangulation::Irregular, 0.25);
     INFO(name << ": coverage " << s.coverage << ", precision " << s.precision);
     CHECK(s.precision >= 0.95);
-    if (name == "filleted-box") CHECK(s.coverage >= 0.94);  // its creases are 90°
+    // Measured (seed 1, irregular): 0.999, 0.54, 0.83 with bridging; 0.96, 0.41, 0.72 without.
+    if (name == "filleted-box") CHECK(s.coverage >= 0.98);  // its creases are 90°
+    if (name == "chamfered-cylinder") CHECK(s.coverage >= 0.5);
+    if (name == "notched-prism") CHECK(s.coverage >= 0.8);
   }
 }
 
+// Every mesh kind up to σ = 0.1; at 0.25 the anisotropic ones are left out:
+// 4 of their 12 cases get false creases (11 lines; 9 without bridging).
 TEST_CASE("the smooth surfaces of the ridge/valley harness have no creases", "[quality][creases]") {
   for (const std::string& name : surface_names())
-    for (Triangulation t : {Triangulation::Uniform, Triangulation::Alternating, Triangulation::Irregular})
+    for (Triangulation t : triangulations())
       for (double noise : {0.0, 0.1, 0.25}) {
+        if (noise > 0.1 && (t == Triangulation::AnisoAlong || t == Triangulation::AnisoAcross)) continue;
         INFO(name << " (" << triangulation_name(t) << "), noise " << noise);
         CHECK(smooth_surface_creases(name, t, noise).lines.empty());
       }

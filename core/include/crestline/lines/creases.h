@@ -40,6 +40,14 @@ struct CreaseMeasureOptions {
 /// the smooth lines.
 constexpr double kBoundaryNoiseLimit = 0.15;
 
+/// Gaps in creases are bridged along edges of strong one-sided support
+/// (creases.cpp) only on surfaces no noisier than this: at normal noise
+/// σ = 0.25 mean edges (level ~0.21) it raised the coverage of the CAD-like
+/// surfaces of tests/quality from 0.67 to 0.80 (mean, 3 seeds) and met every
+/// target at σ = 0.1 (27 of 27 cases, 20 before); at σ = 0.5 (level
+/// 0.31–0.37) it joined false pieces on smooth surfaces into lines.
+constexpr double kBridgeNoiseLimit = 0.25;
+
 /// Normal filter steps on a noisy surface (creases.cpp says why 12).
 constexpr int kNoisyCreaseFilterSteps = 12;
 
@@ -62,6 +70,9 @@ struct CreaseAngles {
   /// The median |angle| over (every fourth) interior edge, degrees: how much
   /// a smooth edge of this mesh turns.
   double median = 0;
+  /// surface_noise_level of the mesh (not measured, 0, when the filter steps
+  /// were given as 0): bridging (creases.cpp) only up to kBridgeNoiseLimit.
+  double noise_level = 0;
 };
 
 /// The automatic crease angle (degrees): kDefaultCreaseAngle, raised to a
