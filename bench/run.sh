@@ -4,8 +4,8 @@
 # the dragon dropped on the built app, web/dist). Results:
 # build-bench/bench/{native,wasm,browser}.json.
 #   bash bench/run.sh            all meshes, 5 runs native, 3 in WASM, 1 thread;
-#                                then the bunny and the 1.1M mesh again on 2
-#                                threads, and on every core where there are more;
+#                                then every mesh again on 2 threads, and on
+#                                every core where there are more;
 #                                the browser row: the dragon, 3 runs
 #   bash bench/run.sh --smoke    the bunny once each, in the browser too (< 1 min
 #                                once built); for CI
@@ -34,11 +34,11 @@ trap 'rm -rf "$soups"' EXIT
 "$out/crestline_bench" --export "$soups" --json "$out/native.json" "${args[@]}"
 if [[ $smoke == 0 ]]; then
   echo
-  "$out/crestline_bench" --threads 2 --only bunny,bunny-sub2 --json "$out/native-2threads.json"
+  "$out/crestline_bench" "${args[@]}" --threads 2 --json "$out/native-2threads.json"
   cores=$(nproc)
   if ((cores > 2)); then
     echo
-    "$out/crestline_bench" --threads "$cores" --only bunny,bunny-sub2 --json "$out/native-allthreads.json"
+    "$out/crestline_bench" "${args[@]}" --threads "$cores" --json "$out/native-allthreads.json"
   fi
 fi
 
