@@ -4,27 +4,19 @@
 // reach through to the bottom face. A move recolours only the vertices it
 // touched. Needs web/dist (web/build.sh). Its speed: bench/brush.mjs.
 import assert from 'node:assert/strict';
-import { after, before, test } from 'node:test';
-import { dropFiles, nextResult, openApp, sampleReady } from './app-page.mjs';
+import { test } from 'node:test';
+import { dropFiles, nextResult, useApp } from './app-page.mjs';
 import { boxObj } from './box-obj.mjs';
 
-let app, page;
-
-before(async () => {
-  app = await openApp({}, { viewport: { width: 1000, height: 750 } });
-  ({ page } = app);
-  await sampleReady(page);
-});
-
-after(() => app?.close());
+const app = useApp({}, { viewport: { width: 1000, height: 750 } });
 
 test('a thin slab: the brush paints the top face only, and only the touched colours are sent', async () => {
   // 2 × 2 × 0.05, 40×40 quads a face: the top face at z = +0.025 faces the front view.
   const slab = boxObj({ size: [2, 2, 0.05], n: 40 });
-  const result = await nextResult(page, () => dropFiles(page, [{ name: 'slab.obj', text: slab }]));
+  const result = await nextResult(app.page, () => dropFiles(app.page, [{ name: 'slab.obj', text: slab }]));
   assert.equal(result.name, 'slab.obj');
   // Switching the brush on starts the surface index in a worker: the page does not wait for it.
-  const switchedOn = await page.evaluate(async () => {
+  const switchedOn = await app.page.evaluate(async () => {
     const { brush, update } = window.crestline;
     const started = performance.now();
     update({ brush: true, brushRadius: 0.2, brushValue: 0 });
@@ -41,37 +33,37 @@ test('a thin slab: the brush paints the top face only, and only the touched colo
   // 2 × 41² vertices… the slab's 6 faces: 6 × 2 × 40² triangles, each adds 6 neighbour entries.
   assert.equal(switchedOn.adjacency, 6 * 6 * 2 * 40 * 40);
   assert.ok(switchedOn.nodes >= (6 * 2 * 40 * 40) / 8, `${switchedOn.nodes} BVH nodes`);
-  const canvas = await page.locator('#view canvas').boundingBox();
+  const canvas = await app.page.locator('#view canvas').boundingBox();
   // The screen point of the slab's centre (the orbit centre: the free area's centre).
-  const centre = await page.evaluate(() => {
+  const centre = await app.page.evaluate(() => {
     const { viewer } = window.crestline;
     const p = viewer.controls.target.clone().project(viewer.camera);
     const r = viewer.renderer.domElement.getBoundingClientRect();
     return [r.left + ((p.x + 1) / 2) * r.width, r.top + ((1 - p.y) / 2) * r.height];
   });
   assert.ok(centre[0] > canvas.x && centre[0] < canvas.x + canvas.width);
-  const count = await page.evaluate(() => window.crestline.results.length);
+  const count = await app.page.evaluate(() => window.crestline.results.length);
   // Record what each move sends of the colour buffer.
-  await page.evaluate(() => {
+  await app.page.evaluate(() => {
     const attribute = window.crestline.viewer.surface.mesh.geometry.getAttribute('color');
     const add = attribute.addUpdateRange.bind(attribute);
     window.colourUpload = { attribute, ranges: [] };
     attribute.addUpdateRange = (start, count) => (window.colourUpload.ranges.push(count), add(start, count));
   });
-  await page.mouse.move(centre[0], centre[1]);
-  await page.mouse.down();
-  await page.mouse.move(centre[0] + 20, centre[1] + 10, { steps: 3 });
-  const colours = await page.evaluate(() => {
+  await app.page.mouse.move(centre[0], centre[1]);
+  await app.page.mouse.down();
+  await app.page.mouse.move(centre[0] + 20, centre[1] + 10, { steps: 3 });
+  const colours = await app.page.evaluate(() => {
     const { attribute, ranges } = window.colourUpload;
     const now = window.crestline.viewer.surface.mesh.geometry.getAttribute('color');
     return { same: now === attribute, ranges, length: attribute.array.length };
   });
-  await page.mouse.up();
-  await page.waitForFunction((n) => window.crestline.results.length > n, count, { timeout: 30000 });
+  await app.page.mouse.up();
+  await app.page.waitForFunction((n) => window.crestline.results.length > n, count, { timeout: 30000 });
   // One recompute per stroke, not per move: no second result follows.
-  await page.waitForTimeout(500);
-  assert.equal(await page.evaluate(() => window.crestline.results.length), count + 1, 'one result for a stroke of 4 moves');
-  const painted = await page.evaluate(() => {
+  await app.page.waitForTimeout(500);
+  assert.equal(await app.page.evaluate(() => window.crestline.results.length), count + 1, 'one result for a stroke of 4 moves');
+  const painted = await app.page.evaluate(() => {
     const { viewer, brush } = window.crestline;
     const positions = viewer.surface.mesh.geometry.getAttribute('position').array;
     const radius = brush.radius * viewer.surface.mesh.geometry.boundingSphere.radius;

@@ -7,26 +7,18 @@ import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
 import { existsSync, mkdirSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { after, before, test } from 'node:test';
+import { test } from 'node:test';
 import { boxObj } from './box-obj.mjs';
-import { dropFiles, nextResult as waitForResult, openApp, sampleReady } from './app-page.mjs';
+import { dropFiles, nextResult as waitForResult, useApp } from './app-page.mjs';
 import { MESHES, NATIVE_CLI, ROOT, haveNativeCli } from '../node/helpers.mjs';
 
 const OUT = join(ROOT, 'test-results');
 const FANDISK = join(MESHES, 'cad/fandisk.obj');
 const noFandisk = !existsSync(FANDISK) && `SKIPPED: ${FANDISK} is absent`;
 const noCli = !haveNativeCli && `SKIPPED: ${NATIVE_CLI} is not built`;
-let app, page;
+const app = useApp({ '/meshes/': MESHES });
 
-before(async () => {
-  app = await openApp({ '/meshes/': MESHES });
-  ({ page } = app);
-  await sampleReady(page);
-});
-
-after(() => app?.close());
-
-const nextResult = (action) => waitForResult(page, action);
+const nextResult = (action) => waitForResult(app.page, action);
 
 /** The native CLI's --stats for a file, with extra flags. */
 function nativeStats(file, flags = []) {
@@ -36,7 +28,7 @@ function nativeStats(file, flags = []) {
 
 /** What the page shows of the creases: the stats line's count, the layer, the legend. */
 function shownCreases() {
-  return page.evaluate(() => {
+  return app.page.evaluate(() => {
     const { viewer } = window.crestline;
     const stats = document.getElementById('stats').textContent;
     const legend = document.getElementById('legend-crease');
@@ -54,7 +46,7 @@ function shownCreases() {
 
 test('a generated box: its 12 convex edges as creases, as many as the native CLI finds', async () => {
   const text = boxObj();
-  const result = await nextResult(() => dropFiles(page, [{ name: 'box.obj', text }]));
+  const result = await nextResult(() => dropFiles(app.page, [{ name: 'box.obj', text }]));
   assert.ok(result.ran.includes('creases'), `ran ${result.ran}`);
   const shown = await shownCreases();
   console.log(`box: ${result.stats.creases} creases, ${shown.types.length} drawn, segments ${shown.segments}`);
@@ -74,7 +66,7 @@ test('a generated box: its 12 convex edges as creases, as many as the native CLI
 });
 
 test('fandisk: the crease count shown matches the native CLI; the toggle hides them; the legend shows them', { skip: noFandisk }, async () => {
-  const result = await nextResult(() => dropFiles(page, ['cad/fandisk.obj']));
+  const result = await nextResult(() => dropFiles(app.page, ['cad/fandisk.obj']));
   const shown = await shownCreases();
   console.log(`fandisk: ${result.stats.creases} creases (angle ${result.stats.creaseAngle}°), convex/concave segments ${shown.segments}`);
   assert.ok(result.stats.creases > 10, 'a CAD part has many creases');
@@ -86,28 +78,28 @@ test('fandisk: the crease count shown matches the native CLI; the toggle hides t
   else assert.equal(result.stats.creases, nativeStats(FANDISK).creases, 'crease count: page = native CLI');
 
   // The legend: an entry in the crease colour and its concave shade.
-  const params = await page.evaluate(() => window.crestline.params);
+  const params = await app.page.evaluate(() => window.crestline.params);
   assert.ok(shown.legendShown, 'the legend has a creases entry');
   assert.equal(shown.legendOff, false);
   assert.match(shown.swatch, /linear-gradient/);
 
   // The toggle hides both kinds and strikes the legend entry through.
-  await page.evaluate(() => window.crestline.update({ showCreases: false }));
+  await app.page.evaluate(() => window.crestline.update({ showCreases: false }));
   let hidden = await shownCreases();
   assert.deepEqual(hidden.visible, [false, false]);
   assert.equal(hidden.legendOff, true);
-  await page.evaluate(() => window.crestline.update({ showCreases: true, creaseColor: '#00aa44' }));
+  await app.page.evaluate(() => window.crestline.update({ showCreases: true, creaseColor: '#00aa44' }));
   hidden = await shownCreases();
   assert.deepEqual(hidden.visible, [true, true]);
-  const colours = await page.evaluate(() => window.crestline.viewer.creases.objects.map((o) => `#${o.material.color.getHexString()}`));
+  const colours = await app.page.evaluate(() => window.crestline.viewer.creases.objects.map((o) => `#${o.material.color.getHexString()}`));
   assert.equal(colours[0], '#00aa44', 'convex creases in the chosen colour');
   assert.notEqual(colours[1], colours[0], 'concave creases in another shade');
-  await page.evaluate((c) => window.crestline.update({ creaseColor: c }), params.creaseColor);
+  await app.page.evaluate((c) => window.crestline.update({ creaseColor: c }), params.creaseColor);
 
   // The crease angle is a selection: only the creases stage runs, and the
   // count follows the CLI at that angle.
   const angle = 60;
-  const steeper = await nextResult(() => page.evaluate((a) => window.crestline.update({ autoCreaseAngle: false, creaseAngle: a }), angle));
+  const steeper = await nextResult(() => app.page.evaluate((a) => window.crestline.update({ autoCreaseAngle: false, creaseAngle: a }), angle));
   assert.deepEqual(steeper.ran, ['creases']);
   assert.ok(
     steeper.stats.creases !== result.stats.creases || steeper.stats.creaseLength < result.stats.creaseLength,
@@ -115,5 +107,5 @@ test('fandisk: the crease count shown matches the native CLI; the toggle hides t
   );
   assert.equal((await shownCreases()).statsCount, steeper.stats.creases);
   if (!noCli) assert.equal(steeper.stats.creases, nativeStats(FANDISK, ['--crease-angle', String(angle)]).creases);
-  await nextResult(() => page.evaluate(() => window.crestline.update({ autoCreaseAngle: true })));
+  await nextResult(() => app.page.evaluate(() => window.crestline.update({ autoCreaseAngle: true })));
 });

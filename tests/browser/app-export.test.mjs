@@ -5,33 +5,25 @@
 // node draws for the same camera and options. Needs web/dist (web/build.sh).
 import assert from 'node:assert/strict';
 import { readFile } from 'node:fs/promises';
-import { after, before, test } from 'node:test';
+import { test } from 'node:test';
 import { loadCrestline } from '../../wasm/node.mjs';
 import { boxObj } from './box-obj.mjs';
-import { dropFiles, nextResult, openApp, sampleReady } from './app-page.mjs';
+import { dropFiles, nextResult, useApp } from './app-page.mjs';
 
-let app, page;
-
-before(async () => {
-  app = await openApp({}, { acceptDownloads: true });
-  ({ page } = app);
-  await sampleReady(page);
-});
-
-after(() => app?.close());
+const app = useApp({}, { acceptDownloads: true });
 
 /** Clicks the panel's export button `label`; returns {name, bytes} of the download. */
 /** The panel's Export folder starts closed: opened as a user would, by its title. */
 async function openExportFolder() {
-  const title = page.locator('.lil-gui .lil-title', { hasText: /^Export$/ });
-  if (await page.evaluate(() => window.crestline.gui.folders.find((f) => f._title === 'Export')._closed)) await title.click();
+  const title = app.page.locator('.lil-gui .lil-title', { hasText: /^Export$/ });
+  if (await app.page.evaluate(() => window.crestline.gui.folders.find((f) => f._title === 'Export')._closed)) await title.click();
 }
 
 async function exported(label) {
   await openExportFolder();
-  const [download] = await Promise.all([page.waitForEvent('download', { timeout: 60000 }), page.getByRole('button', { name: label }).click()]);
+  const [download] = await Promise.all([app.page.waitForEvent('download', { timeout: 60000 }), app.page.getByRole('button', { name: label }).click()]);
   const bytes = await readFile(await download.path());
-  const error = await page.textContent('#error');
+  const error = await app.page.textContent('#error');
   assert.equal(error, '', `the page shows an error: ${error}`);
   return { name: download.suggestedFilename(), bytes };
 }
@@ -40,7 +32,7 @@ test('SVG: the visible lines of the current view, with a viewBox', async () => {
   const { name, bytes } = await exported('SVG (visible lines)');
   assert.equal(name, 'bunny-lines.svg');
   const svg = bytes.toString('utf8');
-  const css = await page.evaluate(() => {
+  const css = await app.page.evaluate(() => {
     const { width, height } = window.crestline.viewer.renderer.domElement.getBoundingClientRect();
     return `${Math.round(width)}.00 ${Math.round(height)}.00`;
   });
@@ -51,8 +43,8 @@ test('SVG: the visible lines of the current view, with a viewBox', async () => {
 
 test('PNG at the chosen resolution (2× the canvas)', async () => {
   await openExportFolder();
-  await page.locator('.lil-controller', { hasText: 'PNG resolution' }).locator('select').selectOption({ label: '2× canvas' });
-  const css = await page.evaluate(() => {
+  await app.page.locator('.lil-controller', { hasText: 'PNG resolution' }).locator('select').selectOption({ label: '2× canvas' });
+  const css = await app.page.evaluate(() => {
     const { width, height } = window.crestline.viewer.renderer.domElement.getBoundingClientRect();
     return { width: Math.round(width), height: Math.round(height) };
   });
@@ -75,7 +67,7 @@ test('JSON: lines and stats', async () => {
   assert.equal(name, 'bunny-lines.json');
   const json = JSON.parse(bytes.toString('utf8'));
   assert.ok(json.ridges && json.valleys && json.stats, `keys: ${Object.keys(json)}`);
-  const result = await page.evaluate(() => window.crestline.lastResult);
+  const result = await app.page.evaluate(() => window.crestline.lastResult);
   assert.equal(json.stats.ridges, result.stats.ridges, 'the lines shown');
 });
 
@@ -90,10 +82,10 @@ test('GLB: mesh and lines', async () => {
 
 test('a box seen obliquely: SVG (creases, back edges hidden) and GLB equal the core writers in node for the same camera', async () => {
   const text = boxObj();
-  const result = await nextResult(page, () => dropFiles(page, [{ name: 'box.obj', text }]));
+  const result = await nextResult(app.page, () => dropFiles(app.page, [{ name: 'box.obj', text }]));
   assert.equal(result.stats.creases, 12);
   // Look from the (+x, +y, +z) octant and record what the page asks the worker for.
-  const options = await page.evaluate(() => {
+  const options = await app.page.evaluate(() => {
     const { viewer, client } = window.crestline;
     // The whole canvas, centred (the page frames into the part its panels leave free).
     viewer.covers = () => [];
@@ -107,7 +99,7 @@ test('a box seen obliquely: SVG (creases, back edges hidden) and GLB equal the c
   });
   const svg = (await exported('SVG (visible lines)')).bytes.toString('utf8');
   const glb = (await exported('GLB (mesh + lines)')).bytes;
-  const requested = await page.evaluate(() => window.requested);
+  const requested = await app.page.evaluate(() => window.requested);
   assert.deepEqual(
     requested.map((r) => r.format),
     ['svg', 'glb'],
@@ -135,7 +127,7 @@ test('a box seen obliquely: SVG (creases, back edges hidden) and GLB equal the c
     'inside the frame',
   );
   const drawn = paths.reduce((sum, path) => sum + pathLength(path), 0);
-  const all = await page.evaluate(() => window.crestline.lastResult.stats.creaseLength);
+  const all = await app.page.evaluate(() => window.crestline.lastResult.stats.creaseLength);
   console.log(
     `box: ${paths.length} crease paths, ${drawn.toFixed(0)} px drawn; crease length ${all.toFixed(2)}; ${paths.map(pathLength).map((x) => x.toFixed(0))}`,
   );

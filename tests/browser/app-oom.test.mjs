@@ -12,7 +12,7 @@ import { mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { after, before, test } from 'node:test';
-import { dropFiles, nextResult, openApp, sampleReady } from './app-page.mjs';
+import { dropFiles, nextResult, useApp } from './app-page.mjs';
 import { glbFromSoup } from './widget-glb.mjs';
 import { sineHeightField } from '../node/helpers.mjs';
 
@@ -21,28 +21,21 @@ const ROWS = 4;
 const COLUMNS = 4;
 const TRIANGLES = 2 * TILE * TILE * ROWS * COLUMNS; // 12,024,608
 
-let app, page, pages;
+const pages = mkdtempSync(join(tmpdir(), 'crestline-oom-'));
 
-before(async () => {
-  pages = mkdtempSync(join(tmpdir(), 'crestline-oom-'));
+before(() => {
   // Tiles 4 wide, half a unit apart: they do not weld into one surface.
   const translations = Array.from({ length: ROWS * COLUMNS }, (_, i) => [4.5 * (i % COLUMNS), 4.5 * Math.floor(i / COLUMNS), 0]);
   writeFileSync(join(pages, 'tiles.glb'), glbFromSoup(sineHeightField({ n: TILE }), { translations }));
   writeFileSync(join(pages, 'sine.glb'), glbFromSoup(sineHeightField({ n: 40 })));
-  app = await openApp({ '/pages/': pages });
-  ({ page } = app);
-  await sampleReady(page);
 });
-
-after(async () => {
-  await app?.close();
-  if (pages) rmSync(pages, { recursive: true, force: true });
-});
+const app = useApp({ '/pages/': pages });
+after(() => rmSync(pages, { recursive: true, force: true }));
 
 test('out of WASM memory: one sentence naming the file, then the next file computes', async () => {
   const sentence = `tiles.glb: the browser ran out of memory for a mesh of ${TRIANGLES.toLocaleString('en-US')} triangles (a page has at most 2 GB); the command-line tool has no such limit.`;
   const shown = () =>
-    page.evaluate(() => ({
+    app.page.evaluate(() => ({
       state: document.body.dataset.state,
       error: document.getElementById('error').textContent,
       errorHidden: document.getElementById('error').hidden,
@@ -51,20 +44,20 @@ test('out of WASM memory: one sentence naming the file, then the next file compu
     }));
   const outOfMemory = { state: 'error', error: sentence, errorHidden: false, progressHidden: true, canvas: true };
   const started = Date.now();
-  await dropFiles(page, [{ name: 'tiles.glb', url: '/pages/tiles.glb' }]);
-  await page.waitForFunction(() => document.body.dataset.state === 'error', null, { timeout: 120000 });
+  await dropFiles(app.page, [{ name: 'tiles.glb', url: '/pages/tiles.glb' }]);
+  await app.page.waitForFunction(() => document.body.dataset.state === 'error', null, { timeout: 120000 });
   console.log(`# ${TRIANGLES} triangles: out of memory reported after ${Date.now() - started} ms`);
   assert.deepEqual(await shown(), outOfMemory);
 
   // The file never replaced the bunny, which is still the page's (header
   // and picture); the worker was restarted, so a changed parameter sends
   // the bunny again (not "no mesh is loaded"), and its result clears the error.
-  assert.match(await page.textContent('#file'), /^bunny \(built-in sample\): 3,674 triangles/);
-  const bunny = await nextResult(page, () => page.evaluate(() => window.crestline.update({ smoothingSteps: 2 })));
+  assert.match(await app.page.textContent('#file'), /^bunny \(built-in sample\): 3,674 triangles/);
+  const bunny = await nextResult(app.page, () => app.page.evaluate(() => window.crestline.update({ smoothingSteps: 2 })));
   assert.match(bunny.name, /^bunny/);
   assert.deepEqual(await shown(), { ...outOfMemory, state: 'ready', error: '', errorHidden: true });
 
-  const result = await nextResult(page, () => dropFiles(page, [{ name: 'sine.glb', url: '/pages/sine.glb' }]));
+  const result = await nextResult(app.page, () => dropFiles(app.page, [{ name: 'sine.glb', url: '/pages/sine.glb' }]));
   assert.equal(result.name, 'sine.glb');
   assert.ok(result.lineCount > 0, 'the next file has lines');
   assert.deepEqual(await shown(), { state: 'ready', error: '', errorHidden: true, progressHidden: true, canvas: true });

@@ -3,6 +3,7 @@
 import assert from 'node:assert/strict';
 import { existsSync } from 'node:fs';
 import { join } from 'node:path';
+import { after, before } from 'node:test';
 import { launch } from './browser.mjs';
 import { serve } from './server.mjs';
 import { ROOT } from '../node/helpers.mjs';
@@ -30,6 +31,22 @@ export async function openApp(roots = {}, pageOptions = {}, path = '/') {
       server.close();
     },
   };
+}
+
+/**
+ * The set-up of a test file that works on one page of the app: openApp(roots,
+ * pageOptions, path) before its first test, then (unless `sample` is false)
+ * the built-in sample's lines; the browser closes after its last test.
+ * Returns the app, whose page, pageErrors and origin are set once the tests run.
+ */
+export function useApp(roots = {}, pageOptions = {}, { path = '/', sample = true } = {}) {
+  const app = { page: null, pageErrors: [], origin: '', close: async () => {} };
+  before(async () => {
+    Object.assign(app, await openApp(roots, pageOptions, path));
+    if (sample) await sampleReady(app.page);
+  });
+  after(() => app.close());
+  return app;
 }
 
 /** Waits until the built-in sample has its lines and the page is ready. */

@@ -2,22 +2,14 @@
 // info box is a compact strip clear of it, and "fit to view" uses both fields
 // of view, so the portrait canvas shows the whole model. Needs web/dist.
 import assert from 'node:assert/strict';
-import { after, before, test } from 'node:test';
-import { assertUncovered, framing, openApp, sampleReady } from './app-page.mjs';
+import { test } from 'node:test';
+import { assertUncovered, framing, useApp } from './app-page.mjs';
 
-let app, page;
-
-before(async () => {
-  app = await openApp({}, { viewport: { width: 390, height: 844 } });
-  ({ page } = app);
-  await sampleReady(page);
-});
-
-after(() => app?.close());
+const app = useApp({}, { viewport: { width: 390, height: 844 } });
 
 /** The 2D bounding box of the model's vertices projected to normalised device coordinates, after the next frame. */
 function projectedBox() {
-  return page.evaluate(async () => {
+  return app.page.evaluate(async () => {
     const { viewer } = window.crestline;
     await new Promise((resolve) => requestAnimationFrame(resolve));
     const mesh = viewer.surface.mesh;
@@ -45,7 +37,7 @@ function assertInside({ box, count, aspect }) {
 }
 
 test('390×844: the panel starts collapsed; the info box is compact and clear of it', async () => {
-  const layout = await page.evaluate(() => {
+  const layout = await app.page.evaluate(() => {
     const { gui } = window.crestline;
     const panel = gui.domElement.getBoundingClientRect();
     const hud = document.getElementById('hud').getBoundingClientRect();
@@ -61,7 +53,7 @@ test('390×844: the panel starts collapsed; the info box is compact and clear of
 
 test('390×844: the framed model\'s projected bounding box lies inside the canvas, also after orbiting and "fit to view"', async () => {
   assertInside(await projectedBox());
-  await page.evaluate(() => {
+  await app.page.evaluate(() => {
     const { viewer, gui } = window.crestline;
     viewer.camera.position.set(5, 1, 0.5); // orbit to the side, far off
     viewer.controls.update();
@@ -74,7 +66,7 @@ test('390×844: the framed model\'s projected bounding box lies inside the canva
 });
 
 test('390×844: the model is clear of the info strip and the collapsed panel', async () => {
-  assertUncovered(await framing(page));
+  assertUncovered(await framing(app.page));
 });
 
 test('no uncaught errors in the page', () => {

@@ -8,8 +8,8 @@
 // changed setting computes them. An export error clears when a later action
 // succeeds. Generated meshes, so it is quick. Needs web/dist (web/build.sh).
 import assert from 'node:assert/strict';
-import { after, before, test } from 'node:test';
-import { dropFiles, nextResult, openApp, sampleReady } from './app-page.mjs';
+import { test } from 'node:test';
+import { dropFiles, nextResult, useApp } from './app-page.mjs';
 import { boxObj } from './box-obj.mjs';
 import { sineHeightField } from '../node/helpers.mjs';
 import { STAGES } from '../../web/src/worker/protocol.js';
@@ -24,19 +24,11 @@ function objText({ positions, indices }) {
 
 const A = { name: 'box.obj', text: boxObj() }; // 6,912 triangles
 const B = { name: 'waves.obj', text: objText(sineHeightField({ n: 110 })) }; // 24,200 triangles
-let app, page;
-
-before(async () => {
-  app = await openApp({}, { acceptDownloads: true });
-  ({ page } = app);
-  await sampleReady(page);
-});
-
-after(() => app?.close());
+const app = useApp({}, { acceptDownloads: true });
 
 /** Every view of the page: header, label, state, error, stats, the picture's mesh and lines. */
 const views = () =>
-  page.evaluate(() => {
+  app.page.evaluate(() => {
     const { viewer } = window.crestline;
     const text = (id) => document.getElementById(id).textContent;
     return {
@@ -54,7 +46,7 @@ const views = () =>
 
 /** An export made as the panel's button does: {fileName, text} or the error line. */
 const save = (format) =>
-  page.evaluate(async (format) => {
+  app.page.evaluate(async (format) => {
     const saved = await window.crestline.save(format);
     return saved
       ? { fileName: saved.fileName, text: format === 'png' ? '' : await saved.blob.text() }
@@ -64,10 +56,10 @@ const save = (format) =>
 let shownA, objA;
 
 /** How many workers the page's connection started (1: never restarted). */
-const workerGeneration = () => page.evaluate(() => window.crestline.client.connection.generation);
+const workerGeneration = () => app.page.evaluate(() => window.crestline.client.connection.generation);
 
 test('mesh A loaded: its header, stats, picture and exports agree', async () => {
-  const result = await nextResult(page, () => dropFiles(page, [A]));
+  const result = await nextResult(app.page, () => dropFiles(app.page, [A]));
   assert.equal(result.name, 'box.obj');
   assert.equal(result.stats.triangles, 6912);
   shownA = await views();
@@ -85,8 +77,8 @@ test('mesh A loaded: its header, stats, picture and exports agree', async () => 
 
 /** Drops `file` (B) and cancels when `hook` ('read' | 'loaded' | a pipeline stage) is reached. */
 async function dropAndCancelAt(hook, file = B) {
-  const count = await page.evaluate(() => window.crestline.results.length);
-  await page.evaluate((hook) => {
+  const count = await app.page.evaluate(() => window.crestline.results.length);
+  await app.page.evaluate((hook) => {
     const { hooks } = window.crestline;
     const cancelNow = () => {
       hooks.progress = hooks.loaded = null;
@@ -102,10 +94,10 @@ async function dropAndCancelAt(hook, file = B) {
     if (hook === 'loaded') hooks.loaded = cancelNow;
     else hooks.progress = (stage) => stage === hook && cancelNow();
   }, hook);
-  await dropFiles(page, [file]);
-  await page.waitForFunction(() => window.beforeCancel, null, { timeout: 30000 });
-  const before = await page.evaluate(() => window.beforeCancel);
-  await page.evaluate(() => delete window.beforeCancel);
+  await dropFiles(app.page, [file]);
+  await app.page.waitForFunction(() => window.beforeCancel, null, { timeout: 30000 });
+  const before = await app.page.evaluate(() => window.beforeCancel);
+  await app.page.evaluate(() => delete window.beforeCancel);
   return { before, count };
 }
 
@@ -116,21 +108,21 @@ test("Cancel while B is read: A's page comes back whole", async () => {
   assert.equal(before.label, 'Previous mesh: box.obj (shown until waves.obj is read)');
   const after = await views();
   assert.deepEqual({ ...after }, { ...shownA }, "header, state, stats, picture: A's");
-  assert.match(await page.textContent('#notes'), /^Cancelled waves\.obj: back to box\.obj\.$/);
+  assert.match(await app.page.textContent('#notes'), /^Cancelled waves\.obj: back to box\.obj\.$/);
   // The worker still holds A: its core writer gives the same lines, byte for byte.
   const obj = await save('obj');
   assert.equal(obj.fileName, 'box-lines.obj');
   assert.equal(obj.text, objA);
   assert.equal((await save('svg')).fileName, 'box-lines.svg');
   // Nothing of B arrives later.
-  await page.waitForTimeout(300);
-  assert.equal(await page.evaluate(() => window.crestline.results.length), count);
+  await app.page.waitForTimeout(300);
+  assert.equal(await app.page.evaluate(() => window.crestline.results.length), count);
   assert.deepEqual(await views(), shownA);
 });
 
 /** Drops A again (its lines shown), as the start of each of the next tests. */
 async function showA() {
-  await nextResult(page, () => dropFiles(page, [A]));
+  await nextResult(app.page, () => dropFiles(app.page, [A]));
   // The same page as A's first time, but for the times measured.
   const untimed = (v) => ({ ...v, stats: v.stats.replace(/^(ran|read and repair).*$/gm, '') });
   assert.deepEqual(untimed(await views()), untimed(shownA));
@@ -146,7 +138,7 @@ for (const hook of ['loaded', ...STAGES]) {
     assert.equal(before.state, 'computing');
     assert.match(before.header, /^waves\.obj: 24,200 triangles, computing its lines… — /);
     assert.equal(before.label, '', 'B is shown, not labelled');
-    await page.waitForFunction(() => document.body.dataset.state === 'ready', null, { timeout: 30000 });
+    await app.page.waitForFunction(() => document.body.dataset.state === 'ready', null, { timeout: 30000 });
     const after = await views();
     assert.deepEqual(after, {
       state: 'ready',
@@ -163,8 +155,8 @@ for (const hook of ['loaded', ...STAGES]) {
       after.stats,
       /^waves\.obj\n12,321 vertices, 24,200 triangles\nlines: not computed \(cancelled; change a setting to compute them\)\nread and repair \d+ ms$/,
     );
-    assert.equal(await page.textContent('#notes'), 'Cancelled: waves.obj has no lines yet; change a setting to compute them.');
-    assert.equal(await page.evaluate(() => window.crestline.results.length), count, 'no result of B');
+    assert.equal(await app.page.textContent('#notes'), 'Cancelled: waves.obj has no lines yet; change a setting to compute them.');
+    assert.equal(await app.page.evaluate(() => window.crestline.results.length), count, 'no result of B');
     assert.equal(await workerGeneration(), 1, 'the pipeline saw the cancel flag: the worker was not restarted');
     // Exports say plainly that there are no lines (A is gone).
     for (const format of ['obj', 'svg']) {
@@ -173,7 +165,7 @@ for (const hook of ['loaded', ...STAGES]) {
       });
     }
     // A changed setting computes B's lines (every line, though some stages ran before the cancel).
-    const result = await nextResult(page, () => page.evaluate(() => window.crestline.update({ threshold: window.crestline.params.threshold * 1.01 })));
+    const result = await nextResult(app.page, () => app.page.evaluate(() => window.crestline.update({ threshold: window.crestline.params.threshold * 1.01 })));
     assert.equal(result.name, 'waves.obj');
     assert.ok(result.lineCount > 0, 'lines kept');
     const now = await views();
@@ -181,13 +173,13 @@ for (const hook of ['loaded', ...STAGES]) {
     assert.match(now.header, /^waves\.obj: 24,200 triangles — /);
     assert.ok(now.linePoints > 0, 'lines drawn');
     assert.equal((await save('obj')).fileName, 'waves-lines.obj');
-    assert.equal(await page.textContent('#error'), '', 'the export error cleared');
+    assert.equal(await app.page.textContent('#error'), '', 'the export error cleared');
   });
 }
 
 test("while B is read: A labelled and dimmed, exports A's; once loaded: B's surface, counts, lines pending; then all B", async () => {
   await showA();
-  await page.evaluate(() => {
+  await app.page.evaluate(() => {
     const { hooks, viewer } = window.crestline;
     const text = (id) => document.getElementById(id).textContent;
     const look = () => ({
@@ -211,9 +203,9 @@ test("while B is read: A labelled and dimmed, exports A's; once loaded: B's surf
       window.loaded.svg = (await window.crestline.save('svg'))?.fileName ?? text('error');
     };
   });
-  const count = await page.evaluate(() => window.crestline.results.length);
-  const result = await nextResult(page, () => dropFiles(page, [B]));
-  const { reading, loaded } = await page.evaluate(() => ({ reading: window.reading, loaded: window.loaded }));
+  const count = await app.page.evaluate(() => window.crestline.results.length);
+  const result = await nextResult(app.page, () => dropFiles(app.page, [B]));
+  const { reading, loaded } = await app.page.evaluate(() => ({ reading: window.reading, loaded: window.loaded }));
   assert.equal(reading.state, 'loading');
   assert.match(reading.header, /^waves\.obj: reading… — /);
   assert.equal(reading.label, 'Previous mesh: box.obj (shown until waves.obj is read)');
@@ -236,7 +228,7 @@ test("while B is read: A labelled and dimmed, exports A's; once loaded: B's surf
     },
   );
   assert.match(loaded.stats, /^waves\.obj\n12,321 vertices, 24,200 triangles\nlines: computing…\n/);
-  await page.evaluate(() => window.crestline.save('svg')); // clears the export error
+  await app.page.evaluate(() => window.crestline.save('svg')); // clears the export error
   assert.equal(result.name, 'waves.obj');
   const now = await views();
   assert.equal(now.state, 'ready');
@@ -250,7 +242,7 @@ test("while B is read: A labelled and dimmed, exports A's; once loaded: B's surf
 
 /** Changes the smoothing steps by `delta` and presses Cancel at once (the worker sees the flag at its first check). */
 const recomputeAndCancel = (delta, between = async () => null) =>
-  page.evaluate(
+  app.page.evaluate(
     async ([delta, between]) => {
       window.crestline.update({ smoothingSteps: window.crestline.params.smoothingSteps + delta });
       const state = document.body.dataset.state;
@@ -264,18 +256,18 @@ const recomputeAndCancel = (delta, between = async () => null) =>
 test('Cancel of a recompute: the lines, stats, panel and exports stay those of the lines shown', async () => {
   const before = await views();
   const obj = (await save('obj')).text;
-  const steps = await page.evaluate(() => window.crestline.params.smoothingSteps);
-  const count = await page.evaluate(() => window.crestline.results.length);
+  const steps = await app.page.evaluate(() => window.crestline.params.smoothingSteps);
+  const count = await app.page.evaluate(() => window.crestline.results.length);
   const { state } = await recomputeAndCancel(3);
   assert.equal(state, 'computing');
-  await page.waitForFunction(() => document.body.dataset.state === 'ready', null, { timeout: 30000 });
-  assert.equal(await page.evaluate(() => window.crestline.results.length), count, 'no new result');
-  assert.equal(await page.evaluate(() => window.crestline.params.smoothingSteps), steps, 'the panel shows the value of the lines shown');
+  await app.page.waitForFunction(() => document.body.dataset.state === 'ready', null, { timeout: 30000 });
+  assert.equal(await app.page.evaluate(() => window.crestline.results.length), count, 'no new result');
+  assert.equal(await app.page.evaluate(() => window.crestline.params.smoothingSteps), steps, 'the panel shows the value of the lines shown');
   assert.deepEqual(await views(), before);
-  assert.match(await page.textContent('#notes'), /^Cancelled/);
+  assert.match(await app.page.textContent('#notes'), /^Cancelled/);
   // The OBJ export is the lines shown (the worker re-runs what the cancel left half done).
   assert.equal((await save('obj')).text, obj);
-  assert.equal(await page.evaluate(() => window.crestline.params.smoothingSteps), steps);
+  assert.equal(await app.page.evaluate(() => window.crestline.params.smoothingSteps), steps);
 });
 
 test('an export refused while lines are recomputed stays on screen until the next export succeeds', async () => {
@@ -284,12 +276,12 @@ test('an export refused while lines are recomputed stays on screen until the nex
     return document.getElementById('error').textContent;
   });
   assert.equal(inBetween, 'Export OBJ: Nothing to export yet: wait for the new lines of waves.obj (or Cancel).');
-  await page.waitForFunction(() => document.body.dataset.state === 'error', null, { timeout: 30000 });
-  assert.equal(await page.textContent('#error'), inBetween, 'the cancel does not hide the failure');
+  await app.page.waitForFunction(() => document.body.dataset.state === 'error', null, { timeout: 30000 });
+  assert.equal(await app.page.textContent('#error'), inBetween, 'the cancel does not hide the failure');
   const saved = await save('svg');
   assert.equal(saved.fileName, 'waves-lines.svg');
-  assert.equal(await page.textContent('#error'), '');
-  assert.equal(await page.evaluate(() => document.body.dataset.state), 'ready');
+  assert.equal(await app.page.textContent('#error'), '');
+  assert.equal(await app.page.evaluate(() => document.body.dataset.state), 'ready');
 });
 
 // The core checks the flag inside the smoothing solver's iterations (issue 15, item 7): a cancel
@@ -297,8 +289,8 @@ test('an export refused while lines are recomputed stays on screen until the nex
 test('Cancel inside the smoothing of a 180,000-triangle mesh: it stops there, without a worker restart, and the same worker computes again', async () => {
   // The most smoothing steps: about 3 s of smoothing, so the Cancel, pressed when the page sees the
   // stage begin (it may be busy drawing the new surface then), lands inside it.
-  await nextResult(page, () => page.evaluate(() => window.crestline.update({ smoothingSteps: 50 })));
-  await page.evaluate(() => {
+  await nextResult(app.page, () => app.page.evaluate(() => window.crestline.update({ smoothingSteps: 50 })));
+  await app.page.evaluate(() => {
     const { connection } = window.crestline.client;
     const receive = connection.receive.bind(connection);
     window.replies = [];
@@ -310,15 +302,15 @@ test('Cancel inside the smoothing of a 180,000-triangle mesh: it stops there, wi
   const C = { name: 'ripples.obj', text: objText(sineHeightField({ n: 300, wavelength: 0.5 })) };
   const { before } = await dropAndCancelAt('smoothing', C);
   assert.match(before.header, /^ripples\.obj: 180,000 triangles, computing its lines/);
-  await page.waitForFunction(() => document.body.dataset.state === 'ready', null, { timeout: 30000 });
-  const replies = await page.evaluate(() => window.replies);
+  await app.page.waitForFunction(() => document.body.dataset.state === 'ready', null, { timeout: 30000 });
+  const replies = await app.page.evaluate(() => window.replies);
   const cancelled = replies.findIndex((r) => r.type === 'cancelled');
   assert.ok(cancelled > 0, `the worker replied 'cancelled': ${replies.map((r) => r.type).join(' ')}`);
   const stages = replies.slice(0, cancelled).filter((r) => r.type === 'progress');
   assert.equal(stages.at(-1).stage, 'smoothing', 'the last progress before the stop is the smoothing stage (no later stage began)');
   assert.equal(await workerGeneration(), 1, 'the worker was not restarted');
   console.log(`# cancel inside smoothing: 'cancelled' came ${(replies[cancelled].at - before.at).toFixed(0)} ms after the click`);
-  const result = await nextResult(page, () => page.evaluate(() => window.crestline.update({ smoothingSteps: 3 })));
+  const result = await nextResult(app.page, () => app.page.evaluate(() => window.crestline.update({ smoothingSteps: 3 })));
   assert.equal(result.name, 'ripples.obj');
   assert.ok(result.ran.includes('smoothing') && result.lineCount > 0, `ran ${result.ran}, ${result.lineCount} lines`);
   assert.equal(await workerGeneration(), 1, 'computed in the same worker');

@@ -2,24 +2,16 @@
 // sentence, several dropped files load the mesh with its companions and name
 // the ignored ones, the picker's formats; a legend and a tooltip per control. Needs web/dist (web/build.sh).
 import assert from 'node:assert/strict';
-import { after, before, test } from 'node:test';
-import { dropFiles, nextResult, openApp, sampleReady } from './app-page.mjs';
+import { test } from 'node:test';
+import { dropFiles, nextResult, useApp } from './app-page.mjs';
 import { MESHES, haveMeshes } from '../node/helpers.mjs';
 
 const noMeshes = !haveMeshes && `SKIPPED: ${MESHES} is absent`;
-let app, page;
-
-before(async () => {
-  app = await openApp({ '/meshes/': MESHES });
-  ({ page } = app);
-  await sampleReady(page);
-});
-
-after(() => app?.close());
+const app = useApp({ '/meshes/': MESHES });
 
 /** Drops `files` (name + bytes given as numbers) and returns the error sentence. */
 async function errorFor(name, bytes) {
-  await page.evaluate(
+  await app.page.evaluate(
     ({ name, bytes }) => {
       const transfer = new DataTransfer();
       transfer.items.add(new File([new Uint8Array(bytes)], name));
@@ -28,8 +20,8 @@ async function errorFor(name, bytes) {
     },
     { name, bytes },
   );
-  await page.waitForFunction(() => document.body.dataset.state === 'error' && document.getElementById('error').textContent);
-  return page.textContent('#error');
+  await app.page.waitForFunction(() => document.body.dataset.state === 'error' && document.getElementById('error').textContent);
+  return app.page.textContent('#error');
 }
 
 /** One sentence naming the file, printable ASCII/Latin text only (no binary junk). */
@@ -49,23 +41,23 @@ test('a random blob named x.glb and a zero-byte x.stl: one clean sentence each n
   assert.equal(glb, "x.glb: the file is neither a GLB (which starts with the bytes 'glTF') nor glTF JSON.");
   assertCleanSentence(stl, 'x.stl');
   // The page recovers: the bunny is still loaded and re-filters.
-  const result = await nextResult(page, () =>
-    page.evaluate(() => window.crestline.update({ autoThreshold: false, threshold: window.crestline.lastResult.stats.threshold * 0.9 })),
+  const result = await nextResult(app.page, () =>
+    app.page.evaluate(() => window.crestline.update({ autoThreshold: false, threshold: window.crestline.lastResult.stats.threshold * 0.9 })),
   );
   assert.deepEqual(result.ran, ['filter']);
-  await nextResult(page, () => page.evaluate(() => window.crestline.update({ autoThreshold: true })));
+  await nextResult(app.page, () => app.page.evaluate(() => window.crestline.update({ autoThreshold: true })));
 });
 
 test('the file picker accepts only the formats read (and their companions)', async () => {
-  const accept = (await page.getAttribute('#picker', 'accept')).split(',');
+  const accept = (await app.page.getAttribute('#picker', 'accept')).split(',');
   for (const ext of ['.gltf', '.glb', '.bin', '.obj', '.mtl', '.ply', '.stl', '.off']) assert.ok(accept.includes(ext), `accepts ${ext}`);
   for (const ext of ['.txt', '.fbx', '.blend', '.zip']) assert.ok(!accept.includes(ext), `refuses ${ext}`);
 });
 
 test('OBJ + its .mtl + an unrelated STL and a text file: the OBJ loads, one sentence names the ignored files', async () => {
   const obj = 'mtllib cube.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nusemtl red\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n';
-  const result = await nextResult(page, () =>
-    dropFiles(page, [
+  const result = await nextResult(app.page, () =>
+    dropFiles(app.page, [
       { name: 'notes.txt', text: 'hello' },
       { name: 'other.stl', text: 'solid x\nendsolid x\n' },
       { name: 'tetra.obj', text: obj },
@@ -74,25 +66,25 @@ test('OBJ + its .mtl + an unrelated STL and a text file: the OBJ loads, one sent
   );
   assert.equal(result.name, 'tetra.obj');
   assert.equal(result.stats.triangles, 4);
-  const notes = await page.textContent('#notes');
+  const notes = await app.page.textContent('#notes');
   assert.match(notes, /ignored notes\.txt and other\.stl \(/);
   assert.doesNotMatch(notes, /cube\.mtl/, 'the .mtl is a companion, not ignored');
 });
 
 test('glTF + .bin + texture + an unrelated OBJ: the glTF loads with its buffers, the OBJ is ignored', { skip: noMeshes }, async () => {
-  const result = await nextResult(page, () =>
-    dropFiles(page, ['gltf/Duck/Duck.gltf', 'gltf/Duck/Duck0.bin', 'gltf/Duck/DuckCM.png', { name: 'stray.obj', text: 'v 0 0 0\n' }]),
+  const result = await nextResult(app.page, () =>
+    dropFiles(app.page, ['gltf/Duck/Duck.gltf', 'gltf/Duck/Duck0.bin', 'gltf/Duck/DuckCM.png', { name: 'stray.obj', text: 'v 0 0 0\n' }]),
   );
   assert.equal(result.name, 'Duck.gltf');
   assert.ok(result.stats.triangles > 1000);
-  const notes = await page.textContent('#notes');
+  const notes = await app.page.textContent('#notes');
   assert.match(notes, /ignored stray\.obj \(/);
   assert.doesNotMatch(notes, /Duck0\.bin|DuckCM\.png/);
 });
 
 test('a legend names ridges and valleys in their colours and follows the panel', async () => {
   const legend = () =>
-    page.evaluate(() =>
+    app.page.evaluate(() =>
       ['ridge', 'valley'].map((k) => {
         const entry = document.getElementById(`legend-${k}`);
         const box = entry.getBoundingClientRect();
@@ -112,15 +104,15 @@ test('a legend names ridges and valleys in their colours and follows the panel',
   assert.equal(ridge.color, 'rgb(214, 45, 32)', 'the default ridge colour #d62d20');
   assert.equal(valley.color, 'rgb(31, 95, 191)', 'the default valley colour #1f5fbf');
   assert.ok(ridge.title && valley.title);
-  await page.evaluate(() => window.crestline.update({ ridgeColor: '#00ff00', showValleys: false }));
+  await app.page.evaluate(() => window.crestline.update({ ridgeColor: '#00ff00', showValleys: false }));
   const [ridge2, valley2] = await legend();
   assert.equal(ridge2.color, 'rgb(0, 255, 0)');
   assert.equal(valley2.off, true, 'hidden valleys are struck through');
-  await page.evaluate(() => window.crestline.update({ ridgeColor: '#d62d20', showValleys: true }));
+  await app.page.evaluate(() => window.crestline.update({ ridgeColor: '#d62d20', showValleys: true }));
 });
 
 test("every panel control has a plain-words tooltip; the pipeline ones are the parameter table's help", async () => {
-  const problems = await page.evaluate(() => {
+  const problems = await app.page.evaluate(() => {
     const { gui, parameters } = window.crestline;
     const out = [];
     for (const c of gui.controllersRecursive()) {
@@ -140,12 +132,12 @@ test("every panel control has a plain-words tooltip; the pipeline ones are the p
 test('a GLB export logs no warnings (the core writer makes it, not GLTFExporter)', async () => {
   const warnings = [];
   const listener = (message) => ['warning', 'error'].includes(message.type()) && warnings.push(message.text());
-  page.on('console', listener);
-  const saved = await page.evaluate(async () => {
+  app.page.on('console', listener);
+  const saved = await app.page.evaluate(async () => {
     const result = await window.crestline.save('glb');
     return result && { fileName: result.fileName, magic: new TextDecoder().decode((await result.blob.arrayBuffer()).slice(0, 4)) };
   });
-  page.off('console', listener);
+  app.page.off('console', listener);
   assert.equal(saved?.magic, 'glTF');
   assert.deepEqual(warnings, []);
 });

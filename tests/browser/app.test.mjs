@@ -6,24 +6,17 @@ import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
 import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { after, before, test } from 'node:test';
-import { dropFiles, nextResult as waitForResult, openApp } from './app-page.mjs';
+import { test } from 'node:test';
+import { dropFiles, nextResult as waitForResult, useApp } from './app-page.mjs';
 import { concaveOctagonObj } from '../node/concave-octagons.mjs';
 import { MESHES, NATIVE_CLI, ROOT, haveMeshes, haveNativeCli } from '../node/helpers.mjs';
 
 const SHOTS = join(ROOT, 'test-results');
 const noMeshes = !haveMeshes && `SKIPPED: ${MESHES} is absent`;
-let app, page;
+const app = useApp({ '/meshes/': MESHES }, {}, { sample: false });
 
-before(async () => {
-  app = await openApp({ '/meshes/': MESHES });
-  ({ page } = app);
-});
-
-after(() => app?.close());
-
-const nextResult = (action, timeout) => waitForResult(page, action, timeout);
-const drop = (files) => dropFiles(page, files);
+const nextResult = (action, timeout) => waitForResult(app.page, action, timeout);
+const drop = (files) => dropFiles(app.page, files);
 
 function nativeStats(file) {
   const out = join(SHOTS, 'native-lines.obj');
@@ -33,7 +26,7 @@ function nativeStats(file) {
 
 /** Pixels of the rendered canvas close to the ridge and valley colours. */
 function linePixels() {
-  return page.evaluate(async () => {
+  return app.page.evaluate(async () => {
     const { viewer, params } = window.crestline;
     viewer.renderer.render(viewer.scene, viewer.camera);
     const source = viewer.renderer.domElement;
@@ -62,15 +55,15 @@ async function checkAgainstNative(file, result) {
 }
 
 test('the built-in bunny gets ridges and valleys on first load', async () => {
-  await page.waitForFunction(() => window.crestline?.lastResult, null, { timeout: 60000 });
-  const result = await page.evaluate(() => window.crestline.lastResult);
+  await app.page.waitForFunction(() => window.crestline?.lastResult, null, { timeout: 60000 });
+  const result = await app.page.evaluate(() => window.crestline.lastResult);
   assert.match(result.name, /bunny/);
   assert.ok(result.lineCount > 0, 'bunny lines');
   assert.equal(result.ran[0], 'presmooth', 'a load runs every stage');
 });
 
 test('the panel is made from Session.describe(): a control per pipeline parameter, its range and default', async () => {
-  const mismatches = await page.evaluate(() => {
+  const mismatches = await app.page.evaluate(() => {
     const { parameters, params, gui } = window.crestline;
     const controllers = gui.controllersRecursive();
     const out = [];
@@ -90,7 +83,7 @@ test('the panel is made from Session.describe(): a control per pipeline paramete
     return out;
   });
   assert.deepEqual(mismatches, []);
-  assert.ok(await page.evaluate(() => window.crestline.parameters.some((p) => p.key === 'threshold' && p.automatic)));
+  assert.ok(await app.page.evaluate(() => window.crestline.parameters.some((p) => p.key === 'threshold' && p.automatic)));
 });
 
 test('GLB (feline): lines match the native CLI and are drawn', { skip: noMeshes }, async () => {
@@ -99,47 +92,51 @@ test('GLB (feline): lines match the native CLI and are drawn', { skip: noMeshes 
   await checkAgainstNative('glb/feline.glb', result);
   const pixels = await linePixels();
   mkdirSync(SHOTS, { recursive: true });
-  await page.screenshot({ path: join(SHOTS, 'feline.png') });
+  await app.page.screenshot({ path: join(SHOTS, 'feline.png') });
   assert.ok(pixels.ridges > 200 && pixels.valleys > 200, `line pixels: ${JSON.stringify(pixels)}`);
 });
 
 test('threshold change re-filters only, and changes the count', { skip: noMeshes }, async () => {
-  const before = await page.evaluate(() => window.crestline.lastResult);
+  const before = await app.page.evaluate(() => window.crestline.lastResult);
   // The ridge geometry before: a threshold change must keep it and only hide lines.
-  await page.evaluate(() => (window.ridgeGeometry = window.crestline.viewer.lines.objects[0].geometry));
+  await app.page.evaluate(() => (window.ridgeGeometry = window.crestline.viewer.lines.objects[0].geometry));
   const pixelsBefore = await linePixels();
-  const result = await nextResult(() => page.evaluate((t) => window.crestline.update({ autoThreshold: false, threshold: t }), before.stats.threshold * 3));
+  const result = await nextResult(() => app.page.evaluate((t) => window.crestline.update({ autoThreshold: false, threshold: t }), before.stats.threshold * 3));
   assert.deepEqual(result.ran, ['filter'], 'only the filter ran');
   assert.ok(result.lineCount < before.lineCount, `${result.lineCount} < ${before.lineCount} lines`);
   assert.equal(result.linesChanged, false, 'no lines were sent');
-  assert.ok(await page.evaluate(() => window.crestline.viewer.lines.objects[0].geometry === window.ridgeGeometry), 'the geometry was not rebuilt');
+  assert.ok(await app.page.evaluate(() => window.crestline.viewer.lines.objects[0].geometry === window.ridgeGeometry), 'the geometry was not rebuilt');
   const pixelsAfter = await linePixels();
   assert.ok(pixelsAfter.ridges < pixelsBefore.ridges, `fewer ridge pixels: ${pixelsAfter.ridges} < ${pixelsBefore.ridges}`);
   console.log(`# re-threshold on ${before.stats.triangles} triangles: ${result.milliseconds.toFixed(1)} ms in the worker`);
-  const smoothed = await nextResult(() => page.evaluate(() => window.crestline.update({ autoThreshold: true, smoothingSteps: 4 })));
+  const smoothed = await nextResult(() => app.page.evaluate(() => window.crestline.update({ autoThreshold: true, smoothingSteps: 4 })));
   assert.equal(smoothed.ran[0], 'smoothing', 'a smoothing change re-runs from smoothing on');
   assert.ok(!smoothed.ran.includes('curvature'));
-  const camera = () => page.evaluate(() => window.crestline.viewer.camera.position.toArray());
+  const camera = () => app.page.evaluate(() => window.crestline.viewer.camera.position.toArray());
   const view = await camera();
-  const presmoothed = await nextResult(() => page.evaluate(() => window.crestline.update({ smoothingSteps: 3, autoPresmoothSteps: false, presmoothSteps: 1 })));
+  const presmoothed = await nextResult(() =>
+    app.page.evaluate(() => window.crestline.update({ smoothingSteps: 3, autoPresmoothSteps: false, presmoothSteps: 1 })),
+  );
   assert.equal(presmoothed.ran[0], 'presmooth');
   assert.deepEqual(await camera(), view, 'a new surface of the same mesh keeps the view');
-  await nextResult(() => page.evaluate(() => window.crestline.update({ autoPresmoothSteps: true })));
+  await nextResult(() => app.page.evaluate(() => window.crestline.update({ autoPresmoothSteps: true })));
 });
 
 test('a broken file and an unsupported one: one sentence each, and the page recovers', async () => {
   await drop([{ name: 'broken.glb', text: 'glTF this is not a binary glTF' }]);
-  await page.waitForFunction(() => document.body.dataset.state === 'error');
-  assert.match(await page.textContent('#error'), /^broken\.glb: only GLB version 2 is supported/);
+  await app.page.waitForFunction(() => document.body.dataset.state === 'error');
+  assert.match(await app.page.textContent('#error'), /^broken\.glb: only GLB version 2 is supported/);
   await drop([{ name: 'readme.txt', text: 'hello' }]);
-  await page.waitForFunction(() => /readme/.test(document.getElementById('error').textContent));
-  assert.match(await page.textContent('#error'), /^readme\.txt: the format is not recognised/);
+  await app.page.waitForFunction(() => /readme/.test(document.getElementById('error').textContent));
+  assert.match(await app.page.textContent('#error'), /^readme\.txt: the format is not recognised/);
   // The previous mesh is still loaded and re-filters without a recompute.
-  const previous = await page.evaluate(() => window.crestline.lastResult);
-  const result = await nextResult(() => page.evaluate((t) => window.crestline.update({ autoThreshold: false, threshold: t }), previous.stats.threshold * 0.9));
+  const previous = await app.page.evaluate(() => window.crestline.lastResult);
+  const result = await nextResult(() =>
+    app.page.evaluate((t) => window.crestline.update({ autoThreshold: false, threshold: t }), previous.stats.threshold * 0.9),
+  );
   assert.equal(result.name, previous.name);
   assert.deepEqual(result.ran, ['filter']);
-  await nextResult(() => page.evaluate(() => window.crestline.update({ autoThreshold: true })));
+  await nextResult(() => app.page.evaluate(() => window.crestline.update({ autoThreshold: true })));
 });
 
 test('OBJ (mannequin): lines match the native CLI', { skip: noMeshes }, async () => {
@@ -160,7 +157,7 @@ test(
     execFileSync(NATIVE_CLI, [input, '-o', output, '-q']);
     const result = await nextResult(() => drop([{ name: 'concave-octagons.obj', text }]));
     assert.ok(result.stats.ridges > 0 && result.stats.valleys > 0, JSON.stringify(result.stats));
-    const obj = await page.evaluate(() => window.crestline.client.exportText('obj'));
+    const obj = await app.page.evaluate(() => window.crestline.client.exportText('obj'));
     assert.equal(obj, readFileSync(output, 'utf8'));
   },
 );
@@ -179,48 +176,48 @@ test('multi-file glTF dropped together (Duck.gltf + .bin + texture)', { skip: no
 });
 
 test('curvature colour map and singular triangles views', async () => {
-  await page.evaluate(() => window.crestline.update({ view: 'kappaMax' }));
-  await page.waitForFunction(() => window.crestline.fields && window.crestline.viewer.surface.material.vertexColors);
-  const colours = await page.evaluate(() => window.crestline.viewer.surface.mesh.geometry.getAttribute('color').count);
-  assert.equal(colours, await page.evaluate(() => window.crestline.lastResult.stats.vertices));
-  await page.evaluate(() => window.crestline.update({ view: 'singularMax' }));
-  const singular = await page.evaluate(() => window.crestline.viewer.surface.singular.geometry.index.count / 3);
-  assert.equal(singular, await page.evaluate(() => window.crestline.lastResult.stats.singularMax));
-  await page.evaluate(() => window.crestline.update({ view: 'shaded' }));
+  await app.page.evaluate(() => window.crestline.update({ view: 'kappaMax' }));
+  await app.page.waitForFunction(() => window.crestline.fields && window.crestline.viewer.surface.material.vertexColors);
+  const colours = await app.page.evaluate(() => window.crestline.viewer.surface.mesh.geometry.getAttribute('color').count);
+  assert.equal(colours, await app.page.evaluate(() => window.crestline.lastResult.stats.vertices));
+  await app.page.evaluate(() => window.crestline.update({ view: 'singularMax' }));
+  const singular = await app.page.evaluate(() => window.crestline.viewer.surface.singular.geometry.index.count / 3);
+  assert.equal(singular, await app.page.evaluate(() => window.crestline.lastResult.stats.singularMax));
+  await app.page.evaluate(() => window.crestline.update({ view: 'shaded' }));
 });
 
 test('smoothing brush: painting frozen weights re-runs from the smoothing stage', async () => {
-  const before = await page.evaluate(() => window.crestline.lastResult);
-  await page.evaluate(async () => {
+  const before = await app.page.evaluate(() => window.crestline.lastResult);
+  await app.page.evaluate(async () => {
     const { brush } = window.crestline;
     brush.setEnabled(true);
     brush.radius = 0.6;
     brush.value = 0;
     await brush.ready(); // the surface index, built in a worker
   });
-  const box = await page.locator('#view canvas').boundingBox();
+  const box = await app.page.locator('#view canvas').boundingBox();
   const result = await nextResult(async () => {
-    await page.mouse.move(box.x + box.width * 0.5, box.y + box.height * 0.5);
-    await page.mouse.down();
-    await page.mouse.move(box.x + box.width * 0.55, box.y + box.height * 0.45, { steps: 4 });
-    await page.mouse.up();
+    await app.page.mouse.move(box.x + box.width * 0.5, box.y + box.height * 0.5);
+    await app.page.mouse.down();
+    await app.page.mouse.move(box.x + box.width * 0.55, box.y + box.height * 0.45, { steps: 4 });
+    await app.page.mouse.up();
   });
   assert.equal(result.ran[0], 'smoothing', `ran ${result.ran}`);
   assert.ok(!result.ran.includes('curvature'));
-  const frozen = await page.evaluate(() => window.crestline.brush.weights.filter((w) => w < 0.5).length);
+  const frozen = await app.page.evaluate(() => window.crestline.brush.weights.filter((w) => w < 0.5).length);
   assert.ok(frozen > 0, 'some vertices were painted');
   assert.notDeepEqual(
     [result.stats.ridges, result.stats.valleys, result.stats.ridgeLength],
     [before.stats.ridges, before.stats.valleys, before.stats.ridgeLength],
   );
-  await page.evaluate(() => window.crestline.brush.setEnabled(false));
+  await app.page.evaluate(() => window.crestline.brush.setEnabled(false));
 });
 
 test('the file picker opens an OFF file (an octahedron)', async () => {
   mkdirSync(SHOTS, { recursive: true });
   const path = join(SHOTS, 'octahedron.off');
   writeFileSync(path, 'OFF\n6 8 0\n1 0 0\n-1 0 0\n0 1 0\n0 -1 0\n0 0 1\n0 0 -1\n' + '3 0 2 4\n3 2 1 4\n3 1 3 4\n3 3 0 4\n3 2 0 5\n3 1 2 5\n3 3 1 5\n3 0 3 5\n');
-  const result = await nextResult(() => page.setInputFiles('#picker', path));
+  const result = await nextResult(() => app.page.setInputFiles('#picker', path));
   assert.equal(result.name, 'octahedron.off');
   assert.equal(result.stats.triangles, 8);
 });
@@ -228,12 +225,12 @@ test('the file picker opens an OFF file (an octahedron)', async () => {
 test('cancel stops a long computation and the page stays usable', { skip: noMeshes }, async () => {
   // The stage is seen through the page's progress hook: polling the text could miss it while the
   // page draws the dragon's surface (shown as soon as it is loaded).
-  await page.evaluate(() => (window.crestline.hooks.progress = (stage) => stage === 'smoothing' && (window.sawSmoothing = true)));
+  await app.page.evaluate(() => (window.crestline.hooks.progress = (stage) => stage === 'smoothing' && (window.sawSmoothing = true)));
   await drop(['large/dragon-draco.glb']);
-  await page.waitForFunction(() => window.sawSmoothing, null, { timeout: 60000 });
-  await page.evaluate(() => (window.crestline.hooks.progress = null));
+  await app.page.waitForFunction(() => window.sawSmoothing, null, { timeout: 60000 });
+  await app.page.evaluate(() => (window.crestline.hooks.progress = null));
   // The main thread keeps drawing frames while the worker computes.
-  const longestFrame = await page.evaluate(
+  const longestFrame = await app.page.evaluate(
     () =>
       new Promise((resolve) => {
         let last = performance.now();
@@ -250,48 +247,48 @@ test('cancel stops a long computation and the page stays usable', { skip: noMesh
   );
   assert.ok(longestFrame < 250, `longest frame while computing: ${longestFrame} ms`);
   const started = Date.now();
-  await page.evaluate(() => (window.workerBeforeCancel = window.crestline.client.connection.worker));
-  await page.click('#cancel');
-  await page.waitForFunction(() => document.body.dataset.state === 'ready', null, { timeout: 10000 });
+  await app.page.evaluate(() => (window.workerBeforeCancel = window.crestline.client.connection.worker));
+  await app.page.click('#cancel');
+  await app.page.waitForFunction(() => document.body.dataset.state === 'ready', null, { timeout: 10000 });
   console.log(`# cancel during smoothing took effect after ${Date.now() - started} ms`);
-  assert.match(await page.textContent('#notes'), /Cancelled/);
+  assert.match(await app.page.textContent('#notes'), /Cancelled/);
   // The pipeline saw the shared flag inside the stage: no worker restart (which
   // would follow after CANCEL_GRACE_MS), the worker keeps its module.
-  assert.ok(await page.evaluate(() => window.crestline.client.connection.worker === window.workerBeforeCancel), 'the worker was not restarted');
+  assert.ok(await app.page.evaluate(() => window.crestline.client.connection.worker === window.workerBeforeCancel), 'the worker was not restarted');
   const result = await nextResult(() => drop(['classic/mannequin.obj']));
   assert.equal(result.name, 'mannequin.obj');
 });
 
 test('a lost WebGL context is one sentence; the view comes back on restore', async () => {
-  await page.evaluate(() => {
+  await app.page.evaluate(() => {
     const gl = window.crestline.viewer.renderer.getContext();
     window.loseContext = gl.getExtension('WEBGL_lose_context');
     window.loseContext.loseContext();
   });
-  await page.waitForFunction(() => document.body.dataset.state === 'error');
-  assert.match(await page.textContent('#error'), /WebGL context was lost/);
-  await page.evaluate(() => window.loseContext.restoreContext());
-  await page.waitForFunction(() => document.getElementById('error').textContent === '');
+  await app.page.waitForFunction(() => document.body.dataset.state === 'error');
+  assert.match(await app.page.textContent('#error'), /WebGL context was lost/);
+  await app.page.evaluate(() => window.loseContext.restoreContext());
+  await app.page.waitForFunction(() => document.getElementById('error').textContent === '');
   const pixels = await linePixels();
   assert.ok(pixels.ridges > 50, `line pixels after restore: ${JSON.stringify(pixels)}`);
 });
 
 // The issue's acceptance mesh, the whole pipeline with default parameters.
 test('871k triangles (large/dragon.glb): lines, then an instant re-threshold', { skip: noMeshes }, async () => {
-  await nextResult(() => page.evaluate(() => window.crestline.update({ smoothingSteps: 3, autoThreshold: true })));
+  await nextResult(() => app.page.evaluate(() => window.crestline.update({ smoothingSteps: 3, autoThreshold: true })));
   const started = Date.now();
   const result = await nextResult(() => drop(['large/dragon.glb']), 150000);
   assert.equal(result.name, 'dragon.glb');
   assert.equal(result.stats.triangles, 871298);
   assert.ok(result.lineCount > 100);
-  const mesh = await page.evaluate(() => window.crestline.mesh);
+  const mesh = await app.page.evaluate(() => window.crestline.mesh);
   console.log(
     `# dragon.glb: drop to lines ${Date.now() - started} ms: read and repair ${mesh.loadMs.toFixed(0)} ms, ` + `pipeline ${result.milliseconds.toFixed(0)} ms`,
   );
   await checkAgainstNative('large/dragon.glb', result);
   // What crosses the worker boundary for a threshold change (typed arrays' bytes plus the JSON of
   // the rest, both ways), and the page's main-thread work on the replies and in the frame after.
-  const lines = await page.evaluate(() => {
+  const lines = await app.page.evaluate(() => {
     const { connection, lines } = window.crestline.client;
     const bytesOf = (message) => {
       let arrays = 0;
@@ -316,9 +313,9 @@ test('871k triangles (large/dragon.glb): lines, then an instant re-threshold', {
     };
     return { count: lines.types.length, pointBytes: lines.points.byteLength };
   });
-  const filtered = await nextResult(() => page.evaluate(() => window.crestline.update({ autoThreshold: false, threshold: 3 })));
-  await page.evaluate(() => new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve))));
-  const traffic = await page.evaluate(() => window.traffic);
+  const filtered = await nextResult(() => app.page.evaluate(() => window.crestline.update({ autoThreshold: false, threshold: 3 })));
+  await app.page.evaluate(() => new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve))));
+  const traffic = await app.page.evaluate(() => window.traffic);
   assert.deepEqual(filtered.ran, ['filter']);
   assert.equal(filtered.linesChanged, false, 'a threshold change sends no lines');
   assert.ok(filtered.lineCount < result.lineCount);
