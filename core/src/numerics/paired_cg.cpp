@@ -56,39 +56,36 @@ struct Pair {
   static Pair load(const double* p) { return {_mm_loadu_pd(p)}; }
   static Pair both(double a) { return {_mm_set1_pd(a)}; }
   static Pair of(double a, double b) { return {_mm_set_pd(b, a)}; }
+  // Two floats widened to doubles (exact).
+  static Pair widen(const float* p) {
+    return {_mm_cvtps_pd(_mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p))))};
+  }
   void store(double* p) const { _mm_storeu_pd(p, v); }
 };
 inline Pair operator+(Pair a, Pair b) { return {_mm_add_pd(a.v, b.v)}; }
 inline Pair operator-(Pair a, Pair b) { return {_mm_sub_pd(a.v, b.v)}; }
 inline Pair operator*(Pair a, Pair b) { return {_mm_mul_pd(a.v, b.v)}; }
-// a with its lanes negated where the entry's sign mask says so: flipping the
-// sign bit is exactly a multiplication by −1.
-alignas(16) constexpr uint64_t kSignBits[4][2] = {{0, 0}, {1ull << 63, 0}, {0, 1ull << 63}, {1ull << 63, 1ull << 63}};
-inline Pair signed_weight(double w, uint32_t mask) {
-  const __m128d bits = _mm_load_pd(reinterpret_cast<const double*>(kSignBits[mask]));
-  return {_mm_xor_pd(_mm_set1_pd(w), bits)};
-}
 #else
 struct Pair {
   double a, b;
   static Pair load(const double* p) { return {p[0], p[1]}; }
   static Pair both(double x) { return {x, x}; }
   static Pair of(double x, double y) { return {x, y}; }
+  static Pair widen(const float* p) { return {double{p[0]}, double{p[1]}}; }
   void store(double* p) const { p[0] = a, p[1] = b; }
 };
 inline Pair operator+(Pair x, Pair y) { return {x.a + y.a, x.b + y.b}; }
 inline Pair operator-(Pair x, Pair y) { return {x.a - y.a, x.b - y.b}; }
 inline Pair operator*(Pair x, Pair y) { return {x.a * y.a, x.b * y.b}; }
-inline Pair signed_weight(double w, uint32_t mask) { return {mask & 1 ? -w : w, mask & 2 ? -w : w}; }
 #endif
 
-// Σ a_ij v_j over entries [begin, end) of a row, both fields.
-inline Pair accumulate(const uint32_t* columns, const double* weights, const double* v, uint32_t begin, uint32_t end) {
+// Σ a_ij v_j over entries [begin, end) of a row, both fields: weights holds
+// each entry's pair (σ_0 w, σ_1 w).
+inline Pair accumulate(const uint32_t* columns, const float* weights, const double* v, uint32_t begin, uint32_t end) {
   Pair s = Pair::both(0.0);
-  for (uint32_t e = begin; e < end; ++e) {
-    const uint32_t c = columns[e];
-    s = s + signed_weight(weights[e], c >> 30) * Pair::load(v + 2 * size_t{c & SignedPairMatrix::kColumnMask});
-  }
+  const float* w = weights + 2 * size_t{begin};
+  for (const uint32_t *c = columns + begin, *last = columns + end; c != last; ++c, w += 2)
+    s = s + Pair::widen(w) * Pair::load(v + 2 * size_t{*c});
   return s;
 }
 
@@ -170,13 +167,17 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix) {
         }
     }
   };
-  a_.weights.resize(matrix.weights.size());
-  permute([&](uint32_t from, uint32_t to) { a_.weights[to] = matrix.weights[from]; });
+  weights_.resize(2 * matrix.weights.size());
+  permute([&](uint32_t from, uint32_t to) {
+    const double w = matrix.weights[from];
+    const uint32_t mask = matrix.columns[from] >> 30;
+    weights_[2 * size_t{to}] = static_cast<float>(mask & 1 ? -w : w);
+    weights_[2 * size_t{to} + 1] = static_cast<float>(mask & 2 ? -w : w);
+  });
   std::vector<double>().swap(matrix.weights);
   a_.columns.resize(matrix.columns.size());
   permute([&](uint32_t from, uint32_t to) {
-    const uint32_t c = matrix.columns[from];
-    a_.columns[to] = position[c & SignedPairMatrix::kColumnMask] | (c & ~SignedPairMatrix::kColumnMask);
+    a_.columns[to] = position[matrix.columns[from] & SignedPairMatrix::kColumnMask];
   });
   a_.offsets.assign(n + 1, 0);
   lower_begin_.resize(n);
@@ -218,7 +219,7 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
   const double *const diagonal = a.diagonal.data(), *const inverse = inverse_diagonal.data();
   const uint32_t *const offsets = a.offsets.data(), *const lower = lower_begin_.data();
   const uint32_t* const columns = a.columns.data();
-  const double* const weights = a.weights.data();
+  const float* const weights = weights_.data();
   double *const xv = xp.data(), *const rv = rt.data(), *const pv = p.data(), *const tv = t.data(), *const uv = u.data();
   const auto row_sum = [columns, weights](const double* v, uint32_t begin, uint32_t end) {
     return accumulate(columns, weights, v, begin, end);
