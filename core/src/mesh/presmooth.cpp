@@ -91,15 +91,35 @@ static void solve_positions(const Triplets& triplets, const Eigen::MatrixXd& rhs
   }
 }
 
-// Each vertex's neighbours along the mesh boundary (none for interior
-// vertices); empty for a closed mesh. Topology only: computed once.
-static std::vector<std::vector<uint32_t>> boundary_neighbours(const Topology& topology, size_t nv) {
-  std::vector<std::vector<uint32_t>> along;
+// Each vertex's neighbours along the mesh boundary in edge order (none for
+// interior vertices); empty for a closed mesh. Topology only: computed once.
+// CSR, so a mesh with many boundary vertices costs two allocations, not one
+// per vertex.
+namespace {
+struct BoundaryNeighbours {
+  std::vector<uint32_t> offsets, neighbours;
+  bool empty() const { return offsets.empty(); }
+  uint32_t count(uint32_t v) const { return offsets[v + 1] - offsets[v]; }
+  const uint32_t* begin(uint32_t v) const { return neighbours.data() + offsets[v]; }
+  const uint32_t* end(uint32_t v) const { return neighbours.data() + offsets[v + 1]; }
+};
+}  // namespace
+
+static BoundaryNeighbours boundary_neighbours(const Topology& topology, size_t nv) {
+  BoundaryNeighbours along;
   for (size_t e = 0; e < topology.edges.size(); ++e) {
     if (!topology.is_boundary_edge(static_cast<uint32_t>(e))) continue;
-    if (along.empty()) along.resize(nv);
+    if (along.empty()) along.offsets.assign(nv + 1, 0);
+    ++along.offsets[topology.edges[e][0] + 1], ++along.offsets[topology.edges[e][1] + 1];
+  }
+  if (along.empty()) return along;
+  for (size_t v = 0; v < nv; ++v) along.offsets[v + 1] += along.offsets[v];
+  along.neighbours.resize(along.offsets[nv]);
+  std::vector<uint32_t> fill(along.offsets.begin(), along.offsets.end() - 1);
+  for (size_t e = 0; e < topology.edges.size(); ++e) {
+    if (!topology.is_boundary_edge(static_cast<uint32_t>(e))) continue;
     const uint32_t p = topology.edges[e][0], q = topology.edges[e][1];
-    along[p].push_back(q), along[q].push_back(p);
+    along.neighbours[fill[p]++] = q, along.neighbours[fill[q]++] = p;
   }
   return along;
 }
@@ -110,9 +130,8 @@ static std::vector<std::vector<uint32_t>> boundary_neighbours(const Topology& to
 // boundary vertices only. Corners and non-manifold boundary vertices are
 // held, so corners do not round off and pull their sides inwards. See
 // presmooth_surface for why.
-static void smooth_boundary_curves(std::vector<Vec3>& x, const Mesh& mesh,
-                                   const std::vector<std::vector<uint32_t>>& along, const std::vector<uint8_t>& moving,
-                                   double t, double h) {
+static void smooth_boundary_curves(std::vector<Vec3>& x, const Mesh& mesh, const BoundaryNeighbours& along,
+                                   const std::vector<uint8_t>& moving, double t, double h) {
   const size_t nv = x.size();
   // A corner is where the triangles' angles at a boundary vertex sum to less
   // than 135° (the boundary turns by more than 45° within the surface); the
@@ -123,7 +142,7 @@ static void smooth_boundary_curves(std::vector<Vec3>& x, const Mesh& mesh,
   for (const Triangle& tri : mesh.triangles)
     for (int k = 0; k < 3; ++k) {
       const uint32_t v = tri[k];
-      if (along[v].empty()) continue;
+      if (along.count(v) == 0) continue;
       const Vec3 a = x[tri[(k + 1) % 3]] - x[v], b = x[tri[(k + 2) % 3]] - x[v];
       angle_sum[v] += std::atan2(a.cross(b).norm(), a.dot(b));
     }
@@ -133,8 +152,8 @@ static void smooth_boundary_curves(std::vector<Vec3>& x, const Mesh& mesh,
   const double shortest = 1e-3 * h;
   std::vector<uint32_t> free_vertices, row(nv, kNone);  // row of each free vertex
   for (uint32_t v = 0; v < nv; ++v) {
-    const bool has_length =
-        along[v].size() == 2 && (x[v] - x[along[v][0]]).norm() > shortest && (x[v] - x[along[v][1]]).norm() > shortest;
+    const bool has_length = along.count(v) == 2 && (x[v] - x[along.begin(v)[0]]).norm() > shortest &&
+                            (x[v] - x[along.begin(v)[1]]).norm() > shortest;
     if (has_length && moving[v] && angle_sum[v] >= kCornerAngleSum)
       row[v] = static_cast<uint32_t>(free_vertices.size()), free_vertices.push_back(v);
   }
@@ -148,7 +167,8 @@ static void smooth_boundary_curves(std::vector<Vec3>& x, const Mesh& mesh,
     const uint32_t v = free_vertices[i];
     double mass = 0, diagonal = 0;
     Eigen::RowVector3d held = Eigen::RowVector3d::Zero();
-    for (uint32_t q : along[v]) {
+    for (const uint32_t* neighbour = along.begin(v); neighbour != along.end(v); ++neighbour) {
+      const uint32_t q = *neighbour;
       const double length = (x[v] - x[q]).norm(), w = t / length;
       mass += 0.5 * length, diagonal += w;
       if (row[q] != kNone)
@@ -177,7 +197,7 @@ std::vector<Vec3> presmooth_surface(const Mesh& mesh, const Topology& topology, 
   const size_t nv = x.size();
   const double h = mean_edge_length(mesh);
   const double t = time_step * h * h;
-  const std::vector<std::vector<uint32_t>> along = boundary_neighbours(topology, nv);
+  const BoundaryNeighbours along = boundary_neighbours(topology, nv);
   std::vector<uint8_t> fixed(nv), moving(nv);
 
   for (int step = 0; step < steps; ++step) {

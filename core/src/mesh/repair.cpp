@@ -9,6 +9,7 @@
 
 #include "crestline/error.h"
 #include "crestline/mesh/topology.h"
+#include "half_edges.h"
 
 namespace crestline {
 namespace {
@@ -39,10 +40,12 @@ std::vector<uint32_t> bucket_order(size_t count, size_t buckets, const Bucket& b
   return order;
 }
 
-// The undirected edge of corner c (from corner k to k + 1) as (smaller, larger).
-std::array<uint32_t, 2> corner_edge(const std::vector<Triangle>& tris, uint32_t c) {
-  const uint32_t a = tris[c / 3][c % 3], b = tris[c / 3][(c % 3 + 1) % 3];
-  return {std::min(a, b), std::max(a, b)};
+// A triangle's vertices in ascending order.
+Triangle sorted_corners(Triangle t) {
+  if (t[0] > t[1]) std::swap(t[0], t[1]);
+  if (t[1] > t[2]) std::swap(t[1], t[2]);
+  if (t[0] > t[1]) std::swap(t[0], t[1]);
+  return t;
 }
 
 std::string count_text(size_t n, const char* singular, const char* plural) {
@@ -67,9 +70,13 @@ void check_soup(const TriangleSoup& soup, const RepairOptions& options) {
                                                std::to_string(nv) + " vertices.");
 }
 
+// Union-find over 0 … n − 1, reset per use without allocating.
 struct Union {
   std::vector<uint32_t> parent;
-  explicit Union(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
+  void reset(size_t n) {
+    parent.resize(n);
+    std::iota(parent.begin(), parent.end(), 0u);
+  }
   uint32_t find(uint32_t x) {
     while (parent[x] != x) x = parent[x] = parent[parent[x]];
     return x;
@@ -80,10 +87,15 @@ struct Union {
   }
 };
 
-// Merges vertices closer than `tolerance` with a hash grid of that cell size;
-// the first vertex of a cluster (in input order) represents it. The grid is a
-// flat open-addressing table from cell to a list (through `next`) of the
-// representatives in it: one probe per cell instead of a node chase.
+// Merges vertices closer than `tolerance` with a hash grid; the first vertex
+// of a cluster (in input order) represents it. The grid is a flat
+// open-addressing table from cell to a list (through `next`) of the
+// representatives in it: one probe per cell instead of a node chase. Cells
+// measure twice the tolerance, so the box of ±tolerance (plus a margin of
+// half a tolerance for rounding) around a vertex touches at most two cells
+// per axis: 1 to 8 probes instead of the 27 of tolerance-sized cells. The
+// result does not depend on the cells: the earliest representative within
+// tolerance, found by exact distances.
 // Only `weldable` vertices (finite and used by a triangle, so inside the
 // bounding box) take part: unreferenced ones far away would share clamped cells.
 std::vector<uint32_t> weld(const std::vector<Vec3>& points, const std::vector<uint8_t>& weldable, const Vec3& lo,
@@ -91,13 +103,15 @@ std::vector<uint32_t> weld(const std::vector<Vec3>& points, const std::vector<ui
   std::vector<uint32_t> representative(points.size());
   std::iota(representative.begin(), representative.end(), 0u);
   if (!(tolerance > 0)) return representative;
-  const double inv = 1.0 / tolerance;
+  const double inv = 0.5 / tolerance;
   if (!std::isfinite(inv)) return representative;  // a subnormal tolerance: nothing to weld
   // Grid cell of a scaled coordinate, clamped so the conversion is defined.
   auto cell = [](double q) {
     constexpr double limit = 4e18;
-    const double c = std::floor(q);
-    return c >= limit ? int64_t(limit) : c <= -limit ? -int64_t(limit) : int64_t(c);
+    if (!(q < limit)) return int64_t(limit);
+    if (q <= -limit) return -int64_t(limit);
+    const int64_t c = static_cast<int64_t>(q);  // toward zero, then down: floor without a libm call
+    return c - int64_t(static_cast<double>(c) > q);
   };
   auto cell_key = [](int64_t x, int64_t y, int64_t z) {
     return static_cast<uint64_t>(x) * 73856093u ^ static_cast<uint64_t>(y) * 19349663u ^
@@ -119,15 +133,17 @@ std::vector<uint32_t> weld(const std::vector<Vec3>& points, const std::vector<ui
   for (uint32_t i = 0; i < points.size(); ++i) {
     if (!weldable[i]) continue;
     const Vec3 q = (points[i] - lo) * inv;
-    const int64_t cx = cell(q.x()), cy = cell(q.y()), cz = cell(q.z());
+    // A tolerance is half a cell; the search reaches 0.75 cells either way.
+    const int64_t x0 = cell(q.x() - 0.75), x1 = cell(q.x() + 0.75), y0 = cell(q.y() - 0.75), y1 = cell(q.y() + 0.75),
+                  z0 = cell(q.z() - 0.75), z1 = cell(q.z() + 0.75);
     uint32_t found = kNone;  // the earliest representative within tolerance
-    for (int64_t dx = -1; dx <= 1; ++dx)
-      for (int64_t dy = -1; dy <= 1; ++dy)
-        for (int64_t dz = -1; dz <= 1; ++dz)
-          for (uint32_t j = head[slot(cell_key(cx + dx, cy + dy, cz + dz))]; j != kNone; j = next[j])
+    for (int64_t x = x0; x <= x1; ++x)
+      for (int64_t y = y0; y <= y1; ++y)
+        for (int64_t z = z0; z <= z1; ++z)
+          for (uint32_t j = head[slot(cell_key(x, y, z))]; j != kNone; j = next[j])
             if (j < found && (points[j] - points[i]).squaredNorm() <= tol2) found = j;
     if (found == kNone) {
-      const uint64_t key = cell_key(cx, cy, cz);
+      const uint64_t key = cell_key(cell(q.x()), cell(q.y()), cell(q.z()));
       const size_t s = slot(key);
       keys[s] = key;
       next[i] = head[s];
@@ -155,26 +171,19 @@ Orientation orient(std::vector<Triangle>& tris, const std::vector<Vec3>& points,
   out.cut.assign(3 * nt, 0);
   out.component.assign(nt, kNone);
 
-  // Group half-edges (corners) by undirected edge, each group in corner order.
-  std::vector<uint32_t> far_end(3 * nt);
-  for (uint32_t c = 0; c < 3 * nt; ++c) far_end[c] = corner_edge(tris, c)[1];
-  const std::vector<uint32_t> half = bucket_order(
-      3 * nt, points.size(), [&](size_t c) { return corner_edge(tris, uint32_t(c))[0]; },
-      [&](uint32_t x, uint32_t y) { return far_end[x] != far_end[y] ? far_end[x] < far_end[y] : x < y; });
+  // Half-edges (corners) grouped by undirected edge.
   std::vector<uint32_t> partner(3 * nt, kNone);  // the corner across a manifold edge
-  for (size_t i = 0; i < half.size();) {
-    size_t j = i;
-    const uint32_t near_end = corner_edge(tris, half[i])[0];
-    while (j < half.size() && far_end[half[j]] == far_end[half[i]] && corner_edge(tris, half[j])[0] == near_end) ++j;
-    if (j - i == 2) {
-      partner[half[i]] = half[i + 1];
-      partner[half[i + 1]] = half[i];
-    } else if (j - i > 2) {
-      ++report.nonmanifold_edges;
-      for (size_t h = i; h < j; ++h) out.cut[half[h]] = 1;
-    }
-    i = j;
-  }
+  detail::order_half_edges(tris, points.size())
+      .for_each_edge([&](uint32_t, uint32_t, const uint64_t* first, const uint64_t* last) {
+        using H = detail::HalfEdgeOrder;
+        if (last - first == 2) {
+          partner[H::corner(first[0])] = H::corner(first[1]);
+          partner[H::corner(first[1])] = H::corner(first[0]);
+        } else if (last - first > 2) {
+          ++report.nonmanifold_edges;
+          for (const uint64_t* h = first; h < last; ++h) out.cut[H::corner(*h)] = 1;
+        }
+      });
 
   std::vector<uint8_t> flipped(nt, 0);
   std::vector<uint32_t> stack, members;
@@ -257,8 +266,10 @@ void split_fans(std::vector<Triangle>& tris, std::vector<Vec3>& points, const st
   for (uint32_t t = 0; t < nt; ++t)
     for (uint32_t k = 0; k < 3; ++k) corners[fill[tris[t][k]]++] = 3 * t + k;
 
-  std::vector<std::pair<uint32_t, uint32_t>> ends;  // (other end of an uncut edge at v, local triangle)
+  // Buffers reused for every vertex.
+  std::vector<uint64_t> ends;  // other end of an uncut edge at v << 32 | local triangle
   std::vector<uint32_t> fan_of;
+  Union fans;
   for (uint32_t v = 0; v < nv; ++v) {
     const uint32_t begin = offsets[v], n = offsets[v + 1] - begin;
     if (n < 2) continue;
@@ -266,13 +277,13 @@ void split_fans(std::vector<Triangle>& tris, std::vector<Vec3>& points, const st
     ends.clear();
     for (uint32_t i = 0; i < n; ++i) {
       const uint32_t corner = corners[begin + i], t = corner / 3, k = corner % 3;
-      if (!cut[3 * t + k]) ends.emplace_back(tris[t][(k + 1) % 3], i);
-      if (!cut[3 * t + (k + 2) % 3]) ends.emplace_back(tris[t][(k + 2) % 3], i);
+      if (!cut[3 * t + k]) ends.push_back(uint64_t{tris[t][(k + 1) % 3]} << 32 | i);
+      if (!cut[3 * t + (k + 2) % 3]) ends.push_back(uint64_t{tris[t][(k + 2) % 3]} << 32 | i);
     }
     std::sort(ends.begin(), ends.end());
-    Union fans(n);
+    fans.reset(n);
     for (size_t j = 1; j < ends.size(); ++j)
-      if (ends[j].first == ends[j - 1].first) fans.join(ends[j].second, ends[j - 1].second);
+      if (ends[j] >> 32 == ends[j - 1] >> 32) fans.join(uint32_t(ends[j]), uint32_t(ends[j - 1]));
     // The fan of the first triangle keeps v; every other fan gets a copy.
     fan_of.assign(n, kNone);
     size_t fan_count = 0;
@@ -353,14 +364,20 @@ RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options)
   }
   {
     // Duplicates: triangles with the same vertex set; the first one stays.
-    std::vector<Triangle> sorted(tris);
-    for (Triangle& k : sorted) std::sort(k.begin(), k.end());
-    const std::vector<uint32_t> keyed = bucket_order(
-        tris.size(), points.size(), [&](size_t t) { return sorted[t][0]; },
-        [&](uint32_t x, uint32_t y) { return sorted[x] != sorted[y] ? sorted[x] < sorted[y] : x < y; });
+    // Bucketed by the smallest vertex, ordered by the other two (one key).
+    std::vector<uint64_t> larger(tris.size());
+    for (size_t t = 0; t < tris.size(); ++t) {
+      const Triangle k = sorted_corners(tris[t]);
+      larger[t] = uint64_t{k[1]} << 32 | k[2];
+    }
+    const auto smallest = [&](size_t t) { return std::min({tris[t][0], tris[t][1], tris[t][2]}); };
+    const std::vector<uint32_t> keyed = bucket_order(tris.size(), points.size(), smallest, [&](uint32_t x, uint32_t y) {
+      return larger[x] != larger[y] ? larger[x] < larger[y] : x < y;
+    });
     std::vector<uint8_t> keep(tris.size(), 1);
     for (size_t i = 1; i < keyed.size(); ++i)
-      if (sorted[keyed[i]] == sorted[keyed[i - 1]]) keep[keyed[i]] = 0, ++report.duplicate_triangles;
+      if (larger[keyed[i]] == larger[keyed[i - 1]] && smallest(keyed[i]) == smallest(keyed[i - 1]))
+        keep[keyed[i]] = 0, ++report.duplicate_triangles;
     size_t n = 0;
     for (size_t t = 0; t < tris.size(); ++t)
       if (keep[t]) tris[n++] = tris[t];
@@ -393,18 +410,12 @@ RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options)
     for (uint32_t& v : t) v = index[v];
 
   // Boundary edges of the repaired mesh: undirected edges used once.
-  const std::vector<Triangle>& mesh_tris = result.mesh.triangles;
-  const std::vector<uint32_t> keys = bucket_order(
-      3 * mesh_tris.size(), next, [&](size_t c) { return corner_edge(mesh_tris, uint32_t(c))[0]; },
-      [&](uint32_t x, uint32_t y) { return corner_edge(mesh_tris, x)[1] < corner_edge(mesh_tris, y)[1]; });
-  for (size_t i = 0; i < keys.size();) {
-    size_t j = i;
-    const std::array<uint32_t, 2> edge = corner_edge(mesh_tris, keys[i]);
-    while (j < keys.size() && corner_edge(mesh_tris, keys[j]) == edge) ++j;
-    if (j - i == 1) ++report.boundary_edges;
-    if (j - i > 2) throw Error(ErrorKind::InvalidInput, "the mesh has an edge that could not be made manifold.");
-    i = j;
-  }
+  detail::order_half_edges(result.mesh.triangles, next)
+      .for_each_edge([&](uint32_t, uint32_t, const uint64_t* first, const uint64_t* last) {
+        if (last - first == 1) ++report.boundary_edges;
+        if (last - first > 2)
+          throw Error(ErrorKind::InvalidInput, "the mesh has an edge that could not be made manifold.");
+      });
   return result;
 }
 

@@ -1,7 +1,12 @@
 #include "crestline/mesh/repair.h"
 
+#include <algorithm>
+#include <array>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <random>
+#include <set>
+#include <vector>
 
 #include "analytic_meshes.h"
 #include "crestline/error.h"
@@ -173,4 +178,77 @@ TEST_CASE("welding tolerance is relative to the model size", "[repair]") {
     RepairResult r = repair_mesh(s);
     CHECK(r.mesh.vertex_count() == 8);
   }
+}
+
+TEST_CASE("welding picks the earliest representative within tolerance, as a brute-force search does", "[repair]") {
+  // Clusters of 8 vertices scattered within 1.5 tolerances of their centre, so
+  // that pairs straddle the tolerance and the weld grid's cells in every
+  // direction; each vertex opens a triangle with vertices of the next two
+  // clusters. Reference: every vertex, in input order, joins the earliest
+  // earlier representative within tolerance, or becomes one.
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> unit(0, 1), signed_unit(-1, 1);
+  const int clusters = 300, per_cluster = 8;
+  TriangleSoup s;
+  std::vector<Vec3> centres(clusters);
+  for (Vec3& c : centres) c = Vec3(unit(random), unit(random), unit(random)) + Vec3(1e3, -2e3, 0);
+  // The clusters lie inside [1e3, 1e3 + 1] × …; two corner vertices fix the diagonal.
+  const Vec3 lo(1e3 - 0.1, -2e3 - 0.1, -0.1), hi(1e3 + 1.1, -2e3 + 1.1, 1.1);
+  const double tolerance = RepairOptions().weld_tolerance * (hi - lo).norm();
+  for (int c = 0; c < clusters; ++c)
+    for (int k = 0; k < per_cluster; ++k) {
+      Vec3 offset;
+      do offset = Vec3(signed_unit(random), signed_unit(random), signed_unit(random));
+      while (offset.norm() > 1);
+      add_vertex(s, centres[c] + 1.5 * tolerance * offset);
+    }
+  const uint32_t corner_lo = uint32_t(s.vertex_count());
+  add_vertex(s, lo), add_vertex(s, hi), add_vertex(s, Vec3(lo.x(), hi.y(), lo.z()));
+  for (uint32_t i = 0; i < uint32_t(clusters * per_cluster); ++i) {
+    const uint32_t c = i / per_cluster;
+    add_triangle(s, i, ((c + 1) % clusters) * per_cluster + random() % per_cluster,
+                 ((c + 2) % clusters) * per_cluster + random() % per_cluster);
+  }
+  add_triangle(s, corner_lo, corner_lo + 1, corner_lo + 2);
+
+  std::vector<Vec3> points(s.vertex_count());
+  for (size_t i = 0; i < points.size(); ++i)
+    points[i] = Vec3(s.positions[3 * i], s.positions[3 * i + 1], s.positions[3 * i + 2]);
+  std::vector<uint32_t> representative(points.size()), representatives;
+  size_t welded = 0;
+  for (uint32_t i = 0; i < points.size(); ++i) {
+    representative[i] = i;
+    for (uint32_t j : representatives)
+      if ((points[j] - points[i]).norm() <= tolerance) {
+        representative[i] = j, ++welded;
+        break;
+      }
+    if (representative[i] == i) representatives.push_back(i);
+  }
+  REQUIRE(welded > 200);                               // the test welds many vertices …
+  REQUIRE(representatives.size() > size_t(clusters));  // … but not every cluster into one
+
+  // Expected triangles: welded corners, the first of each vertex set kept.
+  std::vector<std::array<uint32_t, 3>> expected;
+  std::set<std::array<uint32_t, 3>> seen;
+  for (size_t t = 0; t < s.triangle_count(); ++t) {
+    std::array<uint32_t, 3> f{representative[s.indices[3 * t]], representative[s.indices[3 * t + 1]],
+                              representative[s.indices[3 * t + 2]]};
+    std::sort(f.begin(), f.end());
+    if (seen.insert(f).second) expected.push_back(f);
+  }
+  const RepairResult r = repair_mesh(s);
+  CHECK(r.report.welded_vertices == welded);
+  REQUIRE(r.mesh.triangle_count() == expected.size());
+  size_t mismatches = 0;
+  for (size_t t = 0; t < expected.size(); ++t) {
+    std::array<Vec3, 3> want, got;
+    for (int k = 0; k < 3; ++k) want[k] = points[expected[t][k]], got[k] = r.mesh.positions[r.mesh.triangles[t][k]];
+    auto less = [](const Vec3& a, const Vec3& b) {
+      return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+    };
+    std::sort(want.begin(), want.end(), less), std::sort(got.begin(), got.end(), less);
+    mismatches += want != got;
+  }
+  CHECK(mismatches == 0);
 }
