@@ -145,7 +145,7 @@ int run(const CliOptions& options) {
     if (options.threads > 0) set_max_threads(options.threads);
     Progress progress(!options.quiet);
     Stopwatch clock;
-    const TriangleSoup soup = read_input(options.input);
+    TriangleSoup soup = read_input(options.input);
     const double read_seconds = clock.lap();
     progress.phase("repairing");
     RepairResult repaired = repair_mesh(soup);
@@ -162,6 +162,7 @@ int run(const CliOptions& options) {
       pipeline_options.smoothing.vertex_weights = read_vertex_weights(options.weights, soup, repaired.mesh);
       file = options.input;
     }
+    soup = TriangleSoup();  // not needed any more: ~45 bytes per triangle less at the peak
 
     Pipeline pipeline(std::move(repaired.mesh));
     pipeline.set_options(pipeline_options);

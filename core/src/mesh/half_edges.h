@@ -23,6 +23,15 @@ struct HalfEdgeOrder {
   static uint32_t far_end(uint64_t entry) { return static_cast<uint32_t>(entry >> 32); }
   static uint32_t corner(uint64_t entry) { return static_cast<uint32_t>(entry); }
 
+  /// The number of undirected edges.
+  size_t edge_count() const {
+    size_t count = 0;
+    for (uint32_t v = 0; v + 1 < start.size(); ++v)
+      for (uint32_t i = start[v]; i < start[v + 1]; ++i)
+        count += i == start[v] || far_end(entries[i]) != far_end(entries[i - 1]);
+    return count;
+  }
+
   /// Calls edge(near, far, first, last) once per undirected edge, in
   /// ascending (near, far) order, with [first, last) its half-edges in corner order.
   template <typename Edge>

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "crestline/error.h"
+#include "half_edges.h"
 
 namespace crestline {
 
@@ -10,49 +11,22 @@ Topology build_topology(const Mesh& mesh) {
   Topology topo;
   const size_t nt = mesh.triangles.size(), nv = mesh.positions.size();
 
-  // Half-edges keyed by their undirected edge; sorting groups the two sides.
-  // A counting sort by the smaller vertex (corners stay in increasing order)
-  // and a sort of each vertex's few half-edges give the order of one global
-  // sort by (key, corner) in linear time.
-  struct HalfEdge {
-    uint64_t key;
-    uint32_t corner;  // 3 * triangle + k
-  };
-  auto smaller_end = [&](uint32_t t, uint32_t k) {
-    return std::min(mesh.triangles[t][k], mesh.triangles[t][(k + 1) % 3]);
-  };
-  std::vector<uint32_t> bucket(nv + 1, 0);
-  for (uint32_t t = 0; t < nt; ++t)
-    for (uint32_t k = 0; k < 3; ++k) ++bucket[smaller_end(t, k) + 1];
-  for (size_t v = 0; v < nv; ++v) bucket[v + 1] += bucket[v];
-  std::vector<HalfEdge> half(3 * nt);
-  {
-    std::vector<uint32_t> fill(bucket.begin(), bucket.end() - 1);
-    for (uint32_t t = 0; t < nt; ++t)
-      for (uint32_t k = 0; k < 3; ++k) {
-        uint64_t a = mesh.triangles[t][k], b = mesh.triangles[t][(k + 1) % 3];
-        if (a > b) std::swap(a, b);
-        half[fill[a]++] = {(a << 32) | b, 3 * t + k};
-      }
-  }
-  for (size_t v = 0; v < nv; ++v)
-    std::sort(half.begin() + bucket[v], half.begin() + bucket[v + 1], [](const HalfEdge& x, const HalfEdge& y) {
-      return x.key < y.key || (x.key == y.key && x.corner < y.corner);
-    });
-
+  // Half-edges grouped by undirected edge, in (smaller end, larger end,
+  // corner) order: edges are numbered in that order.
+  const detail::HalfEdgeOrder order = detail::order_half_edges(mesh.triangles, nv);
   topo.triangle_edges.assign(nt, {kNone, kNone, kNone});
-  for (size_t i = 0; i < half.size();) {
-    size_t j = i;
-    while (j < half.size() && half[j].key == half[i].key) ++j;
-    if (j - i > 2) throw Error(ErrorKind::InvalidInput, "the mesh has an edge shared by more than two triangles.");
+  const size_t edge_count = order.edge_count();
+  topo.edges.reserve(edge_count);
+  topo.edge_triangles.reserve(edge_count);
+  using H = detail::HalfEdgeOrder;
+  order.for_each_edge([&](uint32_t near, uint32_t far, const uint64_t* first, const uint64_t* last) {
+    if (last - first > 2)
+      throw Error(ErrorKind::InvalidInput, "the mesh has an edge shared by more than two triangles.");
     const uint32_t e = static_cast<uint32_t>(topo.edges.size());
-    topo.edges.push_back({static_cast<uint32_t>(half[i].key >> 32), static_cast<uint32_t>(half[i].key)});
-    std::array<uint32_t, 2> tris{half[i].corner / 3, kNone};
-    if (j - i == 2) tris[1] = half[i + 1].corner / 3;
-    topo.edge_triangles.push_back(tris);
-    for (size_t h = i; h < j; ++h) topo.triangle_edges[half[h].corner / 3][half[h].corner % 3] = e;
-    i = j;
-  }
+    topo.edges.push_back({near, far});
+    topo.edge_triangles.push_back({H::corner(first[0]) / 3, last - first == 2 ? H::corner(first[1]) / 3 : kNone});
+    for (const uint64_t* h = first; h < last; ++h) topo.triangle_edges[H::corner(*h) / 3][H::corner(*h) % 3] = e;
+  });
 
   topo.vertex_offsets.assign(nv + 1, 0);
   for (const Triangle& t : mesh.triangles)
