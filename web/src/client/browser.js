@@ -5,23 +5,19 @@ import workerUrl from '../worker/worker.js?worker&url';
 import { Connection } from './client.js';
 
 /**
- * Starts a module worker from a URL Vite gave. A script served from another
- * origin (the widget on a CDN) cannot start a worker from its own URL: a blob
- * module on the page's origin imports it instead.
- * @param {string} url
+ * Starts the worker. A script served from another origin (the widget on a
+ * CDN) cannot start a worker from its own URL: a blob module on the page's
+ * origin imports it instead.
  * @returns {Worker}
  */
-function startModuleWorker(url) {
-  const absolute = new URL(url, import.meta.url);
+function startBrowserWorker() {
+  const absolute = new URL(workerUrl, import.meta.url);
   if (absolute.origin === globalThis.location?.origin) return new Worker(absolute, { type: 'module' });
   const shim = URL.createObjectURL(new Blob([`import ${JSON.stringify(absolute.href)};`], { type: 'text/javascript' }));
   const worker = new Worker(shim, { type: 'module' });
   URL.revokeObjectURL(shim);
   return worker;
 }
-
-/** The pipeline worker. */
-export const startBrowserWorker = () => startModuleWorker(workerUrl);
 
 /** @type {Connection | null} */
 let shared = null;
