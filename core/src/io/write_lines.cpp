@@ -4,6 +4,7 @@
 // double.
 #include "crestline/io/write_lines.h"
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -14,6 +15,33 @@
 namespace crestline::io {
 namespace {
 
+// `value` as printf's %.*g with `precision` writes it; returns the end.
+// std::to_chars with a precision is defined as that printf format and is
+// several times faster than glibc's printf; Emscripten's libc++ has no
+// floating-point to_chars (no __cpp_lib_to_chars), so WASM uses snprintf.
+// Both are exact (correctly rounded), so native and WASM files are the same
+// bytes (tests/unit/io/write_lines_test.cpp checks to_chars against snprintf).
+char* format_general(char* first, char* last, double value, int precision) {
+#ifdef __cpp_lib_to_chars
+  return std::to_chars(first, last, value, std::chars_format::general, precision).ptr;
+#else
+  const int n = std::snprintf(first, size_t(last - first), "%.*g", precision, value);
+  return first + n;
+#endif
+}
+
+double parse_double(const char* first, const char* last) {
+#ifdef __cpp_lib_to_chars
+  double value = 0;
+  // Out of range (a subnormal, for some implementations): strtod decides, as before.
+  if (std::from_chars(first, last, value).ec != std::errc()) return std::strtod(first, nullptr);
+  return value;
+#else
+  (void)last;
+  return std::strtod(first, nullptr);
+#endif
+}
+
 // Shortest of %.15g/%.16g/%.17g that reads back bit-identically: compact
 // files for "nice" numbers, exact round trip for all.
 void append_number(std::string& out, double value) {
@@ -22,11 +50,13 @@ void append_number(std::string& out, double value) {
     return;
   }
   char buffer[32];
+  char* end = buffer;
   for (int precision = 15; precision <= 17; ++precision) {
-    std::snprintf(buffer, sizeof buffer, "%.*g", precision, value);
-    if (precision == 17 || std::strtod(buffer, nullptr) == value) break;
+    end = format_general(buffer, buffer + sizeof buffer - 1, value, precision);
+    *end = '\0';
+    if (precision == 17 || parse_double(buffer, end) == value) break;
   }
-  out += buffer;
+  out.append(buffer, end);
 }
 
 void append_count(std::string& out, size_t value) { out += std::to_string(value); }

@@ -2,8 +2,13 @@
 #include "crestline/io/write_lines.h"
 
 #include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -257,4 +262,60 @@ TEST_CASE("creases: OBJ object o creases after the valleys, JSON with convex per
   CHECK(none["creases"].is_array());
   CHECK(none["creases"].empty());
   CHECK(crestline::io::write_lines_obj(sample_lines()).find("\no creases") == std::string::npos);
+}
+
+TEST_CASE("OBJ numbers are the shortest of %.15g, %.16g, %.17g that reads back, as printf writes them",
+          "[io][writers]") {
+  // The writer formats with std::to_chars natively and snprintf in WASM;
+  // both must give printf's bytes. Random doubles over the whole exponent
+  // range, short decimals (which round-trip at 15 digits), halves (exact
+  // ties at some precisions), subnormals and powers of two.
+  std::mt19937_64 random(11);
+  std::vector<double> values;
+  for (int i = 0; i < 20000; ++i) {
+    uint64_t bits = random();
+    double d;
+    std::memcpy(&d, &bits, sizeof d);
+    if (std::isfinite(d)) values.push_back(d);
+  }
+  std::uniform_real_distribution<double> unit(-1, 1);
+  for (int i = 0; i < 20000; ++i) values.push_back(unit(random) * std::pow(10.0, int(random() % 40) - 20));
+  for (int i = 0; i < 2000; ++i) values.push_back(std::round(unit(random) * 1e6) / 1000);
+  for (int i = 0; i < 200; ++i) values.push_back((int64_t(random() % 2000000) - 1000000) + 0.5);
+  for (int e = -1074; e <= 1023; e += 7) values.push_back(std::ldexp(1.0, e));
+  values.push_back(std::numeric_limits<double>::denorm_min());
+  values.push_back(std::numeric_limits<double>::max());
+  while (values.size() % 3) values.push_back(0.0);
+
+  std::vector<Vec3> points;
+  std::string expected;
+  auto printf_number = [](double value) {
+    char buffer[32];
+    for (int precision = 15; precision <= 17; ++precision) {
+      std::snprintf(buffer, sizeof buffer, "%.*g", precision, value);
+      if (precision == 17 || std::strtod(buffer, nullptr) == value) break;
+    }
+    return std::string(buffer);
+  };
+  for (size_t i = 0; i < values.size(); i += 3) {
+    points.emplace_back(values[i], values[i + 1], values[i + 2]);
+    expected += "v " + printf_number(values[i]) + ' ' + printf_number(values[i + 1]) + ' ' +
+                printf_number(values[i + 2]) + '\n';
+  }
+  const std::string obj = crestline::io::write_lines_obj({make_line(LineType::Ridge, points, false, 1.0)});
+  const size_t first_vertex = obj.find("\nv ") + 1;  // after the header comment
+  REQUIRE(obj.size() > first_vertex + expected.size());
+  const std::string written = obj.substr(first_vertex, expected.size());
+  size_t differing = 0;
+  std::string first_difference;
+  for (size_t i = 0, start = 0; i < expected.size(); ++i)
+    if (expected[i] == '\n') {
+      if (written.compare(start, i + 1 - start, expected, start, i + 1 - start) != 0 && differing++ == 0)
+        first_difference =
+            "expected " + expected.substr(start, i - start) + ", wrote " + written.substr(start, i - start);
+      start = i + 1;
+    }
+  INFO(first_difference);
+  CHECK(differing == 0);
+  CHECK(written == expected);
 }
