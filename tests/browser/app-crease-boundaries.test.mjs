@@ -1,0 +1,67 @@
+// The page with crease boundaries on (issue 16, --crease-boundaries): on a
+// generated box the creases run along its 12 edges and no ridge or valley
+// comes within 2 mean edges of them; with boundaries off (the default) the
+// smooth lines run along those edges. Needs web/dist (web/build.sh).
+import assert from 'node:assert/strict';
+import { after, before, test } from 'node:test';
+import { boxObj } from './box-obj.mjs';
+import { dropFiles, nextResult, openApp, sampleReady } from './app-page.mjs';
+
+const SIZE = [2, 1, 1];
+const N = 24;
+let app, page;
+
+before(async () => {
+  app = await openApp();
+  ({ page } = app);
+  await sampleReady(page);
+});
+
+after(() => app?.close());
+
+/** The page's OBJ export: the points of each object's lines (`o ridges`, `o valleys`, `o creases`). */
+async function exportedPoints() {
+  const text = await page.evaluate(async () => (await window.crestline.save('obj')).blob.text());
+  const vertices = [];
+  const points = { ridges: [], valleys: [], creases: [] };
+  let current = null;
+  for (const line of text.split('\n')) {
+    if (line.startsWith('v ')) vertices.push(line.slice(2).trim().split(/\s+/).map(Number));
+    else if (line.startsWith('o ')) current = points[line.slice(2).trim()] ?? null;
+    else if (line.startsWith('l ') && current) for (const k of line.slice(2).trim().split(/\s+/)) current.push(vertices[Number(k) - 1]);
+  }
+  return points;
+}
+
+/** Distance from a point on the box's surface to the nearest of its 12 edges. */
+function edgeDistance(p) {
+  const d = p.map((x, axis) => Math.min(Math.abs(x), Math.abs(SIZE[axis] - x))).sort((a, b) => a - b);
+  return Math.hypot(d[0], d[1]);
+}
+
+test('a box with crease boundaries: creases on its 12 edges, no smooth line within 2 mean edges of them', async () => {
+  const result = await nextResult(page, () => dropFiles(page, [{ name: 'box.obj', text: boxObj({ size: SIZE, n: N }) }]));
+  const h = result.stats.meanEdgeLength;
+  assert.ok(h > 0, `mean edge ${h}`);
+  const off = await exportedPoints();
+  const near = (points) => points.filter((p) => edgeDistance(p) < 2 * h).length;
+  console.log(
+    `box, boundaries off: ${off.ridges.length + off.valleys.length} smooth line points, ${near(off.ridges) + near(off.valleys)} within 2 h of an edge`,
+  );
+  // Without boundaries the one-rings on the edges sum the 90° turn as curvature: lines along the edges.
+  assert.ok(near(off.ridges) + near(off.valleys) > 0, 'without boundaries, smooth lines run along the edges');
+
+  const on = await nextResult(page, () => page.evaluate(() => window.crestline.update({ creaseBoundaries: true })));
+  assert.equal(on.stats.creases, 12, 'the 12 edges are creases');
+  const points = await exportedPoints();
+  const smooth = [...points.ridges, ...points.valleys];
+  console.log(`box, boundaries on: ${on.stats.creases} creases, ${smooth.length} smooth line points, ${near(smooth)} within 2 h of an edge`);
+  assert.equal(near(smooth), 0, 'no smooth line within 2 mean edges of a crease');
+  // Every crease point lies on an edge of the box.
+  assert.ok(points.creases.length >= 12 * N);
+  assert.ok(
+    points.creases.every((p) => edgeDistance(p) < 1e-4),
+    'crease points on the edges',
+  );
+  await nextResult(page, () => page.evaluate(() => window.crestline.update({ creaseBoundaries: false })));
+});
