@@ -19,8 +19,11 @@ namespace {
 // iterate) are the same for any number of threads.
 constexpr size_t kBlock = 1024;
 // The true residual is computed once ‖D r̃‖² (which tracks ‖r‖²) is within
-// this factor of the limit.
-constexpr double kCheckMargin = 4;
+// this factor of the limit. The ratio of the two measured 0.91–1.16 at every
+// check on the bunny, its 1.1M subdivision and the dragon, so the check still
+// comes at the iteration that stops (results as with 4, 40 % fewer checks); a
+// mesh where the estimate ran higher would only stop an iteration later.
+constexpr double kCheckMargin = 1.5;
 // Blocks a thread takes at least; smaller systems stay on one thread.
 constexpr size_t kMinBlocksPerThread = 4;
 
