@@ -1,7 +1,10 @@
 #include "crestline/lines/trace.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+
+#include "crestline/numerics/parallel.h"
 
 namespace crestline {
 namespace {
@@ -55,44 +58,64 @@ uint32_t crossing_node(FeatureGraph& graph, const Mesh& mesh, const Topology& to
 // Triangles between two progress reports.
 constexpr uint32_t kProgressStride = 1u << 15;
 
+// The edges (k, k + 1) of triangle t that carry a segment of the field's
+// line, as 1 + first + 3 · second (first < second); 0 where there is none.
+uint8_t segment_edges(const Mesh& mesh, const Field& field, uint32_t t) {
+  const std::vector<Vec3>& x = mesh.positions;
+  const Triangle& f = mesh.triangles[t];
+  std::array<double, 3> s;
+  consistent_signs(field.dir[f[0]], field.dir[f[1]], field.dir[f[2]], s);
+  const double v[3] = {s[0] * nonzero(field.e[f[0]]), s[1] * nonzero(field.e[f[1]]), s[2] * nonzero(field.e[f[2]])};
+  int crossed[2], n = 0;
+  for (int k = 0; k < 3; ++k)
+    if ((v[k] > 0) != (v[(k + 1) % 3] > 0)) crossed[n++] = k;
+  if (n != 2) return 0;
+
+  // Conditions (5) and (6) on the consistently signed linear function.
+  const Vec3 normal = (x[f[1]] - x[f[0]]).cross(x[f[2]] - x[f[0]]);
+  const double twice_area = normal.norm();
+  if (!(twice_area > 0)) return 0;
+  Vec3 gradient = Vec3::Zero(), direction = Vec3::Zero();
+  double own = 0, other = 0;
+  for (int k = 0; k < 3; ++k) {
+    gradient += v[k] * (normal / twice_area).cross(x[f[(k + 2) % 3]] - x[f[(k + 1) % 3]]) / twice_area;
+    direction += s[k] * field.dir[f[k]];
+    own += field.kappa_own[f[k]];
+    other += field.kappa_other[f[k]];
+  }
+  const double slope = gradient.dot(direction);
+  const bool extremum = field.type == LineType::Ridge ? slope < 0 : slope > 0;
+  if (!extremum || !(std::abs(own) > kDominance * std::abs(other))) return 0;
+  const double mean_own = own / 3;
+  if (!(std::abs(slope) > kStrictExtremum * direction.norm() * std::abs(mean_own * mean_own * mean_own))) return 0;
+  return static_cast<uint8_t>(1 + crossed[0] + 3 * crossed[1]);
+}
+
+// The tests run on every thread, block by block; the segments and their
+// crossing nodes are then made in triangle order on the calling thread, so
+// the graph is the same for any number of threads.
 void trace_field(const Mesh& mesh, const Topology& topology, const Field& field, const std::vector<uint8_t>& excluded,
                  const std::function<void(double)>& progress, FeatureGraph& graph) {
   graph.type = field.type;
   graph.edge_node.assign(topology.edges.size(), kNone);
-  const std::vector<Vec3>& x = mesh.positions;
-  std::array<double, 3> s;
-  for (uint32_t t = 0; t < mesh.triangles.size(); ++t) {
-    if (progress && t % kProgressStride == kProgressStride - 1) progress(double(t) / mesh.triangles.size());
-    if (excluded[t] || !field.regular[t]) continue;
-    const Triangle& f = mesh.triangles[t];
-    consistent_signs(field.dir[f[0]], field.dir[f[1]], field.dir[f[2]], s);
-    const double v[3] = {s[0] * nonzero(field.e[f[0]]), s[1] * nonzero(field.e[f[1]]), s[2] * nonzero(field.e[f[2]])};
-    int crossed[2], n = 0;
-    for (int k = 0; k < 3; ++k)
-      if ((v[k] > 0) != (v[(k + 1) % 3] > 0)) crossed[n++] = k;
-    if (n != 2) continue;
-
-    // Conditions (5) and (6) on the consistently signed linear function.
-    const Vec3 normal = (x[f[1]] - x[f[0]]).cross(x[f[2]] - x[f[0]]);
-    const double twice_area = normal.norm();
-    if (!(twice_area > 0)) continue;
-    Vec3 gradient = Vec3::Zero(), direction = Vec3::Zero();
-    double own = 0, other = 0;
-    for (int k = 0; k < 3; ++k) {
-      gradient += v[k] * (normal / twice_area).cross(x[f[(k + 2) % 3]] - x[f[(k + 1) % 3]]) / twice_area;
-      direction += s[k] * field.dir[f[k]];
-      own += field.kappa_own[f[k]];
-      other += field.kappa_other[f[k]];
+  const uint32_t nt = static_cast<uint32_t>(mesh.triangles.size());
+  std::vector<uint8_t> code(std::min<uint32_t>(nt, kProgressStride));
+  for (uint32_t begin = 0; begin < nt; begin += kProgressStride) {
+    if (progress && begin > 0) progress(double(begin) / nt);
+    const uint32_t end = std::min(nt, begin + kProgressStride);
+    parallel_for(end - begin, [&](size_t first, size_t last) {
+      for (size_t i = first; i < last; ++i) {
+        const uint32_t t = begin + static_cast<uint32_t>(i);
+        code[i] = excluded[t] || !field.regular[t] ? 0 : segment_edges(mesh, field, t);
+      }
+    });
+    for (uint32_t t = begin; t < end; ++t) {
+      if (!code[t - begin]) continue;
+      const int edges = code[t - begin] - 1;
+      const uint32_t a = crossing_node(graph, mesh, topology, field, topology.triangle_edges[t][edges % 3]);
+      const uint32_t b = crossing_node(graph, mesh, topology, field, topology.triangle_edges[t][edges / 3]);
+      graph.segments.push_back({a, b});
     }
-    const double slope = gradient.dot(direction);
-    const bool extremum = field.type == LineType::Ridge ? slope < 0 : slope > 0;
-    if (!extremum || !(std::abs(own) > kDominance * std::abs(other))) continue;
-    const double mean_own = own / 3;
-    if (!(std::abs(slope) > kStrictExtremum * direction.norm() * std::abs(mean_own * mean_own * mean_own))) continue;
-
-    const uint32_t a = crossing_node(graph, mesh, topology, field, topology.triangle_edges[t][crossed[0]]);
-    const uint32_t b = crossing_node(graph, mesh, topology, field, topology.triangle_edges[t][crossed[1]]);
-    graph.segments.push_back({a, b});
   }
 }
 
