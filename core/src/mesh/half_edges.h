@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "crestline/mesh/mesh.h"
+#include "crestline/numerics/parallel.h"
 
 namespace crestline::detail {
 
@@ -62,20 +63,24 @@ inline HalfEdgeOrder order_half_edges(const std::vector<Triangle>& tris, size_t 
         order.entries[fill[std::min(a, b)]++] = uint64_t{std::max(a, b)} << 32 | (3 * t + k);
       }
   }
+  // Each vertex's entries are sorted on their own: on every thread, with the
+  // same result for any count.
   uint64_t* data = order.entries.data();
-  for (size_t v = 0; v < vertex_count; ++v) {
-    uint64_t *first = data + order.start[v], *last = data + order.start[v + 1];
-    if (last - first > 16) {
-      std::sort(first, last);
-      continue;
+  parallel_for(vertex_count, [&](size_t begin, size_t end) {
+    for (size_t v = begin; v < end; ++v) {
+      uint64_t *first = data + order.start[v], *last = data + order.start[v + 1];
+      if (last - first > 16) {
+        std::sort(first, last);
+        continue;
+      }
+      for (uint64_t* i = first + 1; i < last; ++i) {  // insertion sort: a vertex has ~6
+        const uint64_t x = *i;
+        uint64_t* j = i;
+        for (; j > first && j[-1] > x; --j) *j = j[-1];
+        *j = x;
+      }
     }
-    for (uint64_t* i = first + 1; i < last; ++i) {  // insertion sort: a vertex has ~6
-      const uint64_t x = *i;
-      uint64_t* j = i;
-      for (; j > first && j[-1] > x; --j) *j = j[-1];
-      *j = x;
-    }
-  }
+  });
   return order;
 }
 

@@ -9,6 +9,7 @@
 
 #include "crestline/error.h"
 #include "crestline/mesh/topology.h"
+#include "crestline/numerics/parallel.h"
 #include "half_edges.h"
 
 namespace crestline {
@@ -348,20 +349,31 @@ RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options)
   // squared cross product of raw coordinates would underflow to zero).
   constexpr double kMinRelativeDoubleArea = 1e-14;
   const double inv_diagonal = diagonal > 0 ? 1 / diagonal : 0;
-  for (size_t t = 0; t < soup.triangle_count(); ++t) {
-    Triangle f{rep[soup.indices[3 * t]], rep[soup.indices[3 * t + 1]], rep[soup.indices[3 * t + 2]]};
-    if (!finite[f[0]] || !finite[f[1]] || !finite[f[2]]) {
-      ++report.nonfinite_triangles;
-      continue;
+  // The tests run on every thread (one status byte per triangle); the kept
+  // triangles are then gathered in input order.
+  enum : uint8_t { kKeep, kNonFinite, kDegenerate };
+  std::vector<uint8_t> status(soup.triangle_count());
+  parallel_for(status.size(), [&](size_t begin, size_t end) {
+    for (size_t t = begin; t < end; ++t) {
+      const Triangle f{rep[soup.indices[3 * t]], rep[soup.indices[3 * t + 1]], rep[soup.indices[3 * t + 2]]};
+      if (!finite[f[0]] || !finite[f[1]] || !finite[f[2]])
+        status[t] = kNonFinite;
+      else if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2] ||
+               !(((points[f[1]] - points[f[0]]) * inv_diagonal)
+                     .cross((points[f[2]] - points[f[0]]) * inv_diagonal)
+                     .norm() > kMinRelativeDoubleArea))
+        status[t] = kDegenerate;
+      else
+        status[t] = kKeep;
     }
-    if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2] ||
-        !(((points[f[1]] - points[f[0]]) * inv_diagonal).cross((points[f[2]] - points[f[0]]) * inv_diagonal).norm() >
-          kMinRelativeDoubleArea)) {
-      ++report.degenerate_triangles;
-      continue;
-    }
-    tris.push_back(f);
+  });
+  for (size_t t = 0; t < status.size(); ++t) {
+    if (status[t] == kKeep)
+      tris.push_back({rep[soup.indices[3 * t]], rep[soup.indices[3 * t + 1]], rep[soup.indices[3 * t + 2]]});
+    else
+      ++(status[t] == kNonFinite ? report.nonfinite_triangles : report.degenerate_triangles);
   }
+  status = std::vector<uint8_t>();
   {
     // Duplicates: triangles with the same vertex set; the first one stays.
     // Bucketed by the smallest vertex, ordered by the other two (one key).

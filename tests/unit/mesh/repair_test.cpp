@@ -11,6 +11,7 @@
 #include "analytic_meshes.h"
 #include "crestline/error.h"
 #include "crestline/mesh/topology.h"
+#include "crestline/numerics/parallel.h"
 
 using namespace crestline;
 using crestline::testing::add_triangle;
@@ -251,4 +252,34 @@ TEST_CASE("welding picks the earliest representative within tolerance, as a brut
     mismatches += want != got;
   }
   CHECK(mismatches == 0);
+}
+
+TEST_CASE("repair gives the same mesh and report on 1 and 2 threads", "[repair][threads]") {
+  // 20,000 triangles (enough for the parallel loops to split), seams welded
+  // from a copy of every vertex, some triangles repeated or collapsed.
+  testing::GridOptions grid;
+  grid.nu = grid.nv = 100;
+  grid.jitter = 0.2;
+  grid.random_diagonals = true;
+  TriangleSoup s = testing::height_field([](double x, double y) { return 0.1 * std::sin(5 * x + 3 * y); }, 2, 2, grid);
+  const uint32_t nv = uint32_t(s.vertex_count());
+  for (uint32_t v = 0; v < nv; ++v)
+    add_vertex(s, Vec3(s.positions[3 * v], s.positions[3 * v + 1], s.positions[3 * v + 2]));
+  for (size_t t = 0; t < s.triangle_count(); t += 7) s.indices[3 * t] += nv;  // the copy: welded back
+  const size_t nt = s.triangle_count();
+  for (size_t t = 0; t < nt; t += 50) add_triangle(s, s.indices[3 * t + 1], s.indices[3 * t], s.indices[3 * t + 2]);
+  for (size_t t = 0; t < nt; t += 90) add_triangle(s, s.indices[3 * t], s.indices[3 * t], s.indices[3 * t + 1]);
+  const int before = max_threads();
+  set_max_threads(1);
+  const RepairResult one = repair_mesh(s);
+  set_max_threads(2);
+  const RepairResult two = repair_mesh(s);
+  set_max_threads(before);
+  CHECK(one.report.welded_vertices > 1000);  // the referenced copies
+  CHECK(one.report.duplicate_triangles > 0);
+  CHECK(one.report.degenerate_triangles > 0);
+  CHECK(one.report.notes() == two.report.notes());
+  CHECK(one.report.boundary_edges == two.report.boundary_edges);
+  CHECK(one.mesh.triangles == two.mesh.triangles);
+  CHECK(one.mesh.positions == two.mesh.positions);
 }
