@@ -336,9 +336,10 @@ std::vector<Polyline> sharp_edges_as_lines(const CadSurface& surface) {
   return out;
 }
 
-SmoothNearCreases smooth_lines_near(const std::vector<Polyline>& sharp, const std::vector<Polyline>& lines, double h) {
+SmoothNearCreases smooth_lines_near(const std::vector<Polyline>& sharp, const std::vector<Polyline>& lines, double h,
+                                    double radius) {
   SmoothNearCreases out;
-  const double tol = 1.0 * h;
+  const double tol = radius * h;
   PointGrid truth(tol);
   for (size_t e = 0; e < sharp.size(); ++e)
     for (const Sample& s : resample(sharp[e], 0.1 * h)) truth.add(s.point, static_cast<uint32_t>(e));

@@ -71,14 +71,16 @@ CreaseResult smooth_surface_creases(const std::string& name, Triangulation t, do
 std::vector<Polyline> sharp_edges_as_lines(const CadSurface& surface);
 
 /// Ridges and valleys beside sharp edges, in mean edges h: how much of their
-/// length lies within 1 h of one of `sharp` (what crease boundaries should
-/// bring to ~0), and their whole length. Crease lines in `lines` are skipped.
+/// length lies within `radius` h of one of `sharp` (what crease boundaries
+/// should bring to ~0), and their whole length. Crease lines in `lines` are
+/// skipped.
 struct SmoothNearCreases {
   double near_length = 0;
   double length = 0;
   int lines = 0;
 };
-SmoothNearCreases smooth_lines_near(const std::vector<Polyline>& sharp, const std::vector<Polyline>& lines, double h);
+SmoothNearCreases smooth_lines_near(const std::vector<Polyline>& sharp, const std::vector<Polyline>& lines, double h,
+                                    double radius = 1.0);
 
 /// Runs the whole pipeline on the case's noisy mesh.
 Pipeline run_cad_pipeline(const CadCase& c, const PipelineOptions& options = {});
