@@ -1,6 +1,7 @@
 #include "crestline/curvature/shape_operator.h"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 
 #include "crestline/mesh/cotan.h"
@@ -37,27 +38,53 @@ Curvature compute_curvature(const Mesh& mesh, const Topology& topology) {
   });
 
   // S(p) = ½ Σ_{e∋p} ⟨N_p, N_e⟩ S(e), S(e) = H_e (ē×N_e)(ē×N_e)^T.
+  // Each edge's S(e) and N_e are computed on every thread, a block of edges
+  // at a time, then added to its two vertices on the calling thread in edge
+  // order: the same sums for any number of threads.
   std::vector<Eigen::Matrix3d> shape(nv, Eigen::Matrix3d::Zero());
-  for (size_t e = 0; e < topology.edges.size(); ++e) {
-    const auto [t0, t1] = topology.edge_triangles[e];
-    if (t1 == kNone) continue;
-    const uint32_t a = topology.edges[e][0], b = topology.edges[e][1];
-    const Vec3 edge = x[b] - x[a];
-    const double length = edge.norm();
-    const Vec3 n_sum = normals[t0] + normals[t1];
-    if (!(length > 0) || !(n_sum.norm() > 0)) continue;
-    const Vec3 n_e = n_sum.normalized();
-    // H_e = 2|e| cos(θ_e/2) with θ_e the interior dihedral angle; the angle
-    // between the normals is π − θ_e, so cos(θ_e/2) = |N_1 − N_2| / 2.
-    // Convex (positive) when t1's far corner lies below t0's plane.
-    const Triangle& f1 = mesh.triangles[t1];
-    const uint32_t far = f1[0] != a && f1[0] != b ? f1[0] : (f1[1] != a && f1[1] != b ? f1[1] : f1[2]);
-    const double side = normals[t0].dot(x[far] - x[a]);
-    const double h_e = (side > 0 ? -1.0 : 1.0) * length * (normals[t0] - normals[t1]).norm();
-    const Vec3 w = (edge / length).cross(n_e);
-    const Eigen::Matrix3d s_e = h_e * (w * w.transpose());
-    shape[a] += 0.5 * c.vertex_normals[a].dot(n_e) * s_e;
-    shape[b] += 0.5 * c.vertex_normals[b].dot(n_e) * s_e;
+  struct EdgeTerm {
+    Eigen::Matrix3d s_e;
+    Vec3 n_e;
+    bool used;  // false on boundary and degenerate edges
+  };
+  const size_t ne = topology.edges.size();
+  constexpr size_t kBlock = size_t{1} << 14;
+  std::vector<EdgeTerm> terms(std::min(ne, kBlock));
+  for (size_t begin = 0; begin < ne; begin += kBlock) {
+    const size_t end = std::min(ne, begin + kBlock);
+    parallel_for(end - begin, [&](size_t first, size_t last) {
+      for (size_t i = first; i < last; ++i) {
+        const size_t e = begin + i;
+        EdgeTerm& term = terms[i];
+        term.used = false;
+        const auto [t0, t1] = topology.edge_triangles[e];
+        if (t1 == kNone) continue;
+        const uint32_t a = topology.edges[e][0], b = topology.edges[e][1];
+        const Vec3 edge = x[b] - x[a];
+        const double length = edge.norm();
+        const Vec3 n_sum = normals[t0] + normals[t1];
+        if (!(length > 0) || !(n_sum.norm() > 0)) continue;
+        const Vec3 n_e = n_sum.normalized();
+        // H_e = 2|e| cos(θ_e/2) with θ_e the interior dihedral angle; the angle
+        // between the normals is π − θ_e, so cos(θ_e/2) = |N_1 − N_2| / 2.
+        // Convex (positive) when t1's far corner lies below t0's plane.
+        const Triangle& f1 = mesh.triangles[t1];
+        const uint32_t far = f1[0] != a && f1[0] != b ? f1[0] : (f1[1] != a && f1[1] != b ? f1[1] : f1[2]);
+        const double side = normals[t0].dot(x[far] - x[a]);
+        const double h_e = (side > 0 ? -1.0 : 1.0) * length * (normals[t0] - normals[t1]).norm();
+        const Vec3 w = (edge / length).cross(n_e);
+        term.s_e = h_e * (w * w.transpose());
+        term.n_e = n_e;
+        term.used = true;
+      }
+    });
+    for (size_t e = begin; e < end; ++e) {
+      const EdgeTerm& term = terms[e - begin];
+      if (!term.used) continue;
+      const uint32_t a = topology.edges[e][0], b = topology.edges[e][1];
+      shape[a] += 0.5 * c.vertex_normals[a].dot(term.n_e) * term.s_e;
+      shape[b] += 0.5 * c.vertex_normals[b].dot(term.n_e) * term.s_e;
+    }
   }
 
   c.kappa_max.resize(nv);

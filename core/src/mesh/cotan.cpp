@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "crestline/numerics/parallel.h"
+
 namespace crestline {
 
 // Slivers give edges weights of up to 2·10⁵ (large/dragon.glb; 1 % of its
@@ -16,29 +18,53 @@ void triangle_areas_normals(const std::vector<Vec3>& positions, const std::vecto
                             std::vector<double>& areas, std::vector<Vec3>& normals) {
   areas.resize(triangles.size());
   normals.resize(triangles.size());
-  for (size_t t = 0; t < triangles.size(); ++t) {
-    const Vec3& a = positions[triangles[t][0]];
-    const Vec3 n = (positions[triangles[t][1]] - a).cross(positions[triangles[t][2]] - a);
-    const double len = n.norm();
-    areas[t] = 0.5 * len;
-    normals[t] = len > 0 ? Vec3(n / len) : Vec3::Zero();
-  }
+  parallel_for(triangles.size(), [&](size_t begin, size_t end) {
+    for (size_t t = begin; t < end; ++t) {
+      const Vec3& a = positions[triangles[t][0]];
+      const Vec3 n = (positions[triangles[t][1]] - a).cross(positions[triangles[t][2]] - a);
+      const double len = n.norm();
+      areas[t] = 0.5 * len;
+      normals[t] = len > 0 ? Vec3(n / len) : Vec3::Zero();
+    }
+  });
 }
 
 CotanWeights cotan_weights(const std::vector<Vec3>& positions, const Mesh& mesh, const Topology& topology) {
   CotanWeights out;
   out.edge_weight.assign(topology.edges.size(), 0.0);
   out.vertex_mass.assign(positions.size(), 0.0);
-  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
-    const Triangle& f = mesh.triangles[t];
-    const double twice_area = (positions[f[1]] - positions[f[0]]).cross(positions[f[2]] - positions[f[0]]).norm();
-    for (int k = 0; k < 3; ++k) out.vertex_mass[f[k]] += twice_area / 6.0;
-    if (!(twice_area > 0)) continue;
-    for (int k = 0; k < 3; ++k) {
-      // The angle at corner k+2 is opposite edge k (corners k, k+1).
-      const Vec3& o = positions[f[(k + 2) % 3]];
-      const double cot = (positions[f[k]] - o).dot(positions[f[(k + 1) % 3]] - o) / twice_area;
-      out.edge_weight[topology.triangle_edges[t][k]] += 0.5 * cot;
+  // Each triangle's mass and cotangents are computed on every thread, a
+  // block of triangles at a time, then added up on the calling thread in
+  // triangle order: the same sums for any number of threads.
+  const size_t nt = mesh.triangles.size();
+  constexpr size_t kBlock = size_t{1} << 16;
+  struct Terms {
+    double mass;    // twice the area / 6
+    double cot[3];  // ½ cot of the angle opposite edge k
+    bool has_area;  // without, it adds no weight
+  };
+  std::vector<Terms> terms(std::min(nt, kBlock));
+  for (size_t begin = 0; begin < nt; begin += kBlock) {
+    const size_t end = std::min(nt, begin + kBlock);
+    parallel_for(end - begin, [&](size_t first, size_t last) {
+      for (size_t i = first; i < last; ++i) {
+        const Triangle& f = mesh.triangles[begin + i];
+        const double twice_area = (positions[f[1]] - positions[f[0]]).cross(positions[f[2]] - positions[f[0]]).norm();
+        terms[i].mass = twice_area / 6.0;
+        terms[i].has_area = twice_area > 0;
+        for (int k = 0; k < 3; ++k) {
+          // The angle at corner k+2 is opposite edge k (corners k, k+1).
+          const Vec3& o = positions[f[(k + 2) % 3]];
+          terms[i].cot[k] = 0.5 * ((positions[f[k]] - o).dot(positions[f[(k + 1) % 3]] - o) / twice_area);
+        }
+      }
+    });
+    for (size_t t = begin; t < end; ++t) {
+      const Terms& term = terms[t - begin];
+      const Triangle& f = mesh.triangles[t];
+      for (int k = 0; k < 3; ++k) out.vertex_mass[f[k]] += term.mass;
+      if (!term.has_area) continue;
+      for (int k = 0; k < 3; ++k) out.edge_weight[topology.triangle_edges[t][k]] += term.cot[k];
     }
   }
   for (double& w : out.edge_weight) w = std::isfinite(w) ? std::clamp(w, 0.0, kMaxCotanWeight) : 0.0;
