@@ -69,6 +69,22 @@ TEST_CASE("cancelling leaves the pipeline usable", "[pipeline]") {
   CHECK(!p.lines().empty());
 }
 
+TEST_CASE("a cancel just before the singular stage resumes with the traced graphs intact", "[pipeline]") {
+  // The singular stage takes the traced graphs over (no copy); cancelled
+  // before it starts, the next run must still find them.
+  const Mesh mesh = repair_mesh(bumpy()).mesh;
+  Pipeline reference(mesh);
+  reference.run();
+  Pipeline p(mesh);
+  CHECK_THROWS_AS(p.run([](Stage s, double) { return s != Stage::Singular; }), Cancelled);
+  const auto ran = stages_run(p);
+  REQUIRE(!ran.empty());
+  CHECK(ran.front() == Stage::Singular);
+  REQUIRE(!reference.lines().empty());
+  REQUIRE(p.lines().size() == reference.lines().size());
+  for (size_t i = 0; i < p.lines().size(); ++i) CHECK(p.lines()[i].points == reference.lines()[i].points);
+}
+
 TEST_CASE("progress moves inside smoothing and tracing, and a cancel there stops within one iteration", "[pipeline]") {
   Pipeline p(repair_mesh(bumpy()).mesh);
   PipelineOptions o;
