@@ -3,25 +3,17 @@
 // comes within 2 mean edges of them; with boundaries off (the default) the
 // smooth lines run along those edges. Needs web/dist (web/build.sh).
 import assert from 'node:assert/strict';
-import { after, before, test } from 'node:test';
+import { test } from 'node:test';
 import { boxObj } from './box-obj.mjs';
-import { dropFiles, nextResult, openApp, sampleReady } from './app-page.mjs';
+import { dropFiles, nextResult, useApp } from './app-page.mjs';
 
 const SIZE = [2, 1, 1];
 const N = 24;
-let app, page;
-
-before(async () => {
-  app = await openApp();
-  ({ page } = app);
-  await sampleReady(page);
-});
-
-after(() => app?.close());
+const app = useApp();
 
 /** The page's OBJ export: the points of each object's lines (`o ridges`, `o valleys`, `o creases`). */
 async function exportedPoints() {
-  const text = await page.evaluate(async () => (await window.crestline.save('obj')).blob.text());
+  const text = await app.page.evaluate(async () => (await window.crestline.save('obj')).blob.text());
   const vertices = [];
   const points = { ridges: [], valleys: [], creases: [] };
   let current = null;
@@ -40,7 +32,7 @@ function edgeDistance(p) {
 }
 
 test('a box with crease boundaries: creases on its 12 edges, no smooth line within 2 mean edges of them', async () => {
-  const result = await nextResult(page, () => dropFiles(page, [{ name: 'box.obj', text: boxObj({ size: SIZE, n: N }) }]));
+  const result = await nextResult(app.page, () => dropFiles(app.page, [{ name: 'box.obj', text: boxObj({ size: SIZE, n: N }) }]));
   const h = result.stats.meanEdgeLength;
   assert.ok(h > 0, `mean edge ${h}`);
   const off = await exportedPoints();
@@ -51,7 +43,7 @@ test('a box with crease boundaries: creases on its 12 edges, no smooth line with
   // Without boundaries the one-rings on the edges sum the 90° turn as curvature: lines along the edges.
   assert.ok(near(off.ridges) + near(off.valleys) > 0, 'without boundaries, smooth lines run along the edges');
 
-  const on = await nextResult(page, () => page.evaluate(() => window.crestline.update({ creaseBoundaries: true })));
+  const on = await nextResult(app.page, () => app.page.evaluate(() => window.crestline.update({ creaseBoundaries: true })));
   assert.equal(on.stats.creases, 12, 'the 12 edges are creases');
   const points = await exportedPoints();
   const smooth = [...points.ridges, ...points.valleys];
@@ -63,5 +55,5 @@ test('a box with crease boundaries: creases on its 12 edges, no smooth line with
     points.creases.every((p) => edgeDistance(p) < 1e-4),
     'crease points on the edges',
   );
-  await nextResult(page, () => page.evaluate(() => window.crestline.update({ creaseBoundaries: false })));
+  await nextResult(app.page, () => app.page.evaluate(() => window.crestline.update({ creaseBoundaries: false })));
 });
