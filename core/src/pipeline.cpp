@@ -132,6 +132,9 @@ void Pipeline::run(const ProgressCallback& progress) {
   };
   crease_measure_seconds_ = 0;
   update_boundaries();
+  // The line graphs are rebuilt whenever tracing re-runs: released now, not
+  // held through the smoothing solves, the peak of a re-run.
+  if (static_cast<int>(first_dirty_) <= static_cast<int>(Stage::Tracing)) singular_ = SingularResult();
   auto step = [&](Stage stage, auto&& work) {
     if (static_cast<int>(stage) < static_cast<int>(first_dirty_)) return;
     if (progress && !progress(stage, 0.0)) throw Cancelled();

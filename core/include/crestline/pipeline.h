@@ -130,6 +130,8 @@ class Pipeline {
   const Regularity& regularity() const { return regularity_; }
   /// The line graphs: the regular triangles' segments (tracing) with the
   /// singular triangles' added (the singular stage), and the singular counts.
+  /// Released when a run re-traces (so a re-smoothing does not hold them
+  /// through its solves): empty after a run cancelled before the singular stage.
   const SingularResult& segments() const { return singular_; }
   /// Every joined, faired line, before the threshold filter (input's coordinates).
   const std::vector<Polyline>& all_lines() const { return faired_; }
