@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <iterator>
+#include <limits>
 #include <new>
 #include <vector>
 
@@ -331,6 +332,41 @@ val Session::surface() const {
   out.set("positions", positions_out(mesh.positions));
   out.set("indices",
           copy_out(mesh.triangles.empty() ? nullptr : mesh.triangles.front().data(), mesh.triangles.size() * 3));
+  // What the page draws, ready for the GPU, so that its main thread builds
+  // no geometry (on 871k triangles that took it 0.3–0.8 s): float32
+  // positions relative to the bounding box's centre (float32 cannot hold
+  // far-off coordinates), area-weighted unit vertex normals, and the
+  // bounding sphere about that centre.
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+  Vec3 hi = -lo;
+  for (const Vec3& p : mesh.positions) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const Vec3 centre = mesh.positions.empty() ? Vec3::Zero() : Vec3(0.5 * (lo + hi));
+  std::vector<Vec3> normals(mesh.positions.size(), Vec3::Zero());
+  for (const Triangle& t : mesh.triangles) {
+    const Vec3& a = mesh.positions[t[0]];
+    const Vec3 n = (mesh.positions[t[1]] - a).cross(mesh.positions[t[2]] - a);  // |n| = 2·area
+    for (uint32_t v : t) normals[v] += n;
+  }
+  std::vector<float> local(3 * mesh.positions.size()), unit(3 * mesh.positions.size());
+  double radius = 0;
+  for (size_t v = 0; v < mesh.positions.size(); ++v) {
+    const Vec3 d = mesh.positions[v] - centre;
+    radius = std::max(radius, d.norm());
+    const double length = normals[v].norm();
+    for (int k = 0; k < 3; ++k) {
+      local[3 * v + k] = static_cast<float>(d[k]);
+      unit[3 * v + k] = length > 0 ? static_cast<float>(normals[v][k] / length) : 0.0f;
+    }
+  }
+  val view = val::object();
+  view.set("positions", copy_out(local.data(), local.size()));
+  view.set("normals", copy_out(unit.data(), unit.size()));
+  view.set("origin", copy_out(centre.data(), 3));
+  view.set("radius", radius);
+  out.set("view", view);
   return out;
 }
 

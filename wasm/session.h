@@ -54,9 +54,12 @@ class Session {
   /// {error, kind}.
   val run(val progress);
 
-  /// {positions: Float64Array, indices: Uint32Array} of the repaired input
-  /// mesh: the lines are placed on it even when pre-smoothing traced them on
-  /// a smoothed copy.
+  /// {positions: Float64Array, indices: Uint32Array, view} of the repaired
+  /// input mesh: the lines are placed on it even when pre-smoothing traced
+  /// them on a smoothed copy. view: what a viewer draws, {positions:
+  /// Float32Array relative to origin, normals: Float32Array (unit,
+  /// area-weighted), origin: Float64Array (the bounding box's centre),
+  /// radius: the bounding sphere's about it}.
   val surface() const;
   /// Ridges and valleys as flat arrays: {points: Float64Array (xyz), offsets: Uint32Array
   /// (lineCount+1, in points), types: Uint8Array (0 ridge, 1 valley),

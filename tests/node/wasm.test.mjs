@@ -128,7 +128,8 @@ test('results are copies that survive heap growth and can be transferred', () =>
   engine.load(sineHeightField({ n: 30 }));
   const { lines } = run(engine, { threshold: 0 });
   const surface = engine.surface();
-  for (const array of [lines.points, lines.offsets, surface.positions, surface.indices]) assert.notEqual(array.buffer, heap());
+  for (const array of [lines.points, lines.offsets, surface.positions, surface.indices, surface.view.positions, surface.view.normals])
+    assert.notEqual(array.buffer, heap());
   const before = Array.from(lines.points.slice(0, 6));
   const bytes = heap().byteLength;
   const big = new Engine(module);
@@ -138,6 +139,27 @@ test('results are copies that survive heap growth and can be transferred', () =>
   assert.deepEqual(Array.from(lines.points.slice(0, 6)), before);
   structuredClone(lines, { transfer: [lines.points.buffer] });
   big.dispose();
+  engine.dispose();
+});
+
+test("surface view: what the page draws, float32 about the box's centre, unit normals, bounding radius", () => {
+  // A regular octahedron (outward triangles) far from the origin: float32 could not hold its coordinates.
+  const offset = [1e6, -2e6, 3];
+  const axes = [0, 1, 2].flatMap((k) => [1, -1].map((sign) => Array.from({ length: 3 }, (_, j) => (j === k ? sign : 0))));
+  const positions = Float64Array.from(axes.flatMap((p) => p.map((x, k) => x + offset[k])));
+  const indices = [];
+  for (const sx of [0, 1]) for (const sy of [2, 3]) for (const sz of [4, 5]) indices.push(...((sx + sy + sz) % 2 ? [sx, sz, sy] : [sx, sy, sz]));
+  const engine = new Engine(module);
+  engine.load({ name: 'octahedron', positions, indices: Uint32Array.from(indices) });
+  const { positions: drawn, indices: triangles, view } = engine.surface();
+  assert.deepEqual(Array.from(view.origin), offset);
+  assert.equal(view.radius, 1);
+  assert.ok(view.positions instanceof Float32Array && view.normals instanceof Float32Array);
+  assert.equal(view.positions.length, drawn.length);
+  assert.equal(triangles.length, 24);
+  for (let i = 0; i < drawn.length; i++) assert.equal(view.positions[i], drawn[i] - offset[i % 3], `coordinate ${i}`);
+  // The area-weighted normal of a vertex of the octahedron points away from the centre.
+  for (let i = 0; i < drawn.length; i++) assert.ok(Math.abs(view.normals[i] - view.positions[i]) < 1e-7, `normal coordinate ${i}: ${view.normals[i]}`);
   engine.dispose();
 });
 

@@ -1,6 +1,6 @@
 // The shaded surface. Polygon offset pushes it back in depth so the feature
 // lines lying exactly on it win the depth test without showing through it.
-import { BufferAttribute, BufferGeometry, DoubleSide, Mesh, MeshStandardMaterial } from 'three';
+import { BufferAttribute, BufferGeometry, DoubleSide, Mesh, MeshStandardMaterial, Sphere, Vector3 } from 'three';
 import { divergingColor, divergingColors, robustScale } from './colormap.js';
 
 export class SurfaceLayer {
@@ -28,14 +28,19 @@ export class SurfaceLayer {
     this.indices = new Uint32Array(0);
   }
 
-  /** positions: Float32Array (already centred), indices: Uint32Array. */
-  setMesh(positions, indices) {
+  /**
+   * The surface's `view` (Session.surface(): float32 positions about its
+   * origin, unit normals, the bounding sphere's radius about the origin) and
+   * its triangles (Uint32Array). The worker computed all of it: nothing
+   * here walks the mesh.
+   */
+  setMesh({ positions, normals, radius }, indices) {
     this.mesh.geometry.dispose();
     const geometry = new BufferGeometry();
     geometry.setAttribute('position', new BufferAttribute(positions, 3));
+    geometry.setAttribute('normal', new BufferAttribute(normals, 3));
     geometry.setIndex(new BufferAttribute(indices, 1));
-    geometry.computeVertexNormals();
-    geometry.computeBoundingSphere();
+    geometry.boundingSphere = new Sphere(new Vector3(), radius);
     this.mesh.geometry = geometry;
     this.indices = indices;
     this.setColors(null);

@@ -1,6 +1,6 @@
 // The 3D view: renderer, camera, orbit controls, lights, the surface and the
 // line layers. Renders on demand (after a change), not in a loop.
-import { Box3, Color, DirectionalLight, HemisphereLight, PerspectiveCamera, Scene, Sphere, Vector3, WebGLRenderer } from 'three';
+import { Color, DirectionalLight, HemisphereLight, PerspectiveCamera, Scene, Sphere, Vector3, WebGLRenderer } from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import { fitDistance, presetDirection, setUpAxis, uncoveredRect } from './fit.js';
 import { LineLayer, concaveShade, creasesAsLines } from './line-layer.js';
@@ -50,17 +50,11 @@ export class Viewer {
     this.resize();
   }
 
-  /** Surface in double precision; it is centred before conversion to float32.
+  /** The worker's surface (Session.surface()), drawn from its `view`: float32 positions about `view.origin`, normals, radius.
    *  `fit`: frame it (a new mesh), else keep the view (pre-smoothing changed). */
-  setSurface({ positions, indices }, { fit = true } = {}) {
-    const box = new Box3();
-    const p = new Vector3();
-    for (let i = 0; i < positions.length; i += 3) box.expandByPoint(p.set(positions[i], positions[i + 1], positions[i + 2]));
-    const centre = box.getCenter(new Vector3());
-    this.origin = centre.toArray();
-    const local = new Float32Array(positions.length);
-    for (let i = 0; i < positions.length; i++) local[i] = positions[i] - this.origin[i % 3];
-    this.surface.setMesh(local, indices);
+  setSurface({ indices, view }, { fit = true } = {}) {
+    this.origin = Array.from(view.origin);
+    this.surface.setMesh(view, indices);
     if (fit) this.fitView();
     else this.render();
   }

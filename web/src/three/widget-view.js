@@ -36,20 +36,11 @@ export class WidgetView {
     this.autoRotate = false;
   }
 
-  /** Surface in double precision, centred before conversion to float32. */
-  setSurface({ positions, indices }) {
-    const min = [Infinity, Infinity, Infinity];
-    const max = [-Infinity, -Infinity, -Infinity];
-    for (let i = 0; i < positions.length; i++) {
-      const k = i % 3;
-      if (positions[i] < min[k]) min[k] = positions[i];
-      if (positions[i] > max[k]) max[k] = positions[i];
-    }
-    this.origin = min.map((m, k) => (m + max[k]) / 2);
-    const local = new Float32Array(positions.length);
-    for (let i = 0; i < positions.length; i++) local[i] = positions[i] - this.origin[i % 3];
-    this.surface.setMesh(local, indices);
-    this.radius = this.surface.mesh.geometry.boundingSphere.radius || 1;
+  /** The worker's surface (Session.surface()), drawn from its `view`: float32 positions about `view.origin`, normals, radius. */
+  setSurface({ indices, view }) {
+    this.origin = Array.from(view.origin);
+    this.surface.setMesh(view, indices);
+    this.radius = view.radius || 1;
     this.applyOrbit();
   }
 

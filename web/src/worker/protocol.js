@@ -10,7 +10,11 @@
  *   a file: the main mesh file or one of a .gltf's companions
  * @typedef {Record<string, number | boolean | string | Float64Array | null | undefined>} PipelineOptions
  *   Session.setOptions keys: the parameter table's (Session.describe()) and vertexWeights
- * @typedef {{positions: Float64Array, indices: Uint32Array}} Surface
+ * @typedef {{positions: Float32Array, normals: Float32Array, origin: Float64Array, radius: number}} SurfaceView
+ *   what a viewer draws (Session.surface()): positions relative to origin (the
+ *   bounding box's centre), unit area-weighted vertex normals, the bounding
+ *   sphere's radius about origin
+ * @typedef {{positions: Float64Array, indices: Uint32Array, view: SurfaceView}} Surface
  * @typedef {{points: Float64Array, offsets: Uint32Array, types: Uint8Array,
  *            strengths: Float64Array, lengths: Float64Array, closed: Uint8Array}} Lines
  *   every line's points (xyz) flat; line l is points offsets[l]..offsets[l+1]-1;
