@@ -287,9 +287,11 @@ test('an export refused while lines are recomputed stays on screen until the nex
 // The core checks the flag inside the smoothing solver's iterations (issue 15, item 7): a cancel
 // there stops the stage itself, and the same worker computes the mesh's lines afterwards.
 test('Cancel inside the smoothing of a 180,000-triangle mesh: it stops there, without a worker restart, and the same worker computes again', async () => {
-  // The most smoothing steps: about 3 s of smoothing, so the Cancel, pressed when the page sees the
-  // stage begin (it may be busy drawing the new surface then), lands inside it.
-  await nextResult(app.page, () => app.page.evaluate(() => window.crestline.update({ smoothingSteps: 50 })));
+  // The most smoothing steps with a 20-times time step (about 4 times the solver's iterations), so
+  // the Cancel, pressed when the page sees the stage begin, lands inside it: the page may be busy
+  // drawing the new surface then (over a second in SwiftShader on a loaded machine, with the
+  // worker's progress messages queued), and 50 default steps no longer outlast that.
+  await nextResult(app.page, () => app.page.evaluate(() => window.crestline.update({ smoothingSteps: 50, smoothingTimeStep: 20 })));
   await app.page.evaluate(() => {
     const { connection } = window.crestline.client;
     const receive = connection.receive.bind(connection);
@@ -305,12 +307,12 @@ test('Cancel inside the smoothing of a 180,000-triangle mesh: it stops there, wi
   await app.page.waitForFunction(() => document.body.dataset.state === 'ready', null, { timeout: 30000 });
   const replies = await app.page.evaluate(() => window.replies);
   const cancelled = replies.findIndex((r) => r.type === 'cancelled');
-  assert.ok(cancelled > 0, `the worker replied 'cancelled': ${replies.map((r) => r.type).join(' ')}`);
+  assert.ok(cancelled > 0, `the worker replied 'cancelled': ${replies.map((r) => `${r.type}:${r.stage}@${Math.round(r.at - before.at)}`).join(' ')}`);
   const stages = replies.slice(0, cancelled).filter((r) => r.type === 'progress');
   assert.equal(stages.at(-1).stage, 'smoothing', 'the last progress before the stop is the smoothing stage (no later stage began)');
   assert.equal(await workerGeneration(), 1, 'the worker was not restarted');
   console.log(`# cancel inside smoothing: 'cancelled' came ${(replies[cancelled].at - before.at).toFixed(0)} ms after the click`);
-  const result = await nextResult(app.page, () => app.page.evaluate(() => window.crestline.update({ smoothingSteps: 3 })));
+  const result = await nextResult(app.page, () => app.page.evaluate(() => window.crestline.update({ smoothingSteps: 3, smoothingTimeStep: 1 })));
   assert.equal(result.name, 'ripples.obj');
   assert.ok(result.ran.includes('smoothing') && result.lineCount > 0, `ran ${result.ran}, ${result.lineCount} lines`);
   assert.equal(await workerGeneration(), 1, 'computed in the same worker');
