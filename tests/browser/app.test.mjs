@@ -224,7 +224,11 @@ test('the file picker opens an OFF file (an octahedron)', async () => {
 
 test('cancel stops a long computation and the page stays usable', { skip: noMeshes }, async () => {
   // The stage is seen through the page's progress hook: polling the text could miss it while the
-  // page draws the dragon's surface (shown as soon as it is loaded).
+  // page draws the dragon's surface (shown as soon as it is loaded). The most smoothing steps keep
+  // the stage running well past the second measured below: in SwiftShader on a loaded machine the
+  // surface's first frame holds the page's main thread for seconds (the worker's progress queues
+  // behind it), and 3 steps could end before the Cancel.
+  await nextResult(() => app.page.evaluate(() => window.crestline.update({ smoothingSteps: 50 })));
   await app.page.evaluate(() => (window.crestline.hooks.progress = (stage) => stage === 'smoothing' && (window.sawSmoothing = true)));
   await drop(['large/dragon-draco.glb']);
   await app.page.waitForFunction(() => window.sawSmoothing, null, { timeout: 60000 });
