@@ -287,11 +287,11 @@ test('an export refused while lines are recomputed stays on screen until the nex
 // The core checks the flag inside the smoothing solver's iterations (issue 15, item 7): a cancel
 // there stops the stage itself, and the same worker computes the mesh's lines afterwards.
 test('Cancel inside the smoothing of a 180,000-triangle mesh: it stops there, without a worker restart, and the same worker computes again', async () => {
-  // The most smoothing steps with a 20-times time step (about 4 times the solver's iterations), so
+  // The most smoothing steps with a 50-times time step (several times the solver's iterations), so
   // the Cancel, pressed when the page sees the stage begin, lands inside it: the page may be busy
   // drawing the new surface then (over a second in SwiftShader on a loaded machine, with the
   // worker's progress messages queued), and 50 default steps no longer outlast that.
-  await nextResult(app.page, () => app.page.evaluate(() => window.crestline.update({ smoothingSteps: 50, smoothingTimeStep: 20 })));
+  await nextResult(app.page, () => app.page.evaluate(() => window.crestline.update({ smoothingSteps: 50, smoothingTimeStep: 50 })));
   await app.page.evaluate(() => {
     const { connection } = window.crestline.client;
     const receive = connection.receive.bind(connection);
