@@ -1,0 +1,87 @@
+// parallel_for (numerics/parallel.h) over its kept threads: every index runs
+// once, a loop nested in a chunk runs on that chunk's thread, an exception in
+// any chunk reaches the caller and leaves the threads usable, and two callers
+// at once both finish (the second on its own thread).
+#include "crestline/numerics/parallel.h"
+
+#include <atomic>
+#include <catch2/catch.hpp>
+#include <stdexcept>
+#include <thread>
+#include <vector>
+
+using namespace crestline;
+
+namespace {
+
+// Sets the thread limit for one test and restores it.
+struct ThreadLimit {
+  int before = max_threads();
+  explicit ThreadLimit(int threads) { set_max_threads(threads); }
+  ~ThreadLimit() { set_max_threads(before); }
+};
+
+// Runs an outer loop of `count` indices with a nested loop of 4,096 in each
+// chunk; returns how often each outer index ran (all 1 if correct) and the
+// nested loops' total.
+std::vector<int> covered(size_t count, std::atomic<long>& nested) {
+  std::vector<int> hits(count, 0);
+  parallel_for(
+      count,
+      [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) ++hits[i];
+        parallel_for(
+            4096, [&](size_t b, size_t e) { nested += static_cast<long>(e - b); }, 16);
+      },
+      16);
+  return hits;
+}
+
+}  // namespace
+
+TEST_CASE("parallel_for runs every index once, nested loops included, on 1 to 4 threads", "[numerics][threads]") {
+  for (int threads : {1, 2, 3, 4}) {
+    INFO("threads " << threads);
+    const ThreadLimit limit(threads);
+    for (int repeat = 0; repeat < 50; ++repeat) {
+      std::atomic<long> nested{0};
+      const std::vector<int> hits = covered(1000, nested);
+      CHECK(std::count(hits.begin(), hits.end(), 1) == 1000);
+      CHECK(nested == 4096L * max_threads());  // one nested loop per chunk, each whole
+    }
+  }
+}
+
+TEST_CASE("an exception in a chunk of parallel_for reaches the caller and the loop after it runs",
+          "[numerics][threads]") {
+  const ThreadLimit limit(2);
+  for (size_t failing : {size_t{0}, size_t{9999}}) {  // the caller's chunk, a kept thread's chunk
+    INFO("failing index " << failing);
+    CHECK_THROWS_AS(parallel_for(
+                        10000,
+                        [&](size_t begin, size_t end) {
+                          if (failing >= begin && failing < end) throw std::runtime_error("chunk failed");
+                        },
+                        16),
+                    std::runtime_error);
+    std::atomic<long> nested{0};
+    const std::vector<int> hits = covered(1000, nested);
+    CHECK(std::count(hits.begin(), hits.end(), 1) == 1000);
+  }
+}
+
+TEST_CASE("two callers of parallel_for at once both finish with every index", "[numerics][threads]") {
+  const ThreadLimit limit(2);
+  std::vector<int> hits[2];
+  std::atomic<long> nested[2];
+  std::thread other([&] {
+    for (int repeat = 0; repeat < 200; ++repeat) nested[1] = 0, hits[1] = covered(2000, nested[1]);
+  });
+  for (int repeat = 0; repeat < 200; ++repeat) nested[0] = 0, hits[0] = covered(2000, nested[0]);
+  other.join();
+  for (int k = 0; k < 2; ++k) {
+    INFO("caller " << k);
+    CHECK(std::count(hits[k].begin(), hits[k].end(), 1) == 2000);
+    CHECK(nested[k] >= 4096);
+  }
+}
