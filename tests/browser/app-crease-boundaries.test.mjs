@@ -1,6 +1,6 @@
-// The page with crease boundaries on (issue 16, --crease-boundaries): on a
+// The page with crease boundaries on (issue 16; on by default): on a
 // generated box the creases run along its 12 edges and no ridge or valley
-// comes within 2 mean edges of them; with boundaries off (the default) the
+// comes within 2 mean edges of them; with boundaries off (--crease-boundaries=false) the
 // smooth lines run along those edges. Needs web/dist (web/build.sh).
 import assert from 'node:assert/strict';
 import { test } from 'node:test';
@@ -31,19 +31,11 @@ function edgeDistance(p) {
   return Math.hypot(d[0], d[1]);
 }
 
-test('a box with crease boundaries: creases on its 12 edges, no smooth line within 2 mean edges of them', async () => {
-  const result = await nextResult(app.page, () => dropFiles(app.page, [{ name: 'box.obj', text: boxObj({ size: SIZE, n: N }) }]));
-  const h = result.stats.meanEdgeLength;
+test('a box with crease boundaries (the default): creases on its 12 edges, no smooth line within 2 mean edges of them', async () => {
+  const on = await nextResult(app.page, () => dropFiles(app.page, [{ name: 'box.obj', text: boxObj({ size: SIZE, n: N }) }]));
+  const h = on.stats.meanEdgeLength;
   assert.ok(h > 0, `mean edge ${h}`);
-  const off = await exportedPoints();
   const near = (points) => points.filter((p) => edgeDistance(p) < 2 * h).length;
-  console.log(
-    `box, boundaries off: ${off.ridges.length + off.valleys.length} smooth line points, ${near(off.ridges) + near(off.valleys)} within 2 h of an edge`,
-  );
-  // Without boundaries the one-rings on the edges sum the 90° turn as curvature: lines along the edges.
-  assert.ok(near(off.ridges) + near(off.valleys) > 0, 'without boundaries, smooth lines run along the edges');
-
-  const on = await nextResult(app.page, () => app.page.evaluate(() => window.crestline.update({ creaseBoundaries: true })));
   assert.equal(on.stats.creases, 12, 'the 12 edges are creases');
   const points = await exportedPoints();
   const smooth = [...points.ridges, ...points.valleys];
@@ -55,5 +47,13 @@ test('a box with crease boundaries: creases on its 12 edges, no smooth line with
     points.creases.every((p) => edgeDistance(p) < 1e-4),
     'crease points on the edges',
   );
+
+  // Without boundaries the one-rings on the edges sum the 90° turn as curvature: lines along the edges.
   await nextResult(app.page, () => app.page.evaluate(() => window.crestline.update({ creaseBoundaries: false })));
+  const off = await exportedPoints();
+  console.log(
+    `box, boundaries off: ${off.ridges.length + off.valleys.length} smooth line points, ${near(off.ridges) + near(off.valleys)} within 2 h of an edge`,
+  );
+  assert.ok(near(off.ridges) + near(off.valleys) > 0, 'without boundaries, smooth lines run along the edges');
+  await nextResult(app.page, () => app.page.evaluate(() => window.crestline.update({ creaseBoundaries: true })));
 });

@@ -10,7 +10,6 @@
 import assert from 'node:assert/strict';
 import { test } from 'node:test';
 import { dropFiles, nextResult, useApp } from './app-page.mjs';
-import { boxObj } from './box-obj.mjs';
 import { sineHeightField } from '../node/helpers.mjs';
 import { STAGES } from '../../web/src/worker/protocol.js';
 
@@ -22,7 +21,7 @@ function objText({ positions, indices }) {
   return `${lines.join('\n')}\n`;
 }
 
-const A = { name: 'box.obj', text: boxObj() }; // 6,912 triangles
+const A = { name: 'hills.obj', text: objText(sineHeightField({ n: 48 })) }; // 4,608 triangles
 const B = { name: 'waves.obj', text: objText(sineHeightField({ n: 110 })) }; // 24,200 triangles
 const app = useApp({}, { acceptDownloads: true });
 
@@ -60,17 +59,17 @@ const workerGeneration = () => app.page.evaluate(() => window.crestline.client.c
 
 test('mesh A loaded: its header, stats, picture and exports agree', async () => {
   const result = await nextResult(app.page, () => dropFiles(app.page, [A]));
-  assert.equal(result.name, 'box.obj');
-  assert.equal(result.stats.triangles, 6912);
+  assert.equal(result.name, 'hills.obj');
+  assert.equal(result.stats.triangles, 4608);
   shownA = await views();
   assert.equal(shownA.state, 'ready');
-  assert.match(shownA.header, /^box\.obj: 6,912 triangles — /);
+  assert.match(shownA.header, /^hills\.obj: 4,608 triangles — /);
   assert.equal(shownA.label, '');
-  assert.match(shownA.stats, /^box\.obj\n.*6,912 triangles/);
+  assert.match(shownA.stats, /^hills\.obj\n.*4,608 triangles/);
   assert.equal(shownA.surfaceVertices, result.stats.vertices);
   assert.ok(shownA.linePoints > 0, 'lines drawn');
   const obj = await save('obj');
-  assert.equal(obj.fileName, 'box-lines.obj');
+  assert.equal(obj.fileName, 'hills-lines.obj');
   objA = obj.text;
   assert.match(objA, /^o ridges$/m);
 });
@@ -105,15 +104,15 @@ test("Cancel while B is read: A's page comes back whole", async () => {
   const { before, count } = await dropAndCancelAt('read');
   assert.equal(before.state, 'loading');
   assert.match(before.header, /^waves\.obj: reading…/);
-  assert.equal(before.label, 'Previous mesh: box.obj (shown until waves.obj is read)');
+  assert.equal(before.label, 'Previous mesh: hills.obj (shown until waves.obj is read)');
   const after = await views();
   assert.deepEqual({ ...after }, { ...shownA }, "header, state, stats, picture: A's");
-  assert.match(await app.page.textContent('#notes'), /^Cancelled waves\.obj: back to box\.obj\.$/);
+  assert.match(await app.page.textContent('#notes'), /^Cancelled waves\.obj: back to hills\.obj\.$/);
   // The worker still holds A: its core writer gives the same lines, byte for byte.
   const obj = await save('obj');
-  assert.equal(obj.fileName, 'box-lines.obj');
+  assert.equal(obj.fileName, 'hills-lines.obj');
   assert.equal(obj.text, objA);
-  assert.equal((await save('svg')).fileName, 'box-lines.svg');
+  assert.equal((await save('svg')).fileName, 'hills-lines.svg');
   // Nothing of B arrives later.
   await app.page.waitForTimeout(300);
   assert.equal(await app.page.evaluate(() => window.crestline.results.length), count);
@@ -208,11 +207,11 @@ test("while B is read: A labelled and dimmed, exports A's; once loaded: B's surf
   const { reading, loaded } = await app.page.evaluate(() => ({ reading: window.reading, loaded: window.loaded }));
   assert.equal(reading.state, 'loading');
   assert.match(reading.header, /^waves\.obj: reading… — /);
-  assert.equal(reading.label, 'Previous mesh: box.obj (shown until waves.obj is read)');
+  assert.equal(reading.label, 'Previous mesh: hills.obj (shown until waves.obj is read)');
   assert.equal(reading.dimmed, true);
-  assert.match(reading.stats, /^box\.obj\n/, "the stats are A's, named");
+  assert.match(reading.stats, /^hills\.obj\n/, "the stats are A's, named");
   assert.equal(reading.surfaceVertices, shownA.surfaceVertices);
-  assert.equal(reading.svg, 'box-lines.svg', "an export while B is read is A's, as the label says");
+  assert.equal(reading.svg, 'hills-lines.svg', "an export while B is read is A's, as the label says");
   // Loaded: B's surface is in the picture before any of its lines.
   assert.deepEqual(
     { ...loaded, stats: '' },

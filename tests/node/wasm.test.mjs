@@ -284,7 +284,7 @@ test('without a mesh, Session.options() reports the core defaults; the app panel
     creaseAngle: 'auto',
     creaseMaxTurn: 60,
     creaseFilterSteps: 'auto',
-    creaseBoundaries: false,
+    creaseBoundaries: true,
     shortLineLength: 6,
     view: 'front',
     svgWidth: 1000,

@@ -98,10 +98,10 @@ struct CreaseOptions {
   /// cut open along the creases of the automatic angle before pre-smoothing,
   /// so curvature, both smoothings and the tracer's boundary band treat them
   /// as boundaries. Independent of `angle`, which stays a selection; only on
-  /// components no noisier than kBoundaryNoiseLimit.
-  /// Off by default until the page's and the widget's tests stop expecting
-  /// smooth lines along a box's edges (tests/browser: app-state, app-brush).
-  bool boundaries = false;
+  /// components no noisier than kBoundaryNoiseLimit. On by default: smooth
+  /// meshes have no crease at the automatic angle, so only CAD-like parts
+  /// change (README, "Smooth lines stop at creases").
+  bool boundaries = true;
 };
 
 struct CreaseResult {
