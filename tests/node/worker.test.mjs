@@ -282,6 +282,22 @@ test('client: a WASM trap restarts the worker once, says so once, and the next r
   assert.equal((await ra).ran[0], 'presmooth', 'a fresh pipeline runs every stage');
 });
 
+test('client: a module that cannot start is one sentence for each request, with no restart loop', async () => {
+  const workers = inProcessWorkers(async () => {
+    throw new WebAssembly.CompileError('invalid opcode 0xfd');
+  });
+  const connection = new Connection(workers.start);
+  const a = observed(connection);
+  const failed = a.next('error');
+  a.session.load(sineHeightField({ n: 8 }), {});
+  const error = await failed;
+  assert.match(error.message, /^The WebAssembly module failed to start \(invalid opcode 0xfd\)\. This browser may lack WebAssembly SIMD/);
+  await assert.rejects(connection.describe(), /^Error: The WebAssembly module failed to start/);
+  await new Promise((resolve) => setTimeout(resolve, 50));
+  assert.equal(workers.stats.started, 1, 'no worker restart');
+  assert.ok(!a.events.some(([kind]) => kind === 'result'));
+});
+
 test('client: cancel stops the job through the shared flag, without a restart', async () => {
   const workers = inProcessWorkers();
   const connection = new Connection(workers.start);

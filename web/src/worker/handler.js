@@ -40,10 +40,25 @@ export function createHandler({ startModule, post, startDecoders }) {
   /** @type {Map<Request, Promise<import('./protocol.js').NamedBytes[]>>} the fetches of 'open' messages with a URL, started as they arrive */
   const fetchedFiles = new Map();
 
+  /**
+   * The module, started once. If it cannot start, every message is answered
+   * with the same sentence; a new worker would fail alike, so it is no
+   * reason for the client to restart one.
+   */
+  function theModule() {
+    starting ??= startModule().catch((error) => {
+      const simd =
+        error instanceof WebAssembly.CompileError
+          ? ' This browser may lack WebAssembly SIMD, which Crestline needs (Chrome or Edge 91, Firefox 89, Safari 16.4 or later).'
+          : '';
+      throw new Error(`The WebAssembly module failed to start (${error?.message ?? error}).${simd}`);
+    });
+    return starting;
+  }
+
   /** @param {number} id */
   async function engineFor(id) {
-    starting ??= startModule();
-    const module = await starting;
+    const module = await theModule();
     let engine = engines.get(id);
     if (!engine) engines.set(id, (engine = new Engine(module)));
     return engine;
@@ -119,8 +134,7 @@ export function createHandler({ startModule, post, startDecoders }) {
         return post({ type: 'fields', id: message.id, job: message.job, fields: engine.fields() });
       }
       case 'describe': {
-        starting ??= startModule();
-        return post({ type: 'described', request: message.request, table: Engine.describe(await starting) });
+        return post({ type: 'described', request: message.request, table: Engine.describe(await theModule()) });
       }
       case 'surface-index': {
         const parts = SurfaceIndex.parts(new SurfaceIndex(message.positions, message.indices));
@@ -169,12 +183,11 @@ export function createHandler({ startModule, post, startDecoders }) {
       if (message.type === 'init') {
         cancelFlag = message.cancelFlag ?? null;
         if (message.preload === false) return (queue = queue.then(() => post({ type: 'ready' })));
-        starting ??= startModule();
+        const started = theModule();
         queue = queue.then(() =>
-          /** @type {Promise<CrestlineModule>} */ (starting).then(
+          started.then(
             () => post({ type: 'ready' }),
-            (error) =>
-              post({ type: 'error', message: `The WebAssembly module failed to start (${error.message}).`, kind: 'internal', named: false, fatal: true }),
+            (error) => post({ type: 'error', message: error.message, kind: 'internal', named: false, fatal: false }),
           ),
         );
         return queue;

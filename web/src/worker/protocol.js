@@ -91,6 +91,7 @@
  *            named: boolean, fatal: boolean}} ErrorReply
  *   named: the message already names the file; fatal: the WASM module is
  *   unusable or its heap full (trap, out of memory): the client restarts the worker
+ *   (not when the module cannot start at all: a new worker would fail alike)
  * @typedef {ReadyReply | ProgressReply | LoadedReply | ResultReply | FieldsReply | ExportReply |
  *           CancelledReply | LostReply | ErrorReply | DescribedReply | SurfaceIndexReply} Reply
  */
