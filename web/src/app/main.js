@@ -17,7 +17,15 @@ import { linkFragment, parseLink } from './link.js';
 
 const connection = sharedConnection();
 // The parameter table of the core: the panel's controls and defaults.
-const table = await connection.describe();
+const table = await connection.describe().catch((error) => {
+  // The engine cannot start in this browser (no WebAssembly SIMD, a blocked
+  // .wasm): the page says so in its error line instead of staying blank.
+  const line = /** @type {HTMLElement} */ (document.getElementById('error'));
+  line.textContent = error.message;
+  line.hidden = false;
+  document.body.dataset.state = 'error';
+  throw error;
+});
 const params = defaultParams(table);
 // Test and debugging hooks: the last result, the stages each run re-computed.
 const app = (window.crestline = { results: [], params, parameters: table, lastResult: null, fields: null, mesh: null });

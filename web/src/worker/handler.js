@@ -47,10 +47,9 @@ export function createHandler({ startModule, post, startDecoders }) {
    */
   function theModule() {
     starting ??= startModule().catch((error) => {
-      const simd =
-        error instanceof WebAssembly.CompileError
-          ? ' This browser may lack WebAssembly SIMD, which Crestline needs (Chrome or Edge 91, Firefox 89, Safari 16.4 or later).'
-          : '';
+      // Emscripten reports a failed compile as an abort that quotes the CompileError.
+      const compileError = error instanceof WebAssembly.CompileError || /CompileError/.test(String(error?.message ?? error));
+      const simd = compileError ? ' This browser may lack WebAssembly SIMD, which Crestline needs (Chrome or Edge 91, Firefox 89, Safari 16.4 or later).' : '';
       throw new Error(`The WebAssembly module failed to start (${error?.message ?? error}).${simd}`);
     });
     return starting;

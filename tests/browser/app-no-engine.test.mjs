@@ -1,0 +1,56 @@
+// A browser that cannot compile the engine (no WebAssembly SIMD, or a broken
+// .wasm): the page shows one sentence saying so, and the worker is not
+// restarted in a loop. The server answers the module's .wasm with bytes that
+// are no WebAssembly, so the glue's compile fails as it would without SIMD.
+// Needs web/dist (web/build.sh).
+import assert from 'node:assert/strict';
+import { mkdtempSync, readdirSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { after, before, test } from 'node:test';
+import { launch } from './browser.mjs';
+import { serve } from './server.mjs';
+import { ROOT } from '../node/helpers.mjs';
+
+let browser, server, page, wasm;
+const pageErrors = [];
+/** Fetches of the module's .wasm, the worker's included. */
+let wasmFetches = 0;
+
+before(async () => {
+  const dist = join(ROOT, 'web/dist');
+  wasm = readdirSync(join(dist, 'assets')).find((f) => /^crestline-.*\.wasm$/.test(f));
+  assert.ok(wasm, 'web/dist has the module');
+  const broken = mkdtempSync(join(tmpdir(), 'crestline-no-engine-'));
+  writeFileSync(join(broken, 'index.html'), 'not WebAssembly');
+  server = await serve({ [`/assets/${wasm}`]: broken, '/': dist });
+  browser = await launch();
+  page = await browser.newPage();
+  page.on('pageerror', (error) => pageErrors.push(error.message));
+  page.context().on('request', (request) => {
+    if (request.url().endsWith(wasm)) wasmFetches += 1;
+  });
+  await page.goto(`http://127.0.0.1:${server.address().port}/`);
+});
+
+after(async () => {
+  await browser?.close();
+  server?.close();
+});
+
+test('an engine that cannot start: one sentence on the page naming WebAssembly SIMD, no restart loop', async () => {
+  await page.waitForFunction(() => document.body.dataset.state === 'error', null, { timeout: 30000 });
+  const error = await page.textContent('#error');
+  assert.match(error, /^The WebAssembly module failed to start \(.*CompileError.*\)\. This browser may lack WebAssembly SIMD/);
+  assert.ok(await page.isVisible('#error'), 'the error line is shown');
+  // The worker was started once: the glue fetches the module at most twice
+  // (streaming, then as bytes); a restart loop would fetch it again and again.
+  await page.waitForTimeout(1000);
+  console.log(`# fetches of the module: ${wasmFetches}`);
+  assert.ok(wasmFetches >= 1 && wasmFetches <= 2, `${wasmFetches} fetches of the module`);
+  assert.equal(await page.textContent('#error'), error, 'the sentence stays');
+  assert.ok(
+    pageErrors.every((m) => m.includes('failed to start')),
+    `only the engine's failure is uncaught: ${pageErrors.join(' | ')}`,
+  );
+});
