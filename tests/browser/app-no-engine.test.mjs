@@ -23,7 +23,8 @@ before(async () => {
   assert.ok(wasm, 'web/dist has the module');
   const broken = mkdtempSync(join(tmpdir(), 'crestline-no-engine-'));
   writeFileSync(join(broken, 'index.html'), 'not WebAssembly');
-  server = await serve({ [`/assets/${wasm}`]: broken, '/': dist });
+  // The app's module, and the widget's (crestline.wasm beside crestline-viewer.js).
+  server = await serve({ [`/assets/${wasm}`]: broken, '/crestline.wasm': broken, '/': dist });
   browser = await launch();
   page = await browser.newPage();
   page.on('pageerror', (error) => pageErrors.push(error.message));
@@ -53,4 +54,15 @@ test('an engine that cannot start: one sentence on the page naming WebAssembly S
     pageErrors.every((m) => m.includes('failed to start')),
     `only the engine's failure is uncaught: ${pageErrors.join(' | ')}`,
   );
+});
+
+test('the widget: the same sentence in its error line and as an error event', async () => {
+  const widget = await browser.newPage();
+  await widget.goto(`http://127.0.0.1:${server.address().port}/embed.html`);
+  await widget.waitForFunction(() => document.querySelector('crestline-viewer')?.shadowRoot?.querySelector('[part="error"]')?.textContent, null, {
+    timeout: 30000,
+  });
+  const error = await widget.evaluate(() => document.querySelector('crestline-viewer').shadowRoot.querySelector('[part="error"]').textContent);
+  assert.match(error, /^The WebAssembly module failed to start \(.*CompileError.*\)\. This browser may lack WebAssembly SIMD/);
+  await widget.close();
 });

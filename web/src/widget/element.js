@@ -87,10 +87,13 @@ export class CrestlineViewer extends HTMLElement {
       if (records.some((r) => parameterAttributes.has(r.attributeName))) this.queue('pipeline');
     });
     this.parameterObserver.observe(this, { attributes: true });
-    parameterTable().then(() => {
-      upgradeProperties(this, parameterProperties(table));
-      this.queue('source'); // a load waits for the table
-    });
+    parameterTable().then(
+      () => {
+        upgradeProperties(this, parameterProperties(table));
+        this.queue('source'); // a load waits for the table
+      },
+      (error) => this.fail(error.message), // the engine cannot start here (no WASM SIMD, say)
+    );
     for (const kind of ['label', 'display', 'orbit', 'motion', 'interaction', 'poster', 'source']) this.queue(kind);
   }
 
