@@ -361,12 +361,6 @@ const Parameter* find_parameter_by_key(const std::string& key) {
   return nullptr;
 }
 
-const Parameter* find_parameter_by_flag(const std::string& flag) {
-  for (const Parameter& p : parameters())
-    if (flag == p.flag) return &p;
-  return nullptr;
-}
-
 std::string describe_range(const Parameter& p) {
   switch (p.kind) {
     case ParameterKind::Boolean:

@@ -66,7 +66,6 @@ class UsageError : public std::invalid_argument {
 /// The table, in the order --help and the panel show it.
 const std::vector<Parameter>& parameters();
 const Parameter* find_parameter_by_key(const std::string& key);
-const Parameter* find_parameter_by_flag(const std::string& flag);
 
 /// Parses a command-line word ("3", "0.5", "auto", "front"); throws
 /// UsageError naming `name` (p.flag when empty) when it is no value of p or
