@@ -2,8 +2,14 @@
 // a second layer draws the creases (convex and concave as its two types).
 // The geometry holds every faired line; a threshold change only shows or
 // hides line ranges (a per-segment flag the vertex shader reads), so it
-// uploads one byte per changed segment and rebuilds nothing.
-import { Color, Group, InstancedBufferAttribute } from 'three';
+// uploads one flag per changed segment vertex and rebuilds nothing.
+//
+// The segments are not instanced: each one is 8 vertices of its own (the
+// LineSegmentsGeometry template's, told apart by gl_VertexID % 8) carrying
+// its two end points, drawn with LineMaterial's own shaders. The look is
+// LineSegments2's, pixel for pixel; one instanced draw of 141k segments costs
+// WebGL on the CPU (SwiftShader) about three times as much as this one.
+import { BufferAttribute, BufferGeometry, Color, Group, InstancedInterleavedBuffer, InterleavedBuffer, InterleavedBufferAttribute } from 'three';
 import { LineMaterial } from 'three/examples/jsm/lines/LineMaterial.js';
 import { LineSegments2 } from 'three/examples/jsm/lines/LineSegments2.js';
 import { LineSegmentsGeometry } from 'three/examples/jsm/lines/LineSegmentsGeometry.js';
@@ -52,12 +58,99 @@ export function segmentPositions(lines, type, origin) {
   return out;
 }
 
-/** LineMaterial whose segments with instanceShown = 0 are moved outside the clip volume. */
-function hidingLineMaterial(parameters) {
+/** The vertices of a segment (LineSegmentsGeometry's template) and its 6 triangles. */
+export const SEGMENT_VERTICES = 8;
+const SEGMENT_INDEX = [0, 2, 1, 2, 3, 1, 2, 4, 3, 4, 5, 3, 4, 6, 5, 6, 7, 5];
+
+/**
+ * The segments `positions` (end point pairs, as segmentPositions makes them)
+ * as a plain indexed geometry: 8 vertices per segment, each with both end
+ * points (instanceStart, instanceEnd: one interleaved buffer) and the
+ * segment's shown flag (instanceShown, 0 until setKept).
+ */
+export class SegmentGeometry extends BufferGeometry {
+  constructor(positions = new Float32Array(0)) {
+    super();
+    this.type = 'SegmentGeometry';
+    const count = positions.length / 6;
+    this.segmentCount = count;
+    const ends = new Float32Array(count * SEGMENT_VERTICES * 6);
+    for (let s = 0; s < count; s++) {
+      const pair = positions.subarray(6 * s, 6 * s + 6);
+      for (let k = 0; k < SEGMENT_VERTICES; k++) ends.set(pair, (s * SEGMENT_VERTICES + k) * 6);
+    }
+    const index = new Uint32Array(count * SEGMENT_INDEX.length);
+    for (let s = 0, i = 0; s < count; s++) for (const k of SEGMENT_INDEX) index[i++] = s * SEGMENT_VERTICES + k;
+    const buffer = new InterleavedBuffer(ends, 6);
+    this.setAttribute('instanceStart', new InterleavedBufferAttribute(buffer, 3, 0));
+    this.setAttribute('instanceEnd', new InterleavedBufferAttribute(buffer, 3, 3));
+    this.setAttribute('instanceShown', new BufferAttribute(new Uint8Array(count * SEGMENT_VERTICES), 1));
+    this.setIndex(new BufferAttribute(index, 1));
+    // One entry per segment over the same floats (every 8th vertex), for LineSegments2's raycast.
+    const perSegment = new InstancedInterleavedBuffer(ends, 6 * SEGMENT_VERTICES, 1);
+    this.segments = new LineSegmentsGeometry();
+    this.segments.setAttribute('instanceStart', new InterleavedBufferAttribute(perSegment, 3, 0));
+    this.segments.setAttribute('instanceEnd', new InterleavedBufferAttribute(perSegment, 3, 3));
+  }
+
+  computeBoundingBox() {
+    this.segments.computeBoundingBox();
+    this.boundingBox = this.segments.boundingBox.clone();
+  }
+
+  computeBoundingSphere() {
+    this.segments.computeBoundingSphere();
+    this.boundingSphere = this.segments.boundingSphere.clone();
+  }
+
+  /** Shows (1) or hides (0) segments [first, first + count); the caller marks the upload range. */
+  setShown(first, count, shown) {
+    const attribute = this.getAttribute('instanceShown');
+    attribute.array.fill(shown, first * SEGMENT_VERTICES, (first + count) * SEGMENT_VERTICES);
+  }
+}
+
+/** LineSegments2 drawn from a SegmentGeometry (not instanced); picks as LineSegments2 does, one hit per segment. */
+class SegmentLines extends LineSegments2 {
+  raycast(raycaster, intersects) {
+    const geometry = this.geometry;
+    if (!geometry.segmentCount) return;
+    this.geometry = geometry.segments;
+    try {
+      super.raycast(raycaster, intersects);
+    } finally {
+      this.geometry = geometry;
+    }
+  }
+}
+
+/**
+ * LineMaterial for a SegmentGeometry: the template's corner (position) and
+ * uv come from gl_VertexID % 8 instead of attributes, and a hidden segment
+ * (instanceShown = 0) leaves the vertex shader at once, outside the clip volume.
+ */
+export function segmentLineMaterial(parameters) {
   const material = new LineMaterial(parameters);
-  material.vertexShader = material.vertexShader
+  const shader = material.vertexShader;
+  const replaced = shader
     .replace('attribute vec3 instanceEnd;', 'attribute vec3 instanceEnd;\n\t\tattribute float instanceShown;')
-    .replace('gl_Position = clip;', 'gl_Position = instanceShown > 0.5 ? clip : vec4( 2.0, 2.0, 2.0, 1.0 );');
+    .replace(
+      'void main() {',
+      `void main() {
+			if ( instanceShown < 0.5 ) {
+				gl_Position = vec4( 2.0, 2.0, 2.0, 1.0 );
+				return;
+			}
+			int corner = gl_VertexID % ${SEGMENT_VERTICES};
+			float row = float( 2 - corner / 2 );
+			vec2 segmentCorner = vec2( ( corner % 2 ) == 1 ? 1.0 : - 1.0, row );
+			vec2 segmentUv = vec2( segmentCorner.x, row > 0.5 ? row : row - 1.0 );`,
+    )
+    .replace(/\bposition\.([xy])\b/g, 'segmentCorner.$1')
+    .replace('vUv = uv;', 'vUv = segmentUv;');
+  if (!replaced.includes('segmentUv;') || /\bposition\b/.test(replaced.slice(replaced.indexOf('void main()'))))
+    throw new Error('LineMaterial: its vertex shader is not the one segmentLineMaterial adapts');
+  material.vertexShader = replaced;
   return material;
 }
 
@@ -65,8 +158,8 @@ export class LineLayer {
   constructor({ ridgeColor = LINE_COLORS.ridge, valleyColor = LINE_COLORS.valley, width = 2.5 } = {}) {
     this.group = new Group();
     this.objects = [ridgeColor, valleyColor].map((color) => {
-      const material = hidingLineMaterial({ color, linewidth: width, worldUnits: false });
-      const object = new LineSegments2(new LineSegmentsGeometry(), material);
+      const material = segmentLineMaterial({ color, linewidth: width, worldUnits: false });
+      const object = new SegmentLines(new SegmentGeometry(), material);
       object.frustumCulled = false;
       object.renderOrder = 1;
       this.group.add(object);
@@ -98,14 +191,9 @@ export class LineLayer {
     for (const type of [RIDGE, VALLEY]) {
       const object = this.objects[type];
       object.geometry.dispose();
-      const geometry = new LineSegmentsGeometry();
-      const positions = segmentPositions(lines, type, origin);
-      if (positions.length) {
-        geometry.setPositions(positions);
-        geometry.setAttribute('instanceShown', new InstancedBufferAttribute(new Uint8Array(positions.length / 6), 1));
-      }
+      const geometry = new SegmentGeometry(segmentPositions(lines, type, origin));
       object.geometry = geometry;
-      object.userData.segments = positions.length / 6;
+      object.userData.segments = geometry.segmentCount;
     }
     this.kept = new Uint8Array(count);
     this.setKept(kept ?? Uint32Array.from({ length: count }, (_, l) => l));
@@ -125,9 +213,8 @@ export class LineLayer {
     for (let l = 0; l < this.lineCount; l++) {
       if (next[l] === this.kept[l] || !this.segments[l]) continue;
       const type = this.types[l];
-      const attribute = this.objects[type].geometry.getAttribute('instanceShown');
       const first = this.firstSegment[l];
-      attribute.array.fill(next[l], first, first + this.segments[l]);
+      this.objects[type].geometry.setShown(first, this.segments[l], next[l]);
       ranges[type][0] = Math.min(ranges[type][0], first);
       ranges[type][1] = Math.max(ranges[type][1], first + this.segments[l]);
     }
@@ -139,7 +226,7 @@ export class LineLayer {
       if (end < 0) continue;
       const attribute = this.objects[type].geometry.getAttribute('instanceShown');
       attribute.clearUpdateRanges();
-      attribute.addUpdateRange(start, end - start);
+      attribute.addUpdateRange(start * SEGMENT_VERTICES, (end - start) * SEGMENT_VERTICES);
       attribute.needsUpdate = true;
     }
     this.applyVisibility();
