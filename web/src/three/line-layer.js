@@ -75,12 +75,21 @@ export class SegmentGeometry extends BufferGeometry {
     const count = positions.length / 6;
     this.segmentCount = count;
     const ends = new Float32Array(count * SEGMENT_VERTICES * 6);
-    for (let s = 0; s < count; s++) {
-      const pair = positions.subarray(6 * s, 6 * s + 6);
-      for (let k = 0; k < SEGMENT_VERTICES; k++) ends.set(pair, (s * SEGMENT_VERTICES + k) * 6);
-    }
     const index = new Uint32Array(count * SEGMENT_INDEX.length);
-    for (let s = 0, i = 0; s < count; s++) for (const k of SEGMENT_INDEX) index[i++] = s * SEGMENT_VERTICES + k;
+    for (let s = 0, o = 0, i = 0; s < count; s++) {
+      // The segment's end points (6 floats) on each of its vertices.
+      const p = 6 * s;
+      for (let k = 0; k < SEGMENT_VERTICES; k++, o += 6) {
+        ends[o] = positions[p];
+        ends[o + 1] = positions[p + 1];
+        ends[o + 2] = positions[p + 2];
+        ends[o + 3] = positions[p + 3];
+        ends[o + 4] = positions[p + 4];
+        ends[o + 5] = positions[p + 5];
+      }
+      const first = s * SEGMENT_VERTICES;
+      for (let k = 0; k < SEGMENT_INDEX.length; k++) index[i++] = first + SEGMENT_INDEX[k];
+    }
     const buffer = new InterleavedBuffer(ends, 6);
     this.setAttribute('instanceStart', new InterleavedBufferAttribute(buffer, 3, 0));
     this.setAttribute('instanceEnd', new InterleavedBufferAttribute(buffer, 3, 3));
