@@ -44,13 +44,25 @@ Pipeline::Pipeline(Mesh mesh) : input_(std::move(mesh)) {
     topology_ = build_topology(input_);
   }
   frames_ = component_frames(input_);
-  local_input_ = to_local(input_, frames_);
+  const Mesh& local = local_input();
   double sum = 0;
   size_t count = 0;
   for (size_t c = 0; c < frames_.count(); ++c)
     sum += frames_.scale[c] * frames_.triangle_count[c], count += frames_.triangle_count[c];
   mean_edge_ = count ? sum / count : 0;
-  noise_levels_ = surface_noise_levels(local_input_, topology_, frames_.vertex_component, frames_.count());
+  noise_levels_ = surface_noise_levels(local, topology_, frames_.vertex_component, frames_.count());
+}
+
+const Mesh& Pipeline::local_input() {
+  if (!local_input_valid_) local_input_ = to_local(input_, frames_), local_input_valid_ = true;
+  return local_input_;
+}
+
+void Pipeline::release_local_input() {
+  // While the cut mesh serves the smooth stages, the input in the working
+  // frame is needed only to measure and select creases: rebuilt then (the
+  // same bytes), not kept (24 bytes per triangle).
+  if (cut_active_) local_input_ = Mesh(), local_input_valid_ = false;
 }
 
 void Pipeline::mark_dirty(Stage from) {
@@ -84,7 +96,7 @@ void Pipeline::measure_creases() {
   CreaseMeasureOptions measure{options_.creases.normal_filter_steps};
   const double noise = noise_levels_.empty() ? 0.0 : noise_levels_[frames_.largest()];
   if (measure.normal_filter_steps < 0) measure.normal_filter_steps = automatic_normal_filter_steps(noise);
-  crease_angles_ = measure_crease_angles(local_input_, topology_, measure);
+  crease_angles_ = measure_crease_angles(local_input(), topology_, measure);
   crease_angles_valid_ = true;
   crease_measure_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -96,7 +108,7 @@ void Pipeline::update_boundaries() {
     measure_creases();
     CreaseOptions automatic = options_.creases;
     automatic.angle = -1;
-    edges = select_creases(local_input_, topology_, crease_angles_, automatic, 1.0).edges;
+    edges = select_creases(local_input(), topology_, crease_angles_, automatic, 1.0).edges;
     // Not on noisy components, where creases are not to be trusted.
     edges.erase(std::remove_if(edges.begin(), edges.end(),
                                [&](uint32_t e) {
@@ -107,10 +119,11 @@ void Pipeline::update_boundaries() {
     std::sort(edges.begin(), edges.end());
   }
   boundaries_dirty_ = false;
-  if (edges == boundary_edges_) return;
+  if (edges == boundary_edges_) return release_local_input();
   boundary_edges_ = std::move(edges);
   mark_dirty(Stage::Presmooth);
-  cut_ = cut_along_edges(local_input_, topology_, boundary_edges_);
+  cut_ = CutMesh();
+  cut_ = cut_along_edges(local_input(), topology_, boundary_edges_);
   // Without copies the cut changed nothing: the input's mesh and adjacency
   // serve, and the smooth stages run exactly as without creases.
   cut_active_ = !cut_.copy_of.empty();
@@ -118,6 +131,7 @@ void Pipeline::update_boundaries() {
   cut_topology_ = cut_active_ ? build_topology(cut_.mesh) : Topology();
   cut_components_.clear();
   if (cut_active_) cut_components_ = on_cut_vertices(cut_, frames_.vertex_component);
+  release_local_input();
 }
 
 void Pipeline::run(const ProgressCallback& progress) {
@@ -135,6 +149,13 @@ void Pipeline::run(const ProgressCallback& progress) {
   // The line graphs are rebuilt whenever tracing re-runs: released now, not
   // held through the smoothing solves, the peak of a re-run.
   if (static_cast<int>(first_dirty_) <= static_cast<int>(Stage::Tracing)) singular_ = SingularResult();
+  // So are the per-vertex fields a stage is about to recompute: not held
+  // beside their new values (at 1.1M triangles the old curvature is 48 bytes
+  // per triangle, each extremality 8).
+  if (static_cast<int>(first_dirty_) <= static_cast<int>(Stage::Smoothing)) extremality_ = Extremality();
+  if (static_cast<int>(first_dirty_) <= static_cast<int>(Stage::Regularity)) regularity_ = Regularity();
+  if (static_cast<int>(first_dirty_) <= static_cast<int>(Stage::Extremality)) raw_extremality_ = Extremality();
+  if (static_cast<int>(first_dirty_) <= static_cast<int>(Stage::Curvature)) curvature_ = Curvature();
   auto step = [&](Stage stage, auto&& work) {
     if (static_cast<int>(stage) < static_cast<int>(first_dirty_)) return;
     if (progress && !progress(stage, 0.0)) throw Cancelled();
@@ -181,7 +202,13 @@ void Pipeline::run(const ProgressCallback& progress) {
     if (options_.averaging.rings > 0)
       curvature_ = average_shape_operator(surface, topology, curvature_, options_.averaging.rings);
   });
-  step(Stage::Extremality, [&] { raw_extremality_ = compute_extremality(surface, curvature_); });
+  step(Stage::Extremality, [&] {
+    raw_extremality_ = compute_extremality(surface, curvature_);
+    // No later stage reads the normals or star areas, and no option re-runs
+    // this stage without the curvature one: released (16 bytes per triangle).
+    curvature_.vertex_normals = {};
+    curvature_.star_area = {};
+  });
   step(Stage::Regularity, [&] { regularity_ = classify_triangles(surface, curvature_); });
   step(Stage::Smoothing, [&] {
     ExtremalitySmoothingOptions smoothing = options_.smoothing;
@@ -201,8 +228,14 @@ void Pipeline::run(const ProgressCallback& progress) {
   // copied (≈ 13 bytes per triangle, kept until the next run). Nothing else
   // reads them, and the singular stage runs again only after tracing has, or
   // after a cancel before it started, when they are still here.
-  step(Stage::Singular,
-       [&] { singular_ = connect_singular_triangles(surface, topology, regularity_, std::move(traced_)); });
+  // Polylines need neither the per-edge node index nor the excluded
+  // triangles: released (≈ 7 bytes per triangle).
+  step(Stage::Singular, [&] {
+    singular_ = connect_singular_triangles(surface, topology, regularity_, std::move(traced_));
+    singular_.lines.ridges.edge_node = {};
+    singular_.lines.valleys.edge_node = {};
+    singular_.lines.excluded = {};
+  });
   step(Stage::Polylines, [&] {
     PolylinesInput input;
     if (presmoothed_) input.place_on = &smooth_input();
@@ -254,11 +287,12 @@ void Pipeline::run(const ProgressCallback& progress) {
       StageTimer timer(seconds);
       // In the working frame (every component's mean edge 1, as the spur
       // and turn lengths expect), then mapped back per component.
-      creases_ = select_creases(local_input_, topology_, crease_angles_, options_.creases, 1.0);
+      creases_ = select_creases(local_input(), topology_, crease_angles_, options_.creases, 1.0);
       for (size_t i = 0; i < creases_.lines.size(); ++i) {
         const uint32_t component = frames_.vertex_component[creases_.line_vertex[i]];
         creases_.lines[i] = to_user(std::move(creases_.lines[i]), frames_, component);
       }
+      release_local_input();
     }
     seconds_[static_cast<int>(Stage::Creases)] = seconds + crease_measure_seconds_;
     creases_dirty_ = false;

@@ -124,6 +124,10 @@ class Pipeline {
   /// The crease edges (into topology().edges, ascending) the smooth stages
   /// treat as boundaries; empty when CreaseOptions::boundaries is off.
   const std::vector<uint32_t>& boundary_creases() const { return boundary_edges_; }
+  /// The per-stage fields; a run releases those it is about to recompute, so
+  /// they are empty after a run cancelled before their stage finished.
+  /// curvature() keeps what the stages after extremality read: its
+  /// vertex_normals and star_area are empty.
   const Curvature& curvature() const { return curvature_; }
   const Extremality& raw_extremality() const { return raw_extremality_; }
   const Extremality& extremality() const { return extremality_; }  // after smoothing
@@ -132,6 +136,7 @@ class Pipeline {
   /// singular triangles' added (the singular stage), and the singular counts.
   /// Released when a run re-traces (so a re-smoothing does not hold them
   /// through its solves): empty after a run cancelled before the singular stage.
+  /// Their edge_node and excluded, read only by the singular stage, are empty.
   const SingularResult& segments() const { return singular_; }
   /// Every joined, faired line, before the threshold filter (input's coordinates).
   const std::vector<Polyline>& all_lines() const { return faired_; }
@@ -148,6 +153,8 @@ class Pipeline {
 
  private:
   void mark_dirty(Stage from);
+  const Mesh& local_input();
+  void release_local_input();
   void measure_creases();
   void update_boundaries();
   const Mesh& smooth_input() const { return cut_active_ ? cut_.mesh : local_input_; }
@@ -159,7 +166,8 @@ class Pipeline {
   Stage first_dirty_ = Stage::Presmooth;
   Mesh input_;
   ComponentFrames frames_;
-  Mesh local_input_;      // input_ in the working frame
+  Mesh local_input_;  // input_ in the working frame; released while a cut serves (local_input())
+  bool local_input_valid_ = false;
   Mesh working_surface_;  // pre-smoothed only; else local_input_ serves
   Mesh surface_;          // pre-smoothed only; else input_ serves
   Topology topology_;

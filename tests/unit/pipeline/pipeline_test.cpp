@@ -60,6 +60,56 @@ TEST_CASE("changing the threshold re-runs only the filter", "[pipeline]") {
   CHECK(stages_run(p).empty());
 }
 
+TEST_CASE("with a crease cut, crease and boundary changes give the lines and creases of a fresh run",
+          "[pipeline][cut]") {
+  // A fold along x = 1 (44° between the sides) in a bumpy field: a boundary
+  // crease, so the pipeline cuts the mesh and releases the input in the
+  // working frame, which measuring and selecting creases then rebuild.
+  testing::GridOptions grid;
+  grid.nu = grid.nv = 40;
+  const Mesh mesh = repair_mesh(testing::height_field(
+                                    [](double x, double y) {
+                                      return 0.1 * std::cos(5 * x) * std::cos(4 * y) + 0.4 * std::abs(x - 1);
+                                    },
+                                    2, 2, grid))
+                        .mesh;
+  auto same = [](const Pipeline& a, const Pipeline& b) {
+    const std::vector<Polyline> la = a.all_kinds(), lb = b.all_kinds();
+    REQUIRE(la.size() == lb.size());
+    for (size_t i = 0; i < la.size(); ++i) CHECK(la[i].points == lb[i].points);
+  };
+  Pipeline fresh(mesh);
+  fresh.run();
+  REQUIRE(!fresh.working_cut().copy_of.empty());
+  REQUIRE(fresh.stats().creases > 0);
+  REQUIRE(!fresh.lines().empty());
+
+  Pipeline p(mesh);
+  p.run();
+  same(p, fresh);
+  PipelineOptions o = p.options();
+  o.creases.angle = 80;  // no crease
+  p.set_options(o);
+  p.run();
+  CHECK(p.stats().creases == 0);
+  o.creases.boundaries = false;
+  p.set_options(o);
+  p.run();
+  CHECK(p.working_cut().copy_of.empty());
+  o = PipelineOptions();
+  p.set_options(o);
+  p.run();
+  REQUIRE(!p.working_cut().copy_of.empty());
+  same(p, fresh);
+  o.creases.normal_filter_steps = 2;  // measured again
+  p.set_options(o);
+  p.run();
+  Pipeline filtered(mesh);
+  filtered.set_options(o);
+  filtered.run();
+  same(p, filtered);
+}
+
 TEST_CASE("cancelling leaves the pipeline usable", "[pipeline]") {
   Pipeline p(repair_mesh(bumpy()).mesh);
   CHECK_THROWS_AS(p.run([](Stage s, double) { return s != Stage::Tracing; }), Cancelled);
