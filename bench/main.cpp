@@ -1,13 +1,14 @@
 // crestline_bench: median per-stage seconds and peak memory of the whole
 // pipeline, one child process per mesh so that each peak is its own.
 //   crestline_bench [--runs N] [--smoke] [--only a,b] [--json FILE] [--export DIR]
-//                   [--meshes DIR] [--smoothing-steps N] [--threads N]
+//                   [--export-obj DIR] [--meshes DIR] [--smoothing-steps N] [--threads N]
 #include <malloc.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -45,7 +46,7 @@ const std::vector<MeshSpec> kMeshes = {
 struct Args {
   BenchSettings settings;
   std::string meshes = CRESTLINE_MESHES_DIR;
-  std::string json, export_dir;
+  std::string json, export_dir, export_obj_dir;
   std::vector<std::string> only;
 };
 
@@ -76,6 +77,41 @@ void export_soup(const TriangleSoup& soup, const std::string& path) {
   out.write(reinterpret_cast<const char*>(counts), sizeof counts);
   out.write(reinterpret_cast<const char*>(soup.positions.data()), soup.positions.size() * sizeof(double));
   out.write(reinterpret_cast<const char*>(soup.indices.data()), soup.indices.size() * sizeof(uint32_t));
+  if (!out) throw Error(ErrorKind::Io, path + ": cannot be written.");
+}
+
+// The soup as an OBJ file (v and f lines), so that the CLI's whole process
+// (reading included) can be timed on the generated meshes. Coordinates in
+// the shortest text that a correctly rounded parse reads back to the same
+// double; tinyobjloader's parse is not correctly rounded (it differs in the
+// last bit or two), so the CLI's lines on such a file can differ from the
+// benchmark's in the last digits.
+void export_obj(const TriangleSoup& soup, const std::string& path) {
+  std::ofstream out(path, std::ios::binary);
+  std::string text;
+  char number[32];
+  auto flush = [&](bool force) {
+    if (force || text.size() > (1u << 20)) out.write(text.data(), std::streamsize(text.size())), text.clear();
+  };
+  for (size_t v = 0; v < soup.vertex_count(); ++v) {
+    text += 'v';
+    for (int k = 0; k < 3; ++k) {
+      text += ' ';
+      text.append(number, std::to_chars(number, number + sizeof number, soup.positions[3 * v + size_t(k)]).ptr);
+    }
+    text += '\n';
+    flush(false);
+  }
+  for (size_t t = 0; t < soup.triangle_count(); ++t) {
+    text += 'f';
+    for (int k = 0; k < 3; ++k) {
+      text += ' ';
+      text.append(number, std::to_chars(number, number + sizeof number, soup.indices[3 * t + size_t(k)] + 1).ptr);
+    }
+    text += '\n';
+    flush(false);
+  }
+  flush(true);
   if (!out) throw Error(ErrorKind::Io, path + ": cannot be written.");
 }
 
@@ -114,6 +150,7 @@ MeshResult measure(const MeshSpec& spec, const Args& args) {
         export_soup(soup, file);
         copy_text(r.soup_file, sizeof r.soup_file, file);
       }
+      if (!args.export_obj_dir.empty()) export_obj(soup, args.export_obj_dir + "/" + spec.name + ".obj");
     }
     reset_peak_rss();
     const double cpu_start = cpu_seconds();
@@ -211,9 +248,10 @@ int usage(const char* message) {
   if (message) std::fprintf(stderr, "crestline_bench: %s\n", message);
   std::fprintf(stderr,
                "usage: crestline_bench [--runs N] [--smoke] [--only NAME,...] [--json FILE] [--export DIR]\n"
-               "                       [--meshes DIR] [--smoothing-steps N] [--threads N]\n"
+               "                       [--export-obj DIR] [--meshes DIR] [--smoothing-steps N] [--threads N]\n"
                "  meshes: bunny feline dragon (from --meshes), bunny-sub2 bunny-sub3 (generated)\n"
-               "  --smoke: bunny once, for CI (a few seconds)\n");
+               "  --smoke: bunny once, for CI (a few seconds)\n"
+               "  --export DIR / --export-obj DIR: write each mesh's soup to DIR/NAME.soup / DIR/NAME.obj\n");
   return message ? 2 : 0;
 }
 
@@ -242,6 +280,8 @@ int main(int argc, char** argv) {
         args.json = value();
       else if (a == "--export")
         args.export_dir = value();
+      else if (a == "--export-obj")
+        args.export_obj_dir = value();
       else if (a == "--meshes")
         args.meshes = value();
       else if (a == "--smoothing-steps")

@@ -11,6 +11,47 @@
 
 namespace crestline::detail {
 
+/// Entries grouped by bucket, in order within each bucket (a stable counting
+/// sort): items 0 … count − 1 each emit entries through visit(i, emit),
+/// emit(bucket < buckets, value), and entries[start[b] .. start[b + 1]) are
+/// bucket b's values in the order emitted. Large inputs are counted and
+/// placed in up to 8 consecutive parts on as many threads, each part after
+/// the ones before it in every bucket: the same result for any thread count.
+template <typename T, typename Visit>
+void group_by_bucket(size_t count, size_t buckets, const Visit& visit, std::vector<uint32_t>& start,
+                     std::vector<T>& entries) {
+  start.assign(buckets + 1, 0);
+  const size_t parts = count < (size_t{1} << 15) ? 1 : std::min<size_t>(size_t(max_threads()), 8);
+  // next[p * buckets + b]: part p's count in bucket b, then where its next entry goes.
+  std::vector<uint32_t> next(parts * buckets, 0);
+  auto each_part = [&](const auto& body) {
+    parallel_for(
+        parts,
+        [&](size_t first, size_t last) {
+          for (size_t p = first; p < last; ++p)
+            body(next.data() + p * buckets, count * p / parts, count * (p + 1) / parts);
+        },
+        1);
+  };
+  each_part([&](uint32_t* counts, size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) visit(i, [&](uint32_t b, const T&) { ++counts[b]; });
+  });
+  uint32_t sum = 0;
+  for (size_t b = 0; b < buckets; ++b) {
+    start[b] = sum;
+    for (size_t p = 0; p < parts; ++p) {
+      const uint32_t n = next[p * buckets + b];
+      next[p * buckets + b] = sum;
+      sum += n;
+    }
+  }
+  start[buckets] = sum;
+  entries.resize(sum);
+  each_part([&](uint32_t* fill, size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) visit(i, [&](uint32_t b, const T& value) { entries[fill[b]++] = value; });
+  });
+}
+
 /// Half-edges in the order of one global sort by (smaller end, larger end,
 /// corner), built in linear time: a counting sort by the smaller end (corners
 /// stay increasing), then a sort of each vertex's few entries. 8 bytes per
@@ -24,21 +65,17 @@ struct HalfEdgeOrder {
   static uint32_t far_end(uint64_t entry) { return static_cast<uint32_t>(entry >> 32); }
   static uint32_t corner(uint64_t entry) { return static_cast<uint32_t>(entry); }
 
-  /// The number of undirected edges.
-  size_t edge_count() const {
-    size_t count = 0;
-    for (uint32_t v = 0; v + 1 < start.size(); ++v)
-      for (uint32_t i = start[v]; i < start[v + 1]; ++i)
-        count += i == start[v] || far_end(entries[i]) != far_end(entries[i - 1]);
-    return count;
-  }
-
   /// Calls edge(near, far, first, last) once per undirected edge, in
   /// ascending (near, far) order, with [first, last) its half-edges in corner order.
   template <typename Edge>
   void for_each_edge(const Edge& edge) const {
+    for_each_edge(0, start.size() - 1, edge);
+  }
+  /// The same for the edges whose smaller end is in [first_vertex, last_vertex).
+  template <typename Edge>
+  void for_each_edge(size_t first_vertex, size_t last_vertex, const Edge& edge) const {
     const uint64_t* data = entries.data();
-    for (uint32_t v = 0; v + 1 < start.size(); ++v)
+    for (uint32_t v = uint32_t(first_vertex); v < last_vertex; ++v)
       for (uint32_t i = start[v], end = start[v + 1]; i < end;) {
         uint32_t j = i + 1;
         while (j < end && far_end(data[j]) == far_end(data[i])) ++j;
@@ -50,19 +87,15 @@ struct HalfEdgeOrder {
 
 inline HalfEdgeOrder order_half_edges(const std::vector<Triangle>& tris, size_t vertex_count) {
   HalfEdgeOrder order;
-  order.start.assign(vertex_count + 1, 0);
-  for (const Triangle& t : tris)
-    for (uint32_t k = 0; k < 3; ++k) ++order.start[std::min(t[k], t[(k + 1) % 3]) + 1];
-  for (size_t v = 0; v < vertex_count; ++v) order.start[v + 1] += order.start[v];
-  order.entries.resize(3 * tris.size());
-  {
-    std::vector<uint32_t> fill(order.start.begin(), order.start.end() - 1);
-    for (uint32_t t = 0; t < tris.size(); ++t)
-      for (uint32_t k = 0; k < 3; ++k) {
-        const uint32_t a = tris[t][k], b = tris[t][(k + 1) % 3];
-        order.entries[fill[std::min(a, b)]++] = uint64_t{std::max(a, b)} << 32 | (3 * t + k);
-      }
-  }
+  group_by_bucket(
+      tris.size(), vertex_count,
+      [&](size_t t, const auto& emit) {
+        for (uint32_t k = 0; k < 3; ++k) {
+          const uint32_t a = tris[t][k], b = tris[t][(k + 1) % 3];
+          emit(std::min(a, b), uint64_t{std::max(a, b)} << 32 | uint32_t(3 * t + k));
+        }
+      },
+      order.start, order.entries);
   // Each vertex's entries are sorted on their own: on every thread, with the
   // same result for any count.
   uint64_t* data = order.entries.data();

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <numeric>
@@ -30,14 +31,13 @@ std::string short_number(double x) {
 // sorting (key, index) pairs.
 template <typename Bucket, typename Less>
 std::vector<uint32_t> bucket_order(size_t count, size_t buckets, const Bucket& bucket, const Less& less) {
-  std::vector<uint32_t> start(buckets + 1, 0);
-  for (size_t i = 0; i < count; ++i) ++start[bucket(i) + 1];
-  for (size_t b = 0; b < buckets; ++b) start[b + 1] += start[b];
-  std::vector<uint32_t> order(count);
-  for (size_t i = 0; i < count; ++i) order[start[bucket(i)]++] = static_cast<uint32_t>(i);
-  // start[b] is now where bucket b ends.
-  for (size_t b = 0, begin = 0; b < buckets; begin = start[b++])
-    std::sort(order.begin() + ptrdiff_t(begin), order.begin() + ptrdiff_t(start[b]), less);
+  std::vector<uint32_t> start, order;
+  detail::group_by_bucket(
+      count, buckets, [&](size_t i, const auto& emit) { emit(bucket(i), static_cast<uint32_t>(i)); }, start, order);
+  parallel_for(buckets, [&](size_t first, size_t last) {
+    for (size_t b = first; b < last; ++b)
+      std::sort(order.begin() + ptrdiff_t(start[b]), order.begin() + ptrdiff_t(start[b + 1]), less);
+  });
   return order;
 }
 
@@ -88,15 +88,19 @@ struct Union {
   }
 };
 
-// Merges vertices closer than `tolerance` with a hash grid; the first vertex
-// of a cluster (in input order) represents it. The grid is a flat
-// open-addressing table from cell to a list (through `next`) of the
-// representatives in it: one probe per cell instead of a node chase. Cells
-// measure twice the tolerance, so the box of ±tolerance (plus a margin of
-// half a tolerance for rounding) around a vertex touches at most two cells
-// per axis: 1 to 8 probes instead of the 27 of tolerance-sized cells. The
-// result does not depend on the cells: the earliest representative within
-// tolerance, found by exact distances.
+// Merges vertices closer than `tolerance`: vertex i joins the earliest
+// representative (a vertex that joined no other) j < i within tolerance, or
+// represents itself. The grid is a flat open-addressing table from cell to a
+// list (through `next`) of the vertices in it: one probe per cell instead of
+// a node chase. Cells measure twice the tolerance, so the box of ±tolerance
+// (plus a margin of half a tolerance for rounding) around a vertex touches
+// at most two cells per axis: 1 to 8 probes instead of the 27 of
+// tolerance-sized cells. The result does not depend on the cells: exact
+// distances decide.
+// The table holds every vertex; the searches run on every thread and find
+// the earliest vertex within tolerance, which is the answer unless that
+// vertex joined another one itself (a chain, rare: seams have exact copies);
+// those few are searched again in input order, among representatives only.
 // Only `weldable` vertices (finite and used by a triangle, so inside the
 // bounding box) take part: unreferenced ones far away would share clamped cells.
 std::vector<uint32_t> weld(const std::vector<Vec3>& points, const std::vector<uint8_t>& weldable, const Vec3& lo,
@@ -121,7 +125,7 @@ std::vector<uint32_t> weld(const std::vector<Vec3>& points, const std::vector<ui
   int bits = 1;
   while ((size_t{1} << bits) < 2 * points.size()) ++bits;
   const size_t mask = (size_t{1} << bits) - 1;
-  std::vector<uint64_t> keys(mask + 1);
+  std::vector<uint64_t> keys(mask + 1), vertex_key(points.size());
   std::vector<uint32_t> head(mask + 1, kNone), next(points.size(), kNone);
   // The slot of a cell (empty if head == kNone); cells whose keys collide
   // share a list, which only costs distance tests.
@@ -130,29 +134,50 @@ std::vector<uint32_t> weld(const std::vector<Vec3>& points, const std::vector<ui
     while (head[s] != kNone && keys[s] != key) s = (s + 1) & mask;
     return s;
   };
-  const double tol2 = tolerance * tolerance;
+  parallel_for(points.size(), [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i)
+      if (weldable[i]) {
+        const Vec3 q = (points[i] - lo) * inv;
+        vertex_key[i] = cell_key(cell(q.x()), cell(q.y()), cell(q.z()));
+      }
+  });
+  // Lists in descending index order (each vertex is pushed at its head).
   for (uint32_t i = 0; i < points.size(); ++i) {
     if (!weldable[i]) continue;
+    const size_t s = slot(vertex_key[i]);
+    keys[s] = vertex_key[i];
+    next[i] = head[s];
+    head[s] = i;
+  }
+  vertex_key = std::vector<uint64_t>();
+  const double tol2 = tolerance * tolerance;
+  // The earliest vertex j < i within tolerance (among representatives only
+  // if `representatives_only`).
+  auto earliest = [&](uint32_t i, bool representatives_only) {
     const Vec3 q = (points[i] - lo) * inv;
     // A tolerance is half a cell; the search reaches 0.75 cells either way.
     const int64_t x0 = cell(q.x() - 0.75), x1 = cell(q.x() + 0.75), y0 = cell(q.y() - 0.75), y1 = cell(q.y() + 0.75),
                   z0 = cell(q.z() - 0.75), z1 = cell(q.z() + 0.75);
-    uint32_t found = kNone;  // the earliest representative within tolerance
+    uint32_t found = kNone;
     for (int64_t x = x0; x <= x1; ++x)
       for (int64_t y = y0; y <= y1; ++y)
         for (int64_t z = z0; z <= z1; ++z)
           for (uint32_t j = head[slot(cell_key(x, y, z))]; j != kNone; j = next[j])
-            if (j < found && (points[j] - points[i]).squaredNorm() <= tol2) found = j;
-    if (found == kNone) {
-      const uint64_t key = cell_key(cell(q.x()), cell(q.y()), cell(q.z()));
-      const size_t s = slot(key);
-      keys[s] = key;
-      next[i] = head[s];
-      head[s] = i;
-    } else {
-      representative[i] = found;
-      ++welded;
-    }
+            if (j < i && j < found && (!representatives_only || representative[j] == j) &&
+                (points[j] - points[i]).squaredNorm() <= tol2)
+              found = j;
+    return found;
+  };
+  std::vector<uint32_t> nearest(points.size(), kNone);
+  parallel_for(points.size(), [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i)
+      if (weldable[i]) nearest[i] = earliest(static_cast<uint32_t>(i), false);
+  });
+  for (uint32_t i = 0; i < points.size(); ++i) {
+    uint32_t found = nearest[i];
+    if (found == kNone) continue;
+    if (representative[found] != found) found = earliest(i, true);
+    if (found != kNone) representative[i] = found, ++welded;
   }
   return representative;
 }
@@ -174,134 +199,236 @@ Orientation orient(std::vector<Triangle>& tris, const std::vector<Vec3>& points,
 
   // Half-edges (corners) grouped by undirected edge.
   std::vector<uint32_t> partner(3 * nt, kNone);  // the corner across a manifold edge
-  detail::order_half_edges(tris, points.size())
-      .for_each_edge([&](uint32_t, uint32_t, const uint64_t* first, const uint64_t* last) {
-        using H = detail::HalfEdgeOrder;
-        if (last - first == 2) {
-          partner[H::corner(first[0])] = H::corner(first[1]);
-          partner[H::corner(first[1])] = H::corner(first[0]);
-        } else if (last - first > 2) {
-          ++report.nonmanifold_edges;
-          for (const uint64_t* h = first; h < last; ++h) out.cut[H::corner(*h)] = 1;
-        }
-      });
+  const detail::HalfEdgeOrder order = detail::order_half_edges(tris, points.size());
+  std::atomic<size_t> nonmanifold{0};
+  parallel_for(points.size(), [&](size_t begin, size_t end) {
+    size_t count = 0;
+    order.for_each_edge(begin, end, [&](uint32_t, uint32_t, const uint64_t* first, const uint64_t* last) {
+      using H = detail::HalfEdgeOrder;
+      if (last - first == 2) {
+        partner[H::corner(first[0])] = H::corner(first[1]);
+        partner[H::corner(first[1])] = H::corner(first[0]);
+      } else if (last - first > 2) {
+        ++count;
+        for (const uint64_t* h = first; h < last; ++h) out.cut[H::corner(*h)] = 1;
+      }
+    });
+    nonmanifold += count;
+  });
+  report.nonmanifold_edges += nonmanifold;
 
+  // same[c]: corner c's partner runs the same way (the two triangles
+  // disagree while neither is flipped); on every thread.
+  std::vector<uint8_t> same(3 * nt, 0);
+  parallel_for(nt, [&](size_t begin, size_t end) {
+    for (size_t c = 3 * begin; c < 3 * end; ++c) {
+      const uint32_t other = partner[c];
+      if (other != kNone) same[c] = tris[c / 3][c % 3] == tris[other / 3][other % 3];
+    }
+  });
+
+  // The traversal, component by component: a triangle is flipped relative to
+  // the component's first triangle (its seed, the smallest index) when an odd
+  // number of disagreeing edges lead to it. `members` lists every component's
+  // triangles in traversal order, component c from member_start[c].
   std::vector<uint8_t> flipped(nt, 0);
-  std::vector<uint32_t> stack, members;
-  auto directed = [&](uint32_t corner, bool flip) {
-    const Triangle& t = tris[corner / 3];
-    uint32_t a = t[corner % 3], b = t[(corner % 3 + 1) % 3];
-    return flip ? std::make_pair(b, a) : std::make_pair(a, b);
-  };
+  std::vector<uint32_t> stack, members, member_start;
+  members.reserve(nt);
   for (uint32_t seed = 0; seed < nt; ++seed) {
     if (out.component[seed] != kNone) continue;
     const uint32_t c = static_cast<uint32_t>(out.components++);
-    members.clear();
+    member_start.push_back(static_cast<uint32_t>(members.size()));
     stack.assign(1, seed);
     out.component[seed] = c;
     while (!stack.empty()) {
       const uint32_t t = stack.back();
       stack.pop_back();
       members.push_back(t);
-      for (uint32_t k = 0; k < 3; ++k) {
-        const uint32_t corner = 3 * t + k, other = partner[corner];
+      for (uint32_t corner = 3 * t; corner < 3 * t + 3; ++corner) {
+        const uint32_t other = partner[corner];
         if (other == kNone || out.cut[corner]) continue;
         const uint32_t u = other / 3;
-        const auto mine = directed(corner, flipped[t]);
+        const uint8_t disagree = same[corner] ^ flipped[t];
         if (out.component[u] == kNone) {
-          // Neighbours agree when they traverse the shared edge in opposite directions.
-          flipped[u] = directed(other, false) == mine;
+          flipped[u] = disagree;
           out.component[u] = c;
           stack.push_back(u);
-        } else if (directed(other, flipped[u]) == mine) {
+        } else if (disagree != flipped[u]) {
           out.cut[corner] = out.cut[other] = 1;  // non-orientable here
         }
       }
     }
-    // Keep the orientation most of the file agreed on; closed components then
-    // face outwards (positive signed volume).
-    size_t nflip = 0;
-    for (uint32_t t : members) nflip += flipped[t];
-    bool invert = 2 * nflip > members.size();
-    bool closed = true;
-    for (uint32_t t : members)
-      for (uint32_t k = 0; k < 3; ++k) closed = closed && partner[3 * t + k] != kNone && !out.cut[3 * t + k];
-    if (closed) {
-      // Signed volume about the first corner of the component, in units of
-      // its first edge: the same sign at any position and scale.
-      const Vec3& origin = points[tris[members[0]][0]];
-      const double unit = (points[tris[members[0]][1]] - origin).norm();
+  }
+  member_start.push_back(static_cast<uint32_t>(members.size()));
+  same = std::vector<uint8_t>();
+
+  // Closed components face outwards: the signed volume of each triangle about
+  // the first corner of its component, in units of the component's first
+  // edge (the same sign at any position and scale), on every thread; each
+  // component's terms are then added in traversal order.
+  std::vector<uint8_t> closed(out.components, 1);
+  for (uint32_t t = 0; t < nt; ++t)
+    for (uint32_t corner = 3 * t; corner < 3 * t + 3; ++corner)
+      if (partner[corner] == kNone || out.cut[corner]) closed[out.component[t]] = 0;
+  std::vector<double> volume(nt, 0);
+  parallel_for(nt, [&](size_t begin, size_t end) {
+    for (size_t t = begin; t < end; ++t) {
+      const uint32_t c = out.component[t];
+      if (!closed[c]) continue;
+      const Triangle& first = tris[members[member_start[c]]];
+      const Vec3& origin = points[first[0]];
+      const double unit = (points[first[1]] - origin).norm();
       const double inv_unit = unit > 0 ? 1 / unit : 1;
-      double volume = 0;
-      for (uint32_t t : members) {
-        const Triangle& f = tris[t];
-        const Vec3 a = (points[f[0]] - origin) * inv_unit, b = (points[f[1]] - origin) * inv_unit,
-                   c = (points[f[2]] - origin) * inv_unit;
-        const double v = a.dot(b.cross(c));
-        volume += (flipped[t] != invert) ? -v : v;
-      }
-      invert = invert != (volume < 0);
+      const Triangle& f = tris[t];
+      const Vec3 a = (points[f[0]] - origin) * inv_unit, b = (points[f[1]] - origin) * inv_unit,
+                 d = (points[f[2]] - origin) * inv_unit;
+      volume[t] = a.dot(b.cross(d));
     }
-    for (uint32_t t : members)
-      if (flipped[t] != invert) {
+  });
+  // Keep the orientation most of the file agreed on; closed components then
+  // face outwards (positive signed volume).
+  std::vector<uint8_t> invert(out.components, 0);
+  for (size_t c = 0; c < out.components; ++c) {
+    const uint32_t* first = members.data() + member_start[c];
+    const uint32_t* last = members.data() + member_start[c + 1];
+    size_t nflip = 0;
+    for (const uint32_t* t = first; t < last; ++t) nflip += flipped[*t];
+    bool flip_all = 2 * nflip > size_t(last - first);
+    if (closed[c]) {
+      double sum = 0;
+      for (const uint32_t* t = first; t < last; ++t) sum += (flipped[*t] != flip_all) ? -volume[*t] : volume[*t];
+      flip_all = flip_all != (sum < 0);
+    }
+    invert[c] = flip_all;
+    report.flipped_triangles += flip_all ? size_t(last - first) - nflip : nflip;
+  }
+  parallel_for(nt, [&](size_t begin, size_t end) {
+    for (size_t t = begin; t < end; ++t)
+      if (flipped[t] != invert[out.component[t]]) {
         std::swap(tris[t][1], tris[t][2]);
-        ++report.flipped_triangles;
         // Corner k of the swapped triangle: edges (0,2),(2,1),(1,0) — remap cut flags.
-        uint8_t* cut = &out.cut[size_t{3} * t];
+        uint8_t* cut = &out.cut[3 * t];
         std::swap(cut[0], cut[2]);
       }
-  }
+  });
   return out;
 }
 
 // Splits every vertex whose triangles form several fans (connected through
-// uncut edges around it) into one vertex per fan.
+// uncut edges around it) into one vertex per fan. The fans of each vertex
+// are found on every thread from the unsplit triangles (renaming a vertex's
+// corners never changes which uncut edges other vertices see: the two
+// triangles of an uncut edge are in one fan at each of its ends), then the
+// copies are numbered in vertex order, as one pass in that order would.
 void split_fans(std::vector<Triangle>& tris, std::vector<Vec3>& points, const std::vector<uint8_t>& cut,
                 RepairReport& report) {
   const size_t nv = points.size(), nt = tris.size();
-  std::vector<uint32_t> offsets(nv + 1, 0), corners(3 * nt);
-  for (const Triangle& t : tris)
-    for (uint32_t v : t) ++offsets[v + 1];
-  for (size_t v = 0; v < nv; ++v) offsets[v + 1] += offsets[v];
-  std::vector<uint32_t> fill(offsets.begin(), offsets.end() - 1);
-  for (uint32_t t = 0; t < nt; ++t)
-    for (uint32_t k = 0; k < 3; ++k) corners[fill[tris[t][k]]++] = 3 * t + k;
+  std::vector<uint32_t> offsets, corners;  // the corners at each vertex, CSR
+  detail::group_by_bucket(
+      nt, nv,
+      [&](size_t t, const auto& emit) {
+        for (uint32_t k = 0; k < 3; ++k) emit(tris[t][k], uint32_t(3 * t + k));
+      },
+      offsets, corners);
 
-  // Buffers reused for every vertex.
-  std::vector<uint64_t> ends;  // other end of an uncut edge at v << 32 | local triangle
-  std::vector<uint32_t> fan_of;
-  Union fans;
-  for (uint32_t v = 0; v < nv; ++v) {
-    const uint32_t begin = offsets[v], n = offsets[v + 1] - begin;
-    if (n < 2) continue;
-    // Two triangles at v are in one fan when they share an uncut edge at v.
-    ends.clear();
-    for (uint32_t i = 0; i < n; ++i) {
-      const uint32_t corner = corners[begin + i], t = corner / 3, k = corner % 3;
-      if (!cut[3 * t + k]) ends.push_back(uint64_t{tris[t][(k + 1) % 3]} << 32 | i);
-      if (!cut[3 * t + (k + 2) % 3]) ends.push_back(uint64_t{tris[t][(k + 2) % 3]} << 32 | i);
-    }
-    std::sort(ends.begin(), ends.end());
-    fans.reset(n);
-    for (size_t j = 1; j < ends.size(); ++j)
-      if (ends[j] >> 32 == ends[j - 1] >> 32) fans.join(uint32_t(ends[j]), uint32_t(ends[j - 1]));
-    // The fan of the first triangle keeps v; every other fan gets a copy.
-    fan_of.assign(n, kNone);
-    size_t fan_count = 0;
-    for (uint32_t i = 0; i < n; ++i) {
-      const uint32_t root = fans.find(i);
-      if (fan_of[root] == kNone) {
-        fan_of[root] = fan_count++ == 0 ? v : static_cast<uint32_t>(points.size());
-        if (fan_of[root] != v) {
-          const Vec3 copy = points[v];
-          points.push_back(copy);
+  // fan[i]: the fan of corner corners[i] at its vertex, numbered by first
+  // appearance (0 keeps the vertex); extra[v]: the vertex's fans beyond the first.
+  std::vector<uint32_t> fan(3 * nt, 0), extra(nv, 0);
+  parallel_for(nv, [&](size_t first, size_t last) {
+    // Buffers reused for every vertex of the chunk with many triangles.
+    std::vector<uint64_t> ends;  // other end of an uncut edge at v << 32 | local triangle
+    Union fans;
+    // A vertex's triangles i, j are in one fan when they share an uncut edge
+    // at v: the same other end. Few triangles (nearly every vertex): all
+    // pairs of ends compared, on the stack; many: the ends sorted.
+    constexpr uint32_t kFew = 16;
+    uint32_t parent[kFew], end_of[2 * kFew], owner[2 * kFew];
+    auto find = [&](uint32_t x) {
+      while (parent[x] != x) x = parent[x] = parent[parent[x]];
+      return x;
+    };
+    for (size_t v = first; v < last; ++v) {
+      const uint32_t begin = offsets[v], n = offsets[v + 1] - begin;
+      if (n < 2) continue;
+      uint32_t* root = parent;
+      if (n <= kFew) {
+        // Nearly every vertex: one closed fan whose triangles follow each
+        // other, the edge leaving v in one entering v in the next. Following
+        // that chain from the first triangle through all n of them, every
+        // edge uncut, proves a single fan (its fan numbers stay 0).
+        bool uncut = true;
+        for (uint32_t i = 0; i < n && uncut; ++i) {
+          const uint32_t corner = corners[begin + i], t = corner / 3, k = corner % 3;
+          uncut = !cut[3 * t + k] && !cut[3 * t + (k + 2) % 3];
+          end_of[i] = tris[t][(k + 1) % 3];         // the edge v → end_of[i]
+          end_of[kFew + i] = tris[t][(k + 2) % 3];  // the edge end_of[kFew + i] → v
         }
+        bool single = uncut;
+        for (uint32_t i = 0, steps = 0; single;) {
+          uint32_t j = 0;
+          while (j < n && end_of[kFew + j] != end_of[i]) ++j;
+          i = j, ++steps;
+          if (i == 0) {
+            single = steps == n;  // back at the first triangle after all n
+            break;
+          }
+          single = i < n && steps < n;
+        }
+        if (single) continue;
+        uint32_t m = 0;
+        for (uint32_t i = 0; i < n; ++i) {
+          parent[i] = i;
+          const uint32_t corner = corners[begin + i], t = corner / 3, k = corner % 3;
+          if (!cut[3 * t + k]) end_of[m] = tris[t][(k + 1) % 3], owner[m++] = i;
+          if (!cut[3 * t + (k + 2) % 3]) end_of[m] = tris[t][(k + 2) % 3], owner[m++] = i;
+        }
+        for (uint32_t a = 0; a < m; ++a)
+          for (uint32_t b = a + 1; b < m; ++b)
+            if (end_of[a] == end_of[b]) {
+              const uint32_t x = find(owner[a]), y = find(owner[b]);
+              if (x != y) parent[std::max(x, y)] = std::min(x, y);
+            }
+        for (uint32_t i = 0; i < n; ++i) parent[i] = find(i);
+      } else {
+        ends.clear();
+        for (uint32_t i = 0; i < n; ++i) {
+          const uint32_t corner = corners[begin + i], t = corner / 3, k = corner % 3;
+          if (!cut[3 * t + k]) ends.push_back(uint64_t{tris[t][(k + 1) % 3]} << 32 | i);
+          if (!cut[3 * t + (k + 2) % 3]) ends.push_back(uint64_t{tris[t][(k + 2) % 3]} << 32 | i);
+        }
+        std::sort(ends.begin(), ends.end());
+        fans.reset(n);
+        for (size_t j = 1; j < ends.size(); ++j)
+          if (ends[j] >> 32 == ends[j - 1] >> 32) fans.join(uint32_t(ends[j]), uint32_t(ends[j - 1]));
+        for (uint32_t i = 0; i < n; ++i) fans.find(i);
+        root = fans.parent.data();
       }
-      const uint32_t corner = corners[begin + i];
-      tris[corner / 3][corner % 3] = fan_of[root];
+      // root[i] is now the smallest triangle of i's fan: fans are numbered
+      // by their first triangle, as they appear in order.
+      uint32_t fan_count = 0;
+      for (uint32_t i = 0; i < n; ++i) {
+        fan[begin + i] = root[i] == i ? fan_count++ : fan[begin + root[i]];
+      }
+      extra[v] = fan_count - 1;
     }
-    if (fan_count > 1) ++report.nonmanifold_vertices;
+  });
+  // The copies of vertex v are numbered first_copy[v] … in vertex order.
+  std::vector<uint32_t> first_copy(nv);
+  uint32_t next = static_cast<uint32_t>(nv);
+  for (size_t v = 0; v < nv; ++v) {
+    first_copy[v] = next, next += extra[v];
+    report.nonmanifold_vertices += extra[v] > 0;
   }
+  if (next == nv) return;
+  points.resize(next);
+  parallel_for(nv, [&](size_t first, size_t last) {
+    for (size_t v = first; v < last; ++v) {
+      if (!extra[v]) continue;
+      for (uint32_t c = 0; c < extra[v]; ++c) points[first_copy[v] + c] = points[v];
+      for (uint32_t i = offsets[v]; i < offsets[v + 1]; ++i)
+        if (fan[i]) tris[corners[i] / 3][corners[i] % 3] = first_copy[v] + fan[i] - 1;
+    }
+  });
 }
 
 }  // namespace
@@ -422,12 +549,18 @@ RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options)
     for (uint32_t& v : t) v = index[v];
 
   // Boundary edges of the repaired mesh: undirected edges used once.
-  detail::order_half_edges(result.mesh.triangles, next)
-      .for_each_edge([&](uint32_t, uint32_t, const uint64_t* first, const uint64_t* last) {
-        if (last - first == 1) ++report.boundary_edges;
-        if (last - first > 2)
-          throw Error(ErrorKind::InvalidInput, "the mesh has an edge that could not be made manifold.");
-      });
+  const detail::HalfEdgeOrder order = detail::order_half_edges(result.mesh.triangles, next);
+  std::atomic<size_t> boundary{0};
+  parallel_for(next, [&](size_t begin, size_t end) {
+    size_t count = 0;
+    order.for_each_edge(begin, end, [&](uint32_t, uint32_t, const uint64_t* first, const uint64_t* last) {
+      if (last - first == 1) ++count;
+      if (last - first > 2)
+        throw Error(ErrorKind::InvalidInput, "the mesh has an edge that could not be made manifold.");
+    });
+    boundary += count;
+  });
+  report.boundary_edges = boundary;
   return result;
 }
 

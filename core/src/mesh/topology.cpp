@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "crestline/error.h"
+#include "crestline/numerics/parallel.h"
 #include "half_edges.h"
 
 namespace crestline {
@@ -15,27 +16,37 @@ Topology build_topology(const Mesh& mesh) {
   // corner) order: edges are numbered in that order.
   const detail::HalfEdgeOrder order = detail::order_half_edges(mesh.triangles, nv);
   topo.triangle_edges.assign(nt, {kNone, kNone, kNone});
-  const size_t edge_count = order.edge_count();
-  topo.edges.reserve(edge_count);
-  topo.edge_triangles.reserve(edge_count);
   using H = detail::HalfEdgeOrder;
-  order.for_each_edge([&](uint32_t near, uint32_t far, const uint64_t* first, const uint64_t* last) {
-    if (last - first > 2)
-      throw Error(ErrorKind::InvalidInput, "the mesh has an edge shared by more than two triangles.");
-    const uint32_t e = static_cast<uint32_t>(topo.edges.size());
-    topo.edges.push_back({near, far});
-    topo.edge_triangles.push_back({H::corner(first[0]) / 3, last - first == 2 ? H::corner(first[1]) / 3 : kNone});
-    for (const uint64_t* h = first; h < last; ++h) topo.triangle_edges[H::corner(*h) / 3][H::corner(*h) % 3] = e;
+  // Edges are numbered vertex by vertex: each vertex's count of edges, then
+  // every vertex's edges numbered from the sum of the counts before it, on
+  // every thread.
+  std::vector<uint32_t> first_edge(nv + 1, 0);
+  parallel_for(nv, [&](size_t begin, size_t end) {
+    for (size_t v = begin; v < end; ++v)
+      for (uint32_t i = order.start[v]; i < order.start[v + 1]; ++i)
+        first_edge[v + 1] += i == order.start[v] || H::far_end(order.entries[i]) != H::far_end(order.entries[i - 1]);
+  });
+  for (size_t v = 0; v < nv; ++v) first_edge[v + 1] += first_edge[v];
+  const size_t edge_count = first_edge[nv];
+  topo.edges.resize(edge_count);
+  topo.edge_triangles.resize(edge_count);
+  parallel_for(nv, [&](size_t begin, size_t end) {
+    order.for_each_edge(begin, end, [&](uint32_t near, uint32_t far, const uint64_t* first, const uint64_t* last) {
+      if (last - first > 2)
+        throw Error(ErrorKind::InvalidInput, "the mesh has an edge shared by more than two triangles.");
+      const uint32_t e = first_edge[near]++;
+      topo.edges[e] = {near, far};
+      topo.edge_triangles[e] = {H::corner(first[0]) / 3, last - first == 2 ? H::corner(first[1]) / 3 : kNone};
+      for (const uint64_t* h = first; h < last; ++h) topo.triangle_edges[H::corner(*h) / 3][H::corner(*h) % 3] = e;
+    });
   });
 
-  topo.vertex_offsets.assign(nv + 1, 0);
-  for (const Triangle& t : mesh.triangles)
-    for (uint32_t v : t) ++topo.vertex_offsets[v + 1];
-  for (size_t v = 0; v < nv; ++v) topo.vertex_offsets[v + 1] += topo.vertex_offsets[v];
-  topo.vertex_triangles.resize(3 * nt);
-  std::vector<uint32_t> fill(topo.vertex_offsets.begin(), topo.vertex_offsets.end() - 1);
-  for (uint32_t t = 0; t < nt; ++t)
-    for (uint32_t v : mesh.triangles[t]) topo.vertex_triangles[fill[v]++] = t;
+  detail::group_by_bucket(
+      nt, nv,
+      [&](size_t t, const auto& emit) {
+        for (uint32_t v : mesh.triangles[t]) emit(v, uint32_t(t));
+      },
+      topo.vertex_offsets, topo.vertex_triangles);
 
   topo.boundary_vertex.assign(nv, 0);
   for (size_t e = 0; e < topo.edges.size(); ++e)

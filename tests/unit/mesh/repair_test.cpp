@@ -112,6 +112,35 @@ TEST_CASE("repair cuts non-manifold edges and splits non-manifold vertices", "[r
   CHECK(r2.report.nonmanifold_vertices == 1);
   CHECK(r2.mesh.vertex_count() == 8);
   CHECK(r2.report.components == 2);
+
+  // Seven tetrahedra at one tip: 21 triangles there (more than the 16 that
+  // split_fans compares pairwise), one tip per tetrahedron.
+  TriangleSoup star;
+  add_vertex(star, tip);
+  const int tetrahedra = 7;
+  for (int i = 0; i < tetrahedra; ++i) {
+    const double a = 2 * crestline::testing::kPi * i / tetrahedra, c = std::cos(a), s = std::sin(a);
+    const uint32_t b = static_cast<uint32_t>(star.vertex_count());
+    add_vertex(star, Vec3(2 * c, 2 * s, 0)), add_vertex(star, Vec3(2 * c - 0.5 * s, 2 * s + 0.5 * c, 0.5));
+    add_vertex(star, Vec3(2 * c + 0.5 * s, 2 * s - 0.5 * c, 0.5));
+    add_triangle(star, 0, b, b + 1), add_triangle(star, 0, b + 1, b + 2), add_triangle(star, 0, b + 2, b);
+    add_triangle(star, b, b + 2, b + 1);
+  }
+  const RepairResult r3 = repair_mesh(star);
+  CHECK(r3.report.nonmanifold_vertices == 1);
+  CHECK(r3.report.components == size_t(tetrahedra));
+  REQUIRE(r3.mesh.vertex_count() == size_t(4 * tetrahedra));
+  std::set<uint32_t> tips;
+  for (int i = 0; i < tetrahedra; ++i) {
+    // Each tetrahedron's three triangles at the tip share one vertex at the tip's position.
+    std::set<uint32_t> at_tip;
+    for (int k = 0; k < 3; ++k)
+      for (uint32_t v : r3.mesh.triangles[size_t(4 * i + k)])
+        if (r3.mesh.positions[v] == tip) at_tip.insert(v);
+    CHECK(at_tip.size() == 1);
+    tips.insert(at_tip.begin(), at_tip.end());
+  }
+  CHECK(tips.size() == size_t(tetrahedra));
 }
 
 TEST_CASE("repair cuts a Moebius strip into an orientable surface", "[repair]") {
@@ -186,10 +215,11 @@ TEST_CASE("welding picks the earliest representative within tolerance, as a brut
   // that pairs straddle the tolerance and the weld grid's cells in every
   // direction; each vertex opens a triangle with vertices of the next two
   // clusters. Reference: every vertex, in input order, joins the earliest
-  // earlier representative within tolerance, or becomes one.
+  // earlier representative within tolerance, or becomes one. 6,400 vertices:
+  // the weld's searches split over 2 threads (chains of welds among them).
   std::mt19937 random(7);
   std::uniform_real_distribution<double> unit(0, 1), signed_unit(-1, 1);
-  const int clusters = 300, per_cluster = 8;
+  const int clusters = 800, per_cluster = 8;
   TriangleSoup s;
   std::vector<Vec3> centres(clusters);
   for (Vec3& c : centres) c = Vec3(unit(random), unit(random), unit(random)) + Vec3(1e3, -2e3, 0);
@@ -238,7 +268,12 @@ TEST_CASE("welding picks the earliest representative within tolerance, as a brut
     std::sort(f.begin(), f.end());
     if (seen.insert(f).second) expected.push_back(f);
   }
+  const int threads = GENERATE(1, 2);
+  INFO("threads: " << threads);
+  const int before = max_threads();
+  set_max_threads(threads);
   const RepairResult r = repair_mesh(s);
+  set_max_threads(before);
   CHECK(r.report.welded_vertices == welded);
   REQUIRE(r.mesh.triangle_count() == expected.size());
   size_t mismatches = 0;
@@ -269,6 +304,15 @@ TEST_CASE("repair gives the same mesh and report on 1 and 2 threads", "[repair][
   const size_t nt = s.triangle_count();
   for (size_t t = 0; t < nt; t += 50) add_triangle(s, s.indices[3 * t + 1], s.indices[3 * t], s.indices[3 * t + 2]);
   for (size_t t = 0; t < nt; t += 90) add_triangle(s, s.indices[3 * t], s.indices[3 * t], s.indices[3 * t + 1]);
+  // Fins: a triangle on an edge of the grid (a non-manifold edge, cut) and a
+  // triangle touching the grid at one vertex only (a second fan there).
+  for (size_t t = 0; t < nt; t += 61) {
+    const uint32_t a = s.indices[3 * t], b = s.indices[3 * t + 1], top = uint32_t(s.vertex_count());
+    add_vertex(s, Vec3(s.positions[3 * a], s.positions[3 * a + 1], s.positions[3 * a + 2] + 0.5));
+    add_vertex(s, Vec3(s.positions[3 * a] + 0.1, s.positions[3 * a + 1], s.positions[3 * a + 2] + 0.5));
+    add_triangle(s, a, b, top);
+    add_triangle(s, s.indices[3 * t + 2], top + 1, top);
+  }
   const int before = max_threads();
   set_max_threads(1);
   const RepairResult one = repair_mesh(s);
@@ -278,6 +322,8 @@ TEST_CASE("repair gives the same mesh and report on 1 and 2 threads", "[repair][
   CHECK(one.report.welded_vertices > 1000);  // the referenced copies
   CHECK(one.report.duplicate_triangles > 0);
   CHECK(one.report.degenerate_triangles > 0);
+  CHECK(one.report.nonmanifold_edges > 100);
+  CHECK(one.report.nonmanifold_vertices > 100);
   CHECK(one.report.notes() == two.report.notes());
   CHECK(one.report.boundary_edges == two.report.boundary_edges);
   CHECK(one.mesh.triangles == two.mesh.triangles);

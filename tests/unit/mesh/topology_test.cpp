@@ -1,0 +1,101 @@
+#include "crestline/mesh/topology.h"
+
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <map>
+#include <set>
+#include <utility>
+#include <vector>
+
+#include "analytic_meshes.h"
+#include "crestline/error.h"
+#include "crestline/mesh/repair.h"
+#include "crestline/numerics/parallel.h"
+
+using namespace crestline;
+
+namespace {
+
+Topology topology_on(int threads, const Mesh& mesh) {
+  const int before = max_threads();
+  set_max_threads(threads);
+  Topology t = build_topology(mesh);
+  set_max_threads(before);
+  return t;
+}
+
+}  // namespace
+
+TEST_CASE("topology matches a map of the edges and is the same on 1, 2 and 3 threads", "[topology][threads]") {
+  // 45,000 triangles with random diagonals and a boundary: enough for the
+  // counting sorts and the edge numbering to split over threads.
+  testing::GridOptions grid;
+  grid.nu = grid.nv = 150;
+  grid.random_diagonals = true;
+  const Mesh mesh =
+      repair_mesh(testing::height_field([](double x, double y) { return 0.1 * std::sin(4 * x + 2 * y); }, 2, 2, grid))
+          .mesh;
+  const Topology one = topology_on(1, mesh);
+
+  // Reference: edges as (smaller, larger) in ascending order, their triangles
+  // in triangle order.
+  std::map<std::pair<uint32_t, uint32_t>, std::vector<uint32_t>> edges;
+  for (uint32_t t = 0; t < mesh.triangle_count(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = mesh.triangles[t][k], b = mesh.triangles[t][(k + 1) % 3];
+      edges[{std::min(a, b), std::max(a, b)}].push_back(t);
+    }
+  REQUIRE(one.edges.size() == edges.size());
+  size_t e = 0, mismatches = 0, boundary = 0;
+  for (const auto& [ends, triangles] : edges) {
+    mismatches += one.edges[e] != std::array<uint32_t, 2>{ends.first, ends.second};
+    mismatches += one.edge_triangles[e][0] != triangles[0];
+    mismatches += one.edge_triangles[e][1] != (triangles.size() == 2 ? triangles[1] : kNone);
+    boundary += triangles.size() == 1;
+    ++e;
+  }
+  CHECK(mismatches == 0);
+  CHECK(boundary == 4 * 150);
+  for (uint32_t t = 0; t < mesh.triangle_count(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = mesh.triangles[t][k], b = mesh.triangles[t][(k + 1) % 3];
+      mismatches += one.edges[one.triangle_edges[t][k]] != std::array<uint32_t, 2>{std::min(a, b), std::max(a, b)};
+    }
+  CHECK(mismatches == 0);
+  // Each vertex's triangles in ascending order, every corner once.
+  REQUIRE(one.vertex_offsets.size() == mesh.vertex_count() + 1);
+  std::vector<std::vector<uint32_t>> around(mesh.vertex_count());
+  for (uint32_t t = 0; t < mesh.triangle_count(); ++t)
+    for (uint32_t v : mesh.triangles[t]) around[v].push_back(t);
+  for (uint32_t v = 0; v < mesh.vertex_count(); ++v)
+    mismatches += !std::equal(around[v].begin(), around[v].end(), one.vertex_triangles.begin() + one.vertex_offsets[v],
+                              one.vertex_triangles.begin() + one.vertex_offsets[v + 1]) ||
+                  around[v].size() != one.vertex_offsets[v + 1] - one.vertex_offsets[v];
+  CHECK(mismatches == 0);
+
+  for (int threads : {2, 3}) {
+    INFO("threads: " << threads);
+    const Topology other = topology_on(threads, mesh);
+    CHECK(other.edges == one.edges);
+    CHECK(other.edge_triangles == one.edge_triangles);
+    CHECK(other.triangle_edges == one.triangle_edges);
+    CHECK(other.vertex_offsets == one.vertex_offsets);
+    CHECK(other.vertex_triangles == one.vertex_triangles);
+    CHECK(other.boundary_vertex == one.boundary_vertex);
+  }
+}
+
+TEST_CASE("topology refuses an edge of three triangles on any thread count", "[topology][threads]") {
+  testing::GridOptions grid;
+  grid.nu = grid.nv = 150;
+  Mesh mesh = repair_mesh(testing::height_field([](double, double) { return 0.0; }, 1, 1, grid)).mesh;
+  // A fin on an interior edge late in the vertex order.
+  const Triangle last = mesh.triangles[mesh.triangle_count() / 2 + 77];
+  mesh.positions.push_back(Vec3(0.5, 0.5, 1));
+  mesh.triangles.push_back({last[0], last[1], uint32_t(mesh.vertex_count() - 1)});
+  for (int threads : {1, 2}) {
+    INFO("threads: " << threads);
+    CHECK_THROWS_WITH(topology_on(threads, mesh), "the mesh has an edge shared by more than two triangles.");
+  }
+}
