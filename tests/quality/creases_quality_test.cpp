@@ -36,8 +36,8 @@ TEST_CASE("the crease metrics score the truth itself as perfect", "[quality][cre
 
 // Measured (crestline_crease_report, seeds 1–3): at σ = 0 and σ = 0.1 every
 // case meets issue 16's targets (at σ = 0.1 since gaps are bridged, 20 of 27
-// before); at σ = 0.25 precision ≥ 0.98 but coverage 0.47–1.0: the 45°
-// chamfer is lost in the noise (see README).
+// before); at σ = 0.25 precision ≥ 0.95 but coverage 0.66–1.0 and up to 2.7
+// lines per edge: the 45° chamfer is lost in the noise (see README).
 TEST_CASE("creases of the CAD-like surfaces: targets at σ = 0 and 0.1", "[quality][creases]") {
   for (const std::string& name : cad_surface_names())
     for (Triangulation t : {Triangulation::Uniform, Triangulation::Alternating, Triangulation::Irregular})
@@ -53,12 +53,16 @@ TEST_CASE("creases of the CAD-like surfaces: targets at σ = 0 and 0.1", "[quali
 TEST_CASE("creases at σ = 0.25: what is found is right", "[quality][creases]") {
   for (const std::string& name : cad_surface_names()) {
     const CreaseScore s = run_crease_case(name, Triangulation::Irregular, 0.25);
-    INFO(name << ": coverage " << s.coverage << ", precision " << s.precision);
+    INFO(name << ": coverage " << s.coverage << ", precision " << s.precision << ", fragments " << s.fragments);
     CHECK(s.precision >= 0.95);
-    // Measured (seed 1, irregular): 0.999, 0.54, 0.83 with bridging; 0.96, 0.41, 0.72 without.
+    // Measured (seed 1, irregular): 0.999, 0.73, 0.92 with bridges of any
+    // length over 3-ring support, bubbles and turns over 4 edges; 0.999, 0.54,
+    // 0.83 with bridges of up to 12 edges; 0.96, 0.41, 0.72 without bridges.
     if (name == "filleted-box") CHECK(s.coverage >= 0.98);  // its creases are 90°
-    if (name == "chamfered-cylinder") CHECK(s.coverage >= 0.5);
-    if (name == "notched-prism") CHECK(s.coverage >= 0.8);
+    if (name == "chamfered-cylinder") CHECK(s.coverage >= 0.7);
+    if (name == "notched-prism") CHECK(s.coverage >= 0.9);
+    // The same case: 1.50, 1.33 and 1.21 lines per true edge (2.17, 1.67, 1.17 before).
+    CHECK(s.fragments <= 1.5);
   }
 }
 

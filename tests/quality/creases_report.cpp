@@ -3,7 +3,9 @@
 // flickers under noise. Prints Markdown tables.
 //
 //   crestline_crease_report [--angle DEG] [--filter-steps N] [--edge E] [--seeds N]
-// --filter-steps replaces the automatic choice of normal filter steps.
+// --filter-steps replaces the automatic choice of normal filter steps;
+// --smooth-only leaves out the last table (ridges and valleys beside the
+// sharp edges, which runs the whole pipeline).
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -24,6 +26,7 @@ int main(int argc, char** argv) {
   CreaseOptions options;
   CadParams base;
   int seeds = 1;
+  bool smooth_only = false;
   for (int i = 1; i < argc; ++i) {
     const bool more = i + 1 < argc;
     if (!std::strcmp(argv[i], "--angle") && more)
@@ -32,10 +35,14 @@ int main(int argc, char** argv) {
       options.normal_filter_steps = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--edge") && more)
       base.edge = std::atof(argv[++i]);
+    else if (!std::strcmp(argv[i], "--smooth-only"))
+      smooth_only = true;
     else if (!std::strcmp(argv[i], "--seeds") && more)
       seeds = std::atoi(argv[++i]);
     else {
-      std::fprintf(stderr, "usage: crestline_crease_report [--angle DEG] [--filter-steps N] [--edge E] [--seeds N]\n");
+      std::fprintf(
+          stderr,
+          "usage: crestline_crease_report [--angle DEG] [--filter-steps N] [--edge E] [--seeds N] [--smooth-only]\n");
       return 2;
     }
   }
@@ -93,16 +100,25 @@ int main(int argc, char** argv) {
 
   // The smooth surfaces of the ridge/valley harness: creases at the default angle.
   std::printf("| smooth surface | mesh | noise | creases | max |angle| (0: < 20°) |\n|---|---|---|---|---|\n");
+  int smooth_lines[4] = {0, 0, 0, 0}, smooth_cases[4] = {0, 0, 0, 0};
+  const double smooth_noise[4] = {0.0, 0.1, 0.25, 0.5};
   for (const std::string& name : surface_names())
-    for (Triangulation t : {Triangulation::Uniform, Triangulation::Alternating, Triangulation::Irregular})
-      for (double noise : {0.0, 0.1, 0.25}) {
+    for (Triangulation t : triangulations())
+      for (int k = 0; k < 4; ++k) {
         CreaseAngles a;
-        const CreaseResult r = smooth_surface_creases(name, t, noise, options, &a);
+        const CreaseResult r = smooth_surface_creases(name, t, smooth_noise[k], options, &a);
         double max_angle = 0;
         for (double v : a.angle) max_angle = std::max(max_angle, std::abs(v));
-        std::printf("| %s | %s | %.2f | %zu | %.1f° |\n", name.c_str(), triangulation_name(t), noise, r.lines.size(),
-                    max_angle * 180 / testing::kPi);
+        smooth_lines[k] += static_cast<int>(r.lines.size());
+        smooth_cases[k] += !r.lines.empty();
+        std::printf("| %s | %s | %.2f | %zu | %.1f° |\n", name.c_str(), triangulation_name(t), smooth_noise[k],
+                    r.lines.size(), max_angle * 180 / testing::kPi);
       }
+  for (int k = 0; k < 4; ++k)
+    std::printf("%sσ = %.2f: %d crease lines in %d of %zu cases", k ? "; " : "\n", smooth_noise[k], smooth_lines[k],
+                smooth_cases[k], surface_names().size() * triangulations().size());
+  std::printf("\n");
+  if (smooth_only) return 0;
 
   // Ridges and valleys beside the sharp edges, without and with crease boundaries (seed 1).
   std::printf(

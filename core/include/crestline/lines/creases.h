@@ -43,9 +43,11 @@ constexpr double kBoundaryNoiseLimit = 0.15;
 /// Gaps in creases are bridged along edges of strong one-sided support
 /// (creases.cpp) only on surfaces no noisier than this: at normal noise
 /// σ = 0.25 mean edges (level ~0.21) it raised the coverage of the CAD-like
-/// surfaces of tests/quality from 0.67 to 0.80 (mean, 3 seeds) and met every
-/// target at σ = 0.1 (27 of 27 cases, 20 before); at σ = 0.5 (level
-/// 0.31–0.37) it joined false pieces on smooth surfaces into lines.
+/// surfaces of tests/quality from 0.67 to 0.89 (mean, 3 seeds; 0.80 with
+/// bridges of up to 12 edges over 2-ring support) and met every target at
+/// σ = 0.1 (27 of 27 cases, 20 before); at σ = 0.5 (level 0.31–0.37) it
+/// joined false pieces on smooth surfaces into lines. The same limit gates
+/// the longer turn span and the bubbles of select_creases.
 constexpr double kBridgeNoiseLimit = 0.25;
 
 /// Normal filter steps on a noisy surface (creases.cpp says why 12).
