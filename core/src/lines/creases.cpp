@@ -223,7 +223,13 @@ double side_support(const Mesh& mesh, const Topology& topology, const FaceNormal
     if (small_fan(topology, v))
       for (uint32_t k = topology.vertex_offsets[v]; k < topology.vertex_offsets[v + 1]; ++k)
         scratch.push_back(topology.vertex_triangles[k]);
+  // Duplicates go after each ring, else the third ring's list is thousands long.
+  auto dedupe = [&] {
+    std::sort(scratch.begin(), scratch.end());
+    scratch.erase(std::unique(scratch.begin(), scratch.end()), scratch.end());
+  };
   for (int ring = 1; ring < rings; ++ring) {
+    dedupe();
     const size_t n = scratch.size();
     for (size_t i = 0; i < n; ++i)
       for (uint32_t v : mesh.triangles[scratch[i]])
@@ -231,8 +237,7 @@ double side_support(const Mesh& mesh, const Topology& topology, const FaceNormal
           for (uint32_t k = topology.vertex_offsets[v]; k < topology.vertex_offsets[v + 1]; ++k)
             scratch.push_back(topology.vertex_triangles[k]);
   }
-  std::sort(scratch.begin(), scratch.end());
-  scratch.erase(std::unique(scratch.begin(), scratch.end()), scratch.end());
+  dedupe();
   Vec3 side[2] = {Vec3::Zero(), Vec3::Zero()};
   for (uint32_t g : scratch) {
     const Triangle& t = mesh.triangles[g];
