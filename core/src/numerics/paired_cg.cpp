@@ -123,10 +123,39 @@ BlockSums sweep(const std::vector<uint32_t>& colour_begin_, bool backward, Sums&
   return total;
 }
 
+// Rows in breadth-first order, component by component: rows close in this
+// order are close on the mesh, so a sweep over one colour reads its
+// neighbours from a narrow band of each vector. Each colour's rows are kept
+// in this order; the colouring itself stays greedy in input order (coloured
+// in this order, the 10⁻⁶ solutions moved by tolerance amounts and the
+// occt-motor lost a valley). callgrind's cache simulation of 5 smoothing
+// steps at 1.1M (4 MB last-level cache): read misses 361 M → 339 M (−6 %),
+// instructions +0.8 %, the same 94 iterations, results equal but for the
+// order of the dot products' sums (≤ 5·10⁻¹⁵). An iteration streams ≈ 340
+// bytes per row (≈ 2.95 M cache lines there of the 3.84 M missed), so no
+// order can save much more.
+std::vector<uint32_t> locality_order(const SignedPairMatrix& a) {
+  const size_t n = a.rows();
+  std::vector<uint32_t> order;
+  order.reserve(n);
+  std::vector<bool> seen(n, false);
+  for (uint32_t start = 0; start < n; ++start) {
+    if (seen[start]) continue;
+    seen[start] = true, order.push_back(start);
+    for (size_t k = order.size() - 1; k < order.size(); ++k)
+      for (uint32_t e = a.offsets[order[k]]; e < a.offsets[order[k] + 1]; ++e) {
+        const uint32_t j = a.columns[e] & SignedPairMatrix::kColumnMask;
+        if (!seen[j]) seen[j] = true, order.push_back(j);
+      }
+  }
+  return order;
+}
+
 }  // namespace
 
 SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix) {
   const size_t n = matrix.rows();
+  const std::vector<uint32_t> local = locality_order(matrix);
   // Greedy colouring in row order: no two neighbours share a colour.
   std::vector<uint32_t> colour(n, 0), stamp;
   uint32_t colours = 0;
@@ -141,13 +170,13 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix) {
     colour[i] = c;
     colours = std::max(colours, c + 1);
   }
-  // Rows ordered by colour (a counting sort keeps row order within one).
+  // Rows ordered by colour (a counting sort keeps the locality order within one).
   colour_begin_.assign(colours + 1, 0);
   for (size_t i = 0; i < n; ++i) ++colour_begin_[colour[i] + 1];
   for (uint32_t c = 0; c < colours; ++c) colour_begin_[c + 1] += colour_begin_[c];
   order_.resize(n);
   std::vector<uint32_t> position(n), fill(colour_begin_.begin(), colour_begin_.end() - 1);
-  for (size_t i = 0; i < n; ++i) position[i] = fill[colour[i]]++, order_[position[i]] = static_cast<uint32_t>(i);
+  for (const uint32_t i : local) position[i] = fill[colour[i]]++, order_[position[i]] = i;
   // The permuted matrix, each row's entries as upper (later colours) | lower.
   // Weights first, then columns, each input array released once copied: at
   // most one and a half matrices are held, not two.

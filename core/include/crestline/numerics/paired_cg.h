@@ -27,6 +27,9 @@
 // over the whole mesh (rows in colour order, paired_cg.cpp) halves the
 // iterations (bunny 23–25 → 11–12 per solve); block Gauss–Seidel in blocks
 // of 1,024 rows (block Jacobi between them, 43 % of the entries) saved 8 %.
+// Each colour's rows are in breadth-first order (6 % fewer cache misses at
+// 1.1M); an iteration streams ≈ 340 bytes per row, the matrix once and five
+// vectors of the pair, so the iteration count is what is left to cut.
 #include <cstddef>
 #include <cstdint>
 #include <functional>
