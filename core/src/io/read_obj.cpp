@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <streambuf>
 
 #include "readers.h"
@@ -147,8 +148,10 @@ bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' |
 // tinyobjloader accumulates a number's exponent in an int and overflows
 // (undefined behaviour) on ten digits; no double needs more than four.
 bool has_huge_exponent(std::string_view word) {
-  const size_t e = word.find_first_of("eE");
-  if (e == std::string_view::npos) return false;
+  // A plain loop: find_first_of("eE") calls memchr once per character.
+  size_t e = 0;
+  while (e < word.size() && (word[e] | 0x20) != 'e') ++e;
+  if (e == word.size()) return false;
   size_t k = e + 1;
   if (k < word.size() && (word[k] == '+' || word[k] == '-')) ++k;
   while (k < word.size() && word[k] == '0') ++k;
@@ -213,10 +216,20 @@ void check_numbers(const Input& in, std::string_view text, const LineOf& line_of
   }
 }
 
+// "nan" or "inf" in any case anywhere in the text. Numbers and keywords
+// rarely hold an 'a' or an 'i', so memchr finds the few places to look.
 bool mentions_non_finite(std::string_view text) {
-  for (size_t i = 0; i + 2 < text.size(); ++i) {
-    const char a = char(text[i] | 0x20), b = char(text[i + 1] | 0x20), c = char(text[i + 2] | 0x20);
-    if ((a == 'n' && b == 'a' && c == 'n') || (a == 'i' && b == 'n' && c == 'f')) return true;
+  if (text.size() < 3) return false;  // (an empty view may hold no pointer for memchr)
+  auto lower = [&](size_t i) { return char(text[i] | 0x20); };
+  for (const char key : {'a', 'A', 'i', 'I'}) {
+    const bool inf = (key | 0x20) == 'i';
+    for (const char* p = text.data();
+         (p = static_cast<const char*>(std::memchr(p, key, size_t(text.data() + text.size() - p)))) != nullptr; ++p) {
+      const size_t i = size_t(p - text.data()) - (inf ? 0 : 1);  // where the word would start
+      if (!inf && p == text.data()) continue;
+      if (i + 2 >= text.size()) break;
+      if (inf ? lower(i + 1) == 'n' && lower(i + 2) == 'f' : lower(i) == 'n' && lower(i + 2) == 'n') return true;
+    }
   }
   return false;
 }

@@ -3,6 +3,8 @@
 // comments, content detection, header claims refused before allocating,
 // glTF companions, data URIs, strips and instancing.
 #include <Eigen/Geometry>
+#include <array>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <string>
@@ -381,4 +383,33 @@ TEST_CASE("glTF read from memory with its .bin companion", "[io][gltf][meshes]")
   REQUIRE(at != meshopt.end());
   *(at + long(needle.size()) - 1) = '6';
   CHECK(error_kind("BoxMeshopt.glb", meshopt) == ErrorKind::InvalidInput);
+}
+
+TEST_CASE("OBJ: nan and inf stay non-finite in any case and place; other words with a or i change nothing",
+          "[io][obj]") {
+  // tinyobjloader reads nan and inf as 0; the reader restores them where the
+  // text mentions either word anywhere (mentions_non_finite).
+  const std::string faces = "f 1 2 3\n";
+  struct Case {
+    const char* vertices;
+    std::array<bool, 9> finite;  // x y z of the three vertices
+  };
+  const Case cases[] = {
+      {"v 1 2 3\nv 4 5 6\nv 7 8 INF", {true, true, true, true, true, true, true, true, false}},
+      {"v NaN 2 3\nv 4 5 6\nv 7 8 9\n", {false, true, true, true, true, true, true, true, true}},
+      {"v 1 2 3\nv 4 -iNf 6\nv 7 8 9\n", {true, true, true, true, false, true, true, true, true}},
+      {"# main info, a Nan-free file: a i A I\nv 1 2 3\nv 4 5 6\nv 7 8 9\n",
+       {true, true, true, true, true, true, true, true, true}},
+  };
+  // Texts too short to hold either word (memchr is not called on them: an
+  // empty view may hold no pointer; the fuzzer's sanitizers found it).
+  for (const std::string text : {"", "v", "f 1"}) CHECK_THROWS_AS(read_text("t.obj", text), Error);
+  for (const Case& c : cases) {
+    INFO(c.vertices);
+    // The vertex lines last, so that "INF" can end the text.
+    const std::string text = faces + c.vertices;
+    const TriangleSoup soup = read_text("t.obj", text);
+    REQUIRE(soup.positions.size() == 9);
+    for (size_t i = 0; i < 9; ++i) CHECK(std::isfinite(soup.positions[i]) == c.finite[i]);
+  }
 }
