@@ -4,7 +4,9 @@
 // mesh dropped on the page as a user drops it, timed from the drop to the
 // frame that shows its lines, and then a threshold change's main-thread work.
 //   node bench/browser.mjs [--mesh large/dragon.glb] [--runs 3] [--rethresholds 4]
-//                          [--dist web/dist] [--json OUT.json]
+//                          [--dist web/dist] [--json OUT.json] [--no-isolation]
+// --no-isolation serves the app without COOP/COEP: the plain one-thread WASM
+// module instead of crestline-mt on every core (the table says which ran).
 // The mesh is a path under ../shared/meshes. Without Chromium, the meshes or
 // web/dist it says so and exits 0 (skipped), as the other benchmark rows do.
 // Every time is the page's (performance.now() on the main thread), except the
@@ -32,6 +34,7 @@ function parseArgs(argv) {
     else if (argv[i] === '--rethresholds') args.rethresholds = Math.max(1, Number(value()));
     else if (argv[i] === '--dist') args.dist = resolve(value());
     else if (argv[i] === '--json') args.json = value();
+    else if (argv[i] === '--no-isolation') args.isolation = false;
     else throw new Error(`unknown argument ${argv[i]}`);
   }
   return args;
@@ -199,7 +202,9 @@ async function measureRun(args, server) {
     const rethresholds = [];
     for (let i = 0; i < args.rethresholds; i++) rethresholds.push(rethresholdSplit(await rethresholdAndTime(page, i % 2 ? 1 : 1.5)));
     if (errors.length) throw new Error(`the page failed: ${errors.join('; ')}`);
+    const threads = await Promise.all(page.workers().map((w) => w.evaluate(() => self.crestlineThreads).catch(() => undefined)));
     return {
+      threads: threads.find((t) => t !== undefined) ?? '?',
       load: [loadBefore, load()],
       triangles: drop.result.stats.triangles,
       lines: drop.result.lineCount,
@@ -222,7 +227,8 @@ if (missing) {
   process.exit(0);
 }
 
-const server = await serve({ '/meshes/': MESHES, '/': args.dist });
+const noIsolation = { 'Cross-Origin-Opener-Policy': null, 'Cross-Origin-Embedder-Policy': null };
+const server = await serve({ '/meshes/': MESHES, '/': args.dist }, args.isolation === false ? noIsolation : {});
 const runs = [];
 try {
   for (let run = 0; run < args.runs; run++) {
@@ -255,7 +261,9 @@ const row = (label, loadText, pick) => [label, loadText, ...DROP.map(([, k]) => 
 runs.forEach((r, i) => rows.push(row(String(i + 1), r.load.join('→'), (get) => get(r.drop))));
 rows.push(row('median', '', (get) => median(runs.map((r) => get(r.drop)))));
 const mesh = `${args.mesh} (${runs[0].triangles} triangles, ${runs[0].lines} lines)`;
-console.log(`Browser: headless Chromium, ${mesh}, dropped on the app; ms, page clock; load = 1-minute load average before→after`);
+console.log(
+  `Browser: headless Chromium, ${mesh}, dropped on the app, WASM on ${runs[0].threads} thread(s); ms, page clock; load = 1-minute load average before→after`,
+);
 console.log(table(rows));
 
 const all = runs.flatMap((r) => r.rethreshold);

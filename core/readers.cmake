@@ -26,6 +26,11 @@ if(EMSCRIPTEN)
   file(COPY /usr/include/tiny_gltf.h /usr/include/tiny_obj_loader.h /usr/include/nlohmann
        DESTINATION ${CRESTLINE_READERS_INCLUDE})
   target_include_directories(crestline_readers SYSTEM PRIVATE ${CRESTLINE_READERS_INCLUDE})
-  # Readers report errors as exceptions, like the core (see wasm/CMakeLists.txt).
-  target_compile_options(crestline_readers PRIVATE -fwasm-exceptions)
+  # Readers report errors as exceptions, like the core (see wasm/CMakeLists.txt:
+  # native WebAssembly exceptions, JavaScript-based ones in the threaded build).
+  if(CRESTLINE_THREADS)
+    target_compile_options(crestline_readers PRIVATE -fexceptions)
+  else()
+    target_compile_options(crestline_readers PRIVATE -fwasm-exceptions)
+  endif()
 endif()

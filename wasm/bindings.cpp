@@ -1,9 +1,14 @@
 // Embind declarations only; the conversions live in session.cpp.
 #include <emscripten/bind.h>
 
+#include "crestline/numerics/parallel.h"
 #include "session.h"
 
 EMSCRIPTEN_BINDINGS(crestline) {
+  // Threads the pipeline uses: 1 in the plain build; in crestline-mt,
+  // Module.threadCount once pre-threads.js has called setThreads.
+  emscripten::function("threads", &crestline::max_threads);
+  emscripten::function("setThreads", &crestline::set_max_threads);
   using crestline::wasm::Session;
   emscripten::class_<Session>("Session")
       .constructor<>()

@@ -24,6 +24,25 @@ export async function loadCrestline() {
   return module;
 }
 
+/**
+ * The threaded build, crestline-mt, on `threads` threads (its pthreads are
+ * worker_threads running Emscripten's crestline-mt.worker.cjs, which imports
+ * the glue again). The same Session as loadCrestline's; threads() says how
+ * many threads the pipeline uses.
+ */
+export async function loadCrestlineThreads(threads) {
+  globalThis.__dirname ??= fileURLToPath(dist);
+  globalThis.require ??= createRequire(import.meta.url);
+  const glue = new URL('crestline-mt.js', dist).href;
+  const { default: createCrestline } = await import(glue);
+  return createCrestline({
+    threadCount: threads,
+    mainScriptUrlOrBlob: glue,
+    wasmBinary: readFileSync(new URL('crestline-mt.wasm', dist)),
+    locateFile: (file) => fileURLToPath(new URL(file.endsWith('.wasm') ? 'crestline-mt.wasm' : 'crestline-mt.worker.cjs', dist)),
+  });
+}
+
 /** The npm Draco and meshopt decoders for wasm/gltf-decompress.mjs, ready (the page's worker starts the same builds). */
 export async function gltfDecoders() {
   const [draco] = await Promise.all([createRequire(import.meta.url)('draco3d').createDecoderModule({}), MeshoptDecoder.ready]);

@@ -1,6 +1,8 @@
 // The embeddable <crestline-viewer> (web/src/widget) as one ES module,
 // web/dist/crestline-viewer.js, with its worker (crestline-viewer-worker.js)
-// and crestline.wasm beside it as separate files, plus embed.html. Not Vite's
+// and crestline.wasm beside it as separate files, plus embed.html; the
+// threaded build's crestline-mt.{js,wasm} and crestline-mt.worker.js too
+// (web/src/worker/worker.js uses them in cross-origin isolated pages). Not Vite's
 // library mode, which would inline the .wasm. Runs after the app build (same
 // outDir, not emptied). The worker brings npm draco3d's decoder along (assets/).
 import { readFileSync } from 'node:fs';
@@ -9,11 +11,12 @@ import { fileURLToPath } from 'node:url';
 import { defineConfig } from 'vite';
 
 const here = dirname(fileURLToPath(import.meta.url));
-const isCore = (info) => (info.names ?? [info.name]).includes('crestline.wasm');
+const CORE_FILES = ['crestline.wasm', 'crestline-mt.js', 'crestline-mt.wasm', 'crestline-mt.worker.js'];
+const coreName = (info) => (info.names ?? [info.name]).find((name) => CORE_FILES.includes(name));
 const output = (entry) => ({
   entryFileNames: entry,
   chunkFileNames: 'crestline-viewer-[name]-[hash].js',
-  assetFileNames: (info) => (isCore(info) ? 'crestline.wasm' : 'assets/[name]-[hash][extname]'),
+  assetFileNames: (info) => coreName(info) ?? 'assets/[name]-[hash][extname]',
 });
 
 /** Copies embed.html (it loads ./crestline-viewer.js as it is). */

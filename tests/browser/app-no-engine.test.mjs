@@ -19,12 +19,15 @@ let wasmFetches = 0;
 
 before(async () => {
   const dist = join(ROOT, 'web/dist');
-  wasm = readdirSync(join(dist, 'assets')).find((f) => /^crestline-.*\.wasm$/.test(f));
-  assert.ok(wasm, 'web/dist has the module');
+  // Both builds: the plain one and the threaded one (crestline-mt, which the isolated page tries first).
+  const modules = readdirSync(join(dist, 'assets')).filter((f) => /^crestline-.*\.wasm$/.test(f));
+  wasm = modules.find((f) => !f.startsWith('crestline-mt'));
+  assert.ok(wasm && modules.length === 2, `web/dist has both modules: ${modules}`);
   const broken = mkdtempSync(join(tmpdir(), 'crestline-no-engine-'));
   writeFileSync(join(broken, 'index.html'), 'not WebAssembly');
-  // The app's module, and the widget's (crestline.wasm beside crestline-viewer.js).
-  server = await serve({ [`/assets/${wasm}`]: broken, '/crestline.wasm': broken, '/': dist });
+  // The app's modules, and the widget's (beside crestline-viewer.js).
+  const brokenModules = Object.fromEntries(modules.map((f) => [`/assets/${f}`, broken]));
+  server = await serve({ ...brokenModules, '/crestline.wasm': broken, '/crestline-mt.wasm': broken, '/': dist });
   browser = await launch();
   page = await browser.newPage();
   page.on('pageerror', (error) => pageErrors.push(error.message));

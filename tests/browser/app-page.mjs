@@ -10,12 +10,13 @@ import { ROOT } from '../node/helpers.mjs';
 
 /**
  * Serves web/dist at / (and `roots`, prefix → folder, beside it) and opens
- * the app at `path`; `pageOptions` go to browser.newPage. Returns {page,
+ * the app at `path`; `pageOptions` go to browser.newPage; `headers` change
+ * the server's (server.mjs: null drops one, e.g. the isolation headers). Returns {page,
  * pageErrors, origin, close()}; pageErrors collects the page's uncaught errors.
  */
-export async function openApp(roots = {}, pageOptions = {}, path = '/') {
+export async function openApp(roots = {}, pageOptions = {}, path = '/', headers = {}) {
   assert.ok(existsSync(join(ROOT, 'web/dist/index.html')), 'web/dist is missing: run web/build.sh');
-  const server = await serve({ ...roots, '/': join(ROOT, 'web/dist') });
+  const server = await serve({ ...roots, '/': join(ROOT, 'web/dist') }, headers);
   const browser = await launch();
   const page = await browser.newPage({ viewport: { width: 1000, height: 750 }, ...pageOptions });
   const pageErrors = [];

@@ -14,7 +14,8 @@ import { pickMainFile, toUint8 } from './protocol.js';
  * @typedef {{load: Function, loadFile: Function, setOptions: Function, options: Function, run: Function,
  *            surface: Function, lines: Function, creases: Function, keptLines: Function, fields: Function, linesObj: Function, linesJson: Function, statsJson: Function, linesSvg: Function, linesGlb: Function, describe: Function,
  *            delete: Function}} WasmSession
- * @typedef {{Session: new () => WasmSession}} CrestlineModule
+ * @typedef {{Session: new () => WasmSession, threads: () => number}} CrestlineModule
+ *   threads(): the threads the pipeline runs on (1 in the plain build)
  * @typedef {{name: string, vertices: number, triangles: number, notes: string[],
  *            report: Record<string, number>, milliseconds: number}} Loaded
  * @typedef {{draco: any, meshopt: any}} GltfDecoders
@@ -43,6 +44,45 @@ export function createModule(factory, { wasmBinary, wasmUrl } = {}) {
   if (wasmBinary) settings.wasmBinary = wasmBinary;
   else if (wasmUrl) settings.locateFile = () => wasmUrl;
   return factory(settings);
+}
+
+/**
+ * Whether this global (a worker's `self`) may use the threaded build:
+ * its memory is a SharedArrayBuffer, which browsers give only to
+ * cross-origin isolated pages (COOP + COEP) and their workers.
+ * @param {{crossOriginIsolated?: boolean}} scope
+ */
+export function canShareMemory(scope) {
+  return scope.crossOriginIsolated === true && typeof SharedArrayBuffer === 'function';
+}
+
+/**
+ * Starts crestline-mt (its glue imported from `where.glue`, a URL, since its
+ * pthread workers import the same file); `fallback()` (the plain build)
+ * if it cannot start. A pthread worker must come from this worker's origin:
+ * for a glue on another origin (the widget on a CDN) a classic blob script
+ * on this origin imports Emscripten's worker script (importScripts may load
+ * cross-origin scripts).
+ * @param {{glue: string, wasm: string, pthreadWorker: string}} where absolute URLs
+ * @param {() => Promise<CrestlineModule>} fallback
+ * @returns {Promise<CrestlineModule>}
+ */
+export async function startThreadedModule(where, fallback) {
+  try {
+    const { default: factory } = await import(/* @vite-ignore */ where.glue);
+    let pthreadWorker = where.pthreadWorker;
+    if (new URL(pthreadWorker).origin !== globalThis.location?.origin) {
+      const shim = `importScripts(${JSON.stringify(pthreadWorker)});`;
+      pthreadWorker = URL.createObjectURL(new Blob([shim], { type: 'text/javascript' }));
+    }
+    return await factory({
+      mainScriptUrlOrBlob: where.glue,
+      locateFile: (/** @type {string} */ file) => (file.endsWith('.wasm') ? where.wasm : pthreadWorker),
+    });
+  } catch (error) {
+    console.warn(`Crestline: the threaded WebAssembly module did not start (${/** @type {Error} */ (error)?.message ?? error}); using one thread.`);
+    return fallback();
+  }
 }
 
 /** "FILE: problem", like the CLI: a message that names the file already is not prefixed twice. */
