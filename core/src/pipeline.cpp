@@ -42,6 +42,7 @@ Pipeline::Pipeline(Mesh mesh) : input_(std::move(mesh)) {
   {
     StageTimer timer(topology_seconds_);
     topology_ = build_topology(input_);
+    topology_valid_ = true;
   }
   frames_ = component_frames(input_);
   const Mesh& local = local_input();
@@ -51,6 +52,11 @@ Pipeline::Pipeline(Mesh mesh) : input_(std::move(mesh)) {
     sum += frames_.scale[c] * frames_.triangle_count[c], count += frames_.triangle_count[c];
   mean_edge_ = count ? sum / count : 0;
   noise_levels_ = surface_noise_levels(local, topology_, frames_.vertex_component, frames_.count());
+}
+
+const Topology& Pipeline::topology() const {
+  if (!topology_valid_) topology_ = build_topology(input_), topology_valid_ = true;
+  return topology_;
 }
 
 const Mesh& Pipeline::local_input() {
@@ -75,7 +81,7 @@ void Pipeline::set_options(const PipelineOptions& o) {
   Stage changed = first_changed_stage(options_, o);
   if (o.averaging.rings != options_.averaging.rings) changed = std::min(changed, Stage::Curvature);
   if (changed != Stage::Count) mark_dirty(changed);
-  // The creases depend on nothing upstream: their own flags (run() runs them last).
+  // The creases depend on nothing upstream: their own flags (run() reports them last).
   if (o.creases.normal_filter_steps != options_.creases.normal_filter_steps)
     crease_angles_valid_ = false, creases_dirty_ = true, boundaries_dirty_ = true;
   if (o.creases.angle != options_.creases.angle || o.creases.max_turn != options_.creases.max_turn)
@@ -96,34 +102,35 @@ void Pipeline::measure_creases() {
   CreaseMeasureOptions measure{options_.creases.normal_filter_steps};
   const double noise = noise_levels_.empty() ? 0.0 : noise_levels_[frames_.largest()];
   if (measure.normal_filter_steps < 0) measure.normal_filter_steps = automatic_normal_filter_steps(noise);
-  crease_angles_ = measure_crease_angles(local_input(), topology_, measure);
+  crease_angles_ = measure_crease_angles(local_input(), topology(), measure);
   crease_angles_valid_ = true;
   crease_measure_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 void Pipeline::update_boundaries() {
   if (!boundaries_dirty_) return;
+  const Topology& topology = this->topology();
   std::vector<uint32_t> edges;
   if (options_.creases.boundaries) {
     measure_creases();
     CreaseOptions automatic = options_.creases;
     automatic.angle = -1;
-    edges = select_creases(local_input(), topology_, crease_angles_, automatic, 1.0).edges;
+    edges = select_creases(local_input(), topology, crease_angles_, automatic, 1.0).edges;
     // Not on noisy components, where creases are not to be trusted.
     edges.erase(std::remove_if(edges.begin(), edges.end(),
                                [&](uint32_t e) {
-                                 const uint32_t c = frames_.vertex_component[topology_.edges[e][0]];
+                                 const uint32_t c = frames_.vertex_component[topology.edges[e][0]];
                                  return noise_levels_[c] > kBoundaryNoiseLimit;
                                }),
                 edges.end());
     std::sort(edges.begin(), edges.end());
   }
   boundaries_dirty_ = false;
-  if (edges == boundary_edges_) return release_local_input();
+  if (edges == boundary_edges_) return;
   boundary_edges_ = std::move(edges);
   mark_dirty(Stage::Presmooth);
   cut_ = CutMesh();
-  cut_ = cut_along_edges(local_input(), topology_, boundary_edges_);
+  cut_ = cut_along_edges(local_input(), topology, boundary_edges_);
   // Without copies the cut changed nothing: the input's mesh and adjacency
   // serve, and the smooth stages run exactly as without creases.
   cut_active_ = !cut_.copy_of.empty();
@@ -131,7 +138,22 @@ void Pipeline::update_boundaries() {
   cut_topology_ = cut_active_ ? build_topology(cut_.mesh) : Topology();
   cut_components_.clear();
   if (cut_active_) cut_components_ = on_cut_vertices(cut_, frames_.vertex_component);
-  release_local_input();
+}
+
+double Pipeline::select_crease_lines() {
+  measure_creases();
+  double seconds = 0;
+  {
+    StageTimer timer(seconds);
+    // In the working frame (every component's mean edge 1, as the spur and
+    // turn lengths expect), then mapped back per component.
+    creases_ = select_creases(local_input(), topology(), crease_angles_, options_.creases, 1.0);
+    for (size_t i = 0; i < creases_.lines.size(); ++i) {
+      const uint32_t component = frames_.vertex_component[creases_.line_vertex[i]];
+      creases_.lines[i] = to_user(std::move(creases_.lines[i]), frames_, component);
+    }
+  }
+  return seconds;
 }
 
 void Pipeline::run(const ProgressCallback& progress) {
@@ -146,6 +168,20 @@ void Pipeline::run(const ProgressCallback& progress) {
   };
   crease_measure_seconds_ = 0;
   update_boundaries();
+  // The creases are selected now, while the input's adjacency and crease
+  // angles are at hand (the boundaries read them too), so that while a cut
+  // serves the smooth stages these need not be held through them: released
+  // (at 1.1M triangles 50 and 24 bytes per triangle), rebuilt the same when
+  // the crease options change (a new crease angle then takes the adjacency
+  // and the measure again) or an SVG asks for the adjacency.
+  const bool creases_due = creases_dirty_;
+  double crease_seconds = 0;
+  if (creases_due) crease_seconds = select_crease_lines();
+  if (cut_active_) {
+    topology_ = Topology(), topology_valid_ = false;
+    crease_angles_ = CreaseAngles(), crease_angles_valid_ = false;
+  }
+  release_local_input();
   // The line graphs are rebuilt whenever tracing re-runs: released now, not
   // held through the smoothing solves, the peak of a re-run.
   if (static_cast<int>(first_dirty_) <= static_cast<int>(Stage::Tracing)) singular_ = SingularResult();
@@ -276,25 +312,14 @@ void Pipeline::run(const ProgressCallback& progress) {
     }
     std::sort(filtered_.kept.begin(), filtered_.kept.end());
   });
-  if (creases_dirty_) {
+  if (creases_due) {
     // Outside step(): no other stage makes it dirty, and a new crease angle
-    // re-runs nothing else. Its time includes the measure, whether it ran
-    // here or for the boundaries before pre-smoothing.
+    // re-runs nothing else. Its work was done before the smooth stages; it
+    // is reported and done here, last, as the stage order says (a cancel
+    // before this point leaves it dirty: the next run selects again). Its
+    // time includes the measure, whether for the creases or the boundaries.
     if (progress && !progress(Stage::Creases, 0.0)) throw Cancelled();
-    measure_creases();
-    double seconds = 0;
-    {
-      StageTimer timer(seconds);
-      // In the working frame (every component's mean edge 1, as the spur
-      // and turn lengths expect), then mapped back per component.
-      creases_ = select_creases(local_input(), topology_, crease_angles_, options_.creases, 1.0);
-      for (size_t i = 0; i < creases_.lines.size(); ++i) {
-        const uint32_t component = frames_.vertex_component[creases_.line_vertex[i]];
-        creases_.lines[i] = to_user(std::move(creases_.lines[i]), frames_, component);
-      }
-      release_local_input();
-    }
-    seconds_[static_cast<int>(Stage::Creases)] = seconds + crease_measure_seconds_;
+    seconds_[static_cast<int>(Stage::Creases)] = crease_seconds + crease_measure_seconds_;
     creases_dirty_ = false;
   }
 }

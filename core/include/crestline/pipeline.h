@@ -5,8 +5,9 @@
 //   tracing ─► singular ─► polylines ─► fairing ─► filter
 // (Fairing runs on every line before filtering so that re-thresholding is a
 // pure selection: instant.) Beside them, on the input mesh and depending on
-// nothing else, the sharp creases (lines/creases.h): their stage runs last
-// and only when its own options changed. Unless CreaseOptions::boundaries is
+// nothing else, the sharp creases (lines/creases.h): their stage is
+// reported last and runs only when its own options changed (its work is
+// done first, while the input's adjacency and crease angles are at hand). Unless CreaseOptions::boundaries is
 // off, the creases of the automatic angle are measured first and the smooth
 // stages run on the mesh cut open along them (mesh/cut.h); without such
 // creases they run on the input mesh itself, exactly as without the option.
@@ -115,10 +116,11 @@ class Pipeline {
   /// per-vertex fields (curvature(), extremality()) have its vertex count.
   const Mesh& working_surface() const { return presmoothed_ ? working_surface_ : smooth_input(); }
   const ComponentFrames& frames() const { return frames_; }
-  /// The input mesh's adjacency.
-  const Topology& topology() const { return topology_; }
+  /// The input mesh's adjacency. While a crease cut serves the smooth stages
+  /// a run releases it before them; rebuilt here (the same) when asked for.
+  const Topology& topology() const;
   /// working_surface()'s adjacency: topology() unless creases cut the mesh.
-  const Topology& working_topology() const { return cut_active_ ? cut_topology_ : topology_; }
+  const Topology& working_topology() const { return cut_active_ ? cut_topology_ : topology(); }
   /// The cut along the boundary creases (no copies when there is none).
   const CutMesh& working_cut() const { return cut_; }
   /// The crease edges (into topology().edges, ascending) the smooth stages
@@ -146,6 +148,7 @@ class Pipeline {
   /// The sharp creases of the input mesh (type LineType::Crease).
   const std::vector<Polyline>& creases() const { return creases_.lines; }
   const CreaseResult& crease_result() const { return creases_; }
+  /// Empty after a run while a crease cut serves (measured again when needed).
   const CreaseAngles& crease_angles() const { return crease_angles_; }
   /// lines() followed by creases(): what the writers draw.
   std::vector<Polyline> all_kinds() const;
@@ -157,6 +160,7 @@ class Pipeline {
   void release_local_input();
   void measure_creases();
   void update_boundaries();
+  double select_crease_lines();  // the creases stage's work; returns its seconds
   const Mesh& smooth_input() const { return cut_active_ ? cut_.mesh : local_input_; }
   const std::vector<uint32_t>& smooth_components() const {
     return cut_active_ ? cut_components_ : frames_.vertex_component;
@@ -168,9 +172,10 @@ class Pipeline {
   ComponentFrames frames_;
   Mesh local_input_;  // input_ in the working frame; released while a cut serves (local_input())
   bool local_input_valid_ = false;
-  Mesh working_surface_;  // pre-smoothed only; else local_input_ serves
-  Mesh surface_;          // pre-smoothed only; else input_ serves
-  Topology topology_;
+  Mesh working_surface_;       // pre-smoothed only; else local_input_ serves
+  Mesh surface_;               // pre-smoothed only; else input_ serves
+  mutable Topology topology_;  // see topology()
+  mutable bool topology_valid_ = false;
   double mean_edge_ = 0;
   std::vector<double> noise_levels_;  // per component
   std::vector<int> presmooth_steps_;  // per component

@@ -64,7 +64,8 @@ TEST_CASE("with a crease cut, crease and boundary changes give the lines and cre
           "[pipeline][cut]") {
   // A fold along x = 1 (44° between the sides) in a bumpy field: a boundary
   // crease, so the pipeline cuts the mesh and releases the input in the
-  // working frame, which measuring and selecting creases then rebuild.
+  // working frame, its adjacency and crease angles, which measuring and
+  // selecting creases then rebuild.
   testing::GridOptions grid;
   grid.nu = grid.nv = 40;
   const Mesh mesh = repair_mesh(testing::height_field(
@@ -87,6 +88,12 @@ TEST_CASE("with a crease cut, crease and boundary changes give the lines and cre
   Pipeline p(mesh);
   p.run();
   same(p, fresh);
+  // Released after the run while the cut serves; the adjacency comes back
+  // on demand, the same.
+  CHECK(p.crease_angles().angle.empty());
+  const Topology built = build_topology(mesh);
+  CHECK(p.topology().edges == built.edges);
+  CHECK(p.topology().triangle_edges == built.triangle_edges);
   PipelineOptions o = p.options();
   o.creases.angle = 80;  // no crease
   p.set_options(o);
