@@ -204,7 +204,14 @@ async function measureRun(args, server) {
     if (errors.length) throw new Error(`the page failed: ${errors.join('; ')}`);
     // An idle pthread of crestline-mt waits in Atomics.wait and never answers an evaluate: ask each worker for 2 s at most.
     const within = (promise, ms) => Promise.race([promise, new Promise((resolve) => setTimeout(resolve, ms))]);
-    const threads = await Promise.all(page.workers().map((w) => within(w.evaluate(() => self.crestlineThreads).catch(() => undefined), 2000)));
+    const threads = await Promise.all(
+      page.workers().map((w) =>
+        within(
+          w.evaluate(() => self.crestlineThreads).catch(() => undefined),
+          2000,
+        ),
+      ),
+    );
     return {
       threads: threads.find((t) => t !== undefined) ?? '?',
       load: [loadBefore, load()],
