@@ -216,7 +216,8 @@ TEST_CASE("welding picks the earliest representative within tolerance, as a brut
   // direction; each vertex opens a triangle with vertices of the next two
   // clusters. Reference: every vertex, in input order, joins the earliest
   // earlier representative within tolerance, or becomes one. 6,400 vertices:
-  // the weld's searches split over 2 threads (chains of welds among them).
+  // on 1 thread the weld inserts representatives as it goes, on 2 its
+  // searches split over the threads (chains of welds among them).
   std::mt19937 random(7);
   std::uniform_real_distribution<double> unit(0, 1), signed_unit(-1, 1);
   const int clusters = 800, per_cluster = 8;
