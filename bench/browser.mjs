@@ -55,7 +55,7 @@ const load = () => loadavg()[0].toFixed(1);
  */
 function instrument() {
   const app = window.crestline;
-  const log = (window.__bench = { messages: [], renders: [], posts: [], longTasks: [] });
+  const log = (window.__bench = { messages: [], renders: [], posts: [], longTasks: [], surfaceDraws: 0 });
   const worker = app.client.connection.worker;
   const receive = worker.onmessage;
   worker.onmessage = (event) => {
@@ -70,13 +70,16 @@ function instrument() {
     post(message, transfer);
     log.posts.push({ type: message.type, at, ms: performance.now() - at });
   };
-  const renderer = app.viewer.renderer;
-  const render = renderer.render.bind(renderer);
-  renderer.render = (scene, camera) => {
+  // A frame: the viewer's draw (the surface cache's passes) where it has one, else the renderer's one render.
+  const [drawer, method] = app.viewer.draw ? [app.viewer, 'draw'] : [app.viewer.renderer, 'render'];
+  const draw = drawer[method].bind(drawer);
+  drawer[method] = (...args) => {
     const at = performance.now();
-    render(scene, camera);
+    draw(...args);
     log.renders.push({ at, ms: performance.now() - at });
   };
+  // The surface's draws (its mesh stays; its geometry changes).
+  app.viewer.surface.mesh.onBeforeRender = () => log.surfaceDraws++;
   new PerformanceObserver((list) => log.longTasks.push(...list.getEntries().map((e) => ({ at: e.startTime, ms: e.duration })))).observe({
     type: 'longtask',
   });
@@ -108,7 +111,7 @@ async function dropAndTime(page, url, name) {
     delete window.__benchBytes;
     const transfer = new DataTransfer();
     transfer.items.add(file);
-    log.messages.length = log.renders.length = log.posts.length = log.longTasks.length = 0;
+    log.messages.length = log.renders.length = log.posts.length = log.longTasks.length = log.surfaceDraws = 0;
     const start = performance.now();
     document.body.dispatchEvent(new DragEvent('drop', { dataTransfer: transfer, bubbles: true, cancelable: true }));
     const end = await window.__benchFramed(count);
@@ -123,7 +126,7 @@ function rethresholdAndTime(page, factor) {
     const app = window.crestline;
     const log = window.__bench;
     const count = app.results.length;
-    log.messages.length = log.renders.length = log.posts.length = log.longTasks.length = 0;
+    log.messages.length = log.renders.length = log.posts.length = log.longTasks.length = log.surfaceDraws = 0;
     const start = performance.now();
     app.update({ autoThreshold: false, threshold: window.__benchThreshold * factor });
     const handler = performance.now() - start;
@@ -164,6 +167,7 @@ function dropSplit(t) {
     // From the render call that draws the lines to the next animation frame.
     frame: t.end - (linesRender ? linesRender.at + linesRender.ms : result.at + result.ms),
     longTasks: inWindow.reduce((s, l) => s + l.ms, 0),
+    surfaceDraws: t.surfaceDraws,
     longestTask: Math.max(0, ...inWindow.map((l) => l.ms)),
     stages: Object.fromEntries(STAGES.map((s) => [s, 1000 * (t.result.stats.seconds?.[s] ?? NaN)])),
   };
@@ -182,6 +186,7 @@ function rethresholdSplit(t) {
     mainThread,
     worker: t.result.milliseconds,
     longTasks: inWindow.reduce((s, l) => s + l.ms, 0),
+    surfaceDraws: t.surfaceDraws,
     lines: t.result.lineCount,
     ran: t.result.ran,
   };
@@ -264,6 +269,7 @@ const DROP = [
   ['lines render', 'linesRender'],
   ['frame', 'frame'],
   ['long tasks', 'longTasks'],
+  ['surface draws', 'surfaceDraws'],
 ];
 const rows = [['run', 'load', ...DROP.map(([h]) => h), 'smoothing']];
 const row = (label, loadText, pick) => [label, loadText, ...DROP.map(([, k]) => f(pick((d) => d[k]))), f(pick((d) => d.stages.smoothing))];
@@ -284,6 +290,7 @@ const RETHR = [
   ['main thread', 'mainThread'],
   ['worker', 'worker'],
   ['long tasks', 'longTasks'],
+  ['surface draws', 'surfaceDraws'],
 ];
 const rrows = [['re-threshold', ...RETHR.map(([h]) => h)]];
 rrows.push(['median', ...RETHR.map(([, k]) => f1(median(all.map((r) => r[k]))))]);

@@ -213,8 +213,10 @@ function received(session, result) {
   const upstream = ['presmooth', 'curvature', 'extremality', 'regularity', 'smoothing'];
   if (result.ran.some((s) => upstream.includes(s))) app.fields = null;
   render();
-  // The info box grew with the statistics: framed again, unless the user moved the camera meanwhile.
-  if (firstLines && !shown.cameraMoved) viewer.fitView();
+  // The info box grew with the statistics: framed again, unless the user moved the camera meanwhile;
+  // after the frame that shows the lines, which draws the surface kept (three/surface-cache.js) where a
+  // new view draws it again (1.2 s of CPU for 871k triangles in SwiftShader).
+  if (firstLines && !shown.cameraMoved) viewer.afterFrame(() => state.shown === shown && !shown.cameraMoved && viewer.fitView());
   if (!session.busy) applyView();
   release(shown);
 }
@@ -356,12 +358,19 @@ const SCALE_NAMES = {
   weights: 'smoothing weight − 1',
 };
 
+/** The field view applied last: {view, fields, geometry, map}. */
+let fieldView = null;
+
 /** Colour map or singular-triangle overlay; fetches fields from the worker when needed. */
 function applyView() {
   const view = params.view;
   const session = state.shown?.session;
   let map = null;
+  // A field view shown already (the same fields on the same surface) is left as it is: set again, it
+  // would draw the surface anew (three/surface-cache.js), e.g. after every threshold change.
+  const same = fieldView?.view === view && fieldView.fields === app.fields && fieldView.geometry === viewer.surface.mesh.geometry;
   if (view === 'weights' && brush.weights) {
+    fieldView = null;
     viewer.surface.setSingular(null);
     map = {
       scale: viewer.surface.setColors(
@@ -371,14 +380,18 @@ function applyView() {
       positive: false,
     };
   } else if (view === 'shaded' || view === 'weights' || !session) {
+    fieldView = null;
     viewer.surface.setColors(null);
     viewer.surface.setSingular(null);
   } else if (!app.fields) {
     if (!session.busy && !state.shown?.stale) session.requestFields();
     return;
+  } else if (same) {
+    map = fieldView.map;
   } else if (view.startsWith('singular')) {
     viewer.surface.setColors(null);
     viewer.surface.setSingular(view === 'singularMax' ? app.fields.regularMax : app.fields.regularMin);
+    fieldView = { view, fields: app.fields, geometry: viewer.surface.mesh.geometry, map };
   } else {
     viewer.surface.setSingular(null);
     // An extremality's sign follows the arbitrary sign of its direction
@@ -386,6 +399,7 @@ function applyView() {
     const values = app.fields[view];
     const positive = view.startsWith('e');
     map = { scale: viewer.surface.setColors(positive ? values.map(Math.abs) : values), positive };
+    fieldView = { view, fields: app.fields, geometry: viewer.surface.mesh.geometry, map };
   }
   showScale(map && { ...map, name: SCALE_NAMES[view] });
   viewer.render();

@@ -54,6 +54,8 @@ export class SurfaceLayer {
    */
   setColors(values, scale = values ? robustScale(values) : 0) {
     const geometry = this.mesh.geometry;
+    // Plain already: nothing changes (a changed material would draw the surface again, surface-cache.js).
+    if (!values && !this.material.vertexColors && !geometry.getAttribute('color')) return scale;
     if (values) {
       geometry.setAttribute('color', new BufferAttribute(divergingColors(values, undefined, scale), 3));
       this.material.color.set(0xffffff);
@@ -95,6 +97,7 @@ export class SurfaceLayer {
 
   /** Highlights the triangles whose mask value is 0 (singular), or hides the overlay. */
   setSingular(regularMask) {
+    if (!regularMask && !this.singular.visible && !this.singular.geometry.index) return;
     this.singular.geometry.dispose();
     const geometry = new BufferGeometry();
     if (regularMask) {

@@ -5,9 +5,17 @@ import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import { fitDistance, presetDirection, setUpAxis, uncoveredRect } from './fit.js';
 import { LineLayer, concaveShade, creasesAsLines } from './line-layer.js';
 import { SurfaceLayer } from './surface-layer.js';
+import { SurfaceCache } from './surface-cache.js';
 import { LINE_COLORS } from './colors.js';
 
 const BACKGROUND = { light: 0xf4f4f2, dark: 0x1d1f24 };
+/**
+ * Surfaces from this many triangles on are drawn through a SurfaceCache: a
+ * frame that changes only the lines does not draw them again. Smaller ones
+ * cost little to draw and not the cache's GPU memory (about as much as
+ * the antialiased canvas's own: 40 bytes a pixel).
+ */
+export const CACHE_MIN_TRIANGLES = 200_000;
 
 export class Viewer {
   /** @param {HTMLElement} container  @param {{onContextLost, onContextRestored}} handlers */
@@ -35,10 +43,14 @@ export class Viewer {
     this.upAxis = 'y';
     this.preset = 'front';
     this.setBackground('light');
+    this.surfaceCache = new SurfaceCache();
+    /** Tests lower it to cache a small surface. */
+    this.cacheMinTriangles = CACHE_MIN_TRIANGLES;
 
     const canvas = this.renderer.domElement;
     canvas.addEventListener('webglcontextlost', (event) => {
       event.preventDefault(); // allows the context to be restored
+      this.surfaceCache.invalidate();
       onContextLost?.();
     });
     canvas.addEventListener('webglcontextrestored', () => {
@@ -160,9 +172,29 @@ export class Viewer {
     if (this.pending) return;
     this.pending = requestAnimationFrame(() => {
       this.pending = 0;
-      this.renderer.render(this.scene, this.camera);
+      this.draw();
       this.renderCount = (this.renderCount ?? 0) + 1;
+      const after = this.afterDraw ?? [];
+      this.afterDraw = null;
+      for (const callback of after) callback();
     });
+  }
+
+  /** Runs `callback` once the next frame is drawn (one is asked for). */
+  afterFrame(callback) {
+    (this.afterDraw ??= []).push(callback);
+    this.render();
+  }
+
+  /** One frame, now: through the surface cache when the surface is large. */
+  draw() {
+    const index = this.surface.mesh.geometry.index;
+    if ((index ? index.count / 3 : 0) >= this.cacheMinTriangles)
+      this.surfaceCache.draw(this.renderer, this.scene, this.camera, [this.lines.group, this.creases.group]);
+    else {
+      this.surfaceCache.release();
+      this.renderer.render(this.scene, this.camera);
+    }
   }
 
   dispose() {
@@ -171,6 +203,7 @@ export class Viewer {
     this.surface.dispose();
     this.lines.dispose();
     this.creases.dispose();
+    this.surfaceCache.dispose();
     this.renderer.dispose();
   }
 }
