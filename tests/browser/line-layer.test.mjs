@@ -1,7 +1,8 @@
 // The line layer's segments (one plain indexed draw, 8 vertices per segment)
 // against three's own LineSegments2 (one instanced draw) drawing the same
 // shown segments with the same LineMaterial settings: the same pixels in
-// Chromium's WebGL, before and after a threshold change, and the same picks.
+// Chromium's WebGL, before and after a threshold change, and the same picks;
+// a threshold's lines (the strong ones) drawn without a hidden segment.
 import assert from 'node:assert/strict';
 import { mkdirSync, rmSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
@@ -39,7 +40,9 @@ for (let l = 0; l < 40; l++) {
   types.push(l % 2);
   closed.push(l % 3 ? 0 : 1);
 }
-const lines = { points: Float64Array.from(points), offsets: Uint32Array.from(offsets), types: Uint8Array.from(types), closed: Uint8Array.from(closed) };
+// Strengths in no order of the lines: the layer draws them strongest first.
+const strengths = Float64Array.from({ length: 40 }, (_, l) => ((l * 17) % 40) + 1);
+const lines = { points: Float64Array.from(points), offsets: Uint32Array.from(offsets), types: Uint8Array.from(types), closed: Uint8Array.from(closed), strengths };
 const origin = [0.05, -0.02, 0];
 const [W, H] = [240, 180];
 const renderer = new WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
@@ -93,6 +96,12 @@ layer.setLines(lines, origin, Uint32Array.from(firstKept));
 const first = compare(draw([layer.group]), draw(reference(firstKept, 3.5)));
 layer.setKept(Uint32Array.from(secondKept));
 const second = compare(draw([layer.group]), draw(reference(secondKept, 3.5)));
+// A threshold keeps the strong lines: the draw ranges end at the weakest one, no hidden segment is drawn.
+const strongKept = all.filter((l) => strengths[l] >= 25);
+layer.setKept(Uint32Array.from(strongKept));
+const strong = compare(draw([layer.group]), draw(reference(strongKept, 3.5)));
+const ranges = layer.objects.map((o) => o.geometry.drawRange.count);
+const shownIndices = layer.shownSegments.map((n) => 18 * n);
 
 // Picks: every 6th pixel of the frame, every line shown.
 layer.setKept(Uint32Array.from(all));
@@ -112,7 +121,7 @@ for (let y = 0; y < H; y += 6) {
   }
 }
 window.result = {
-  first, second,
+  first, second, strong, ranges, shownIndices,
   segments: layer.objects.map((o) => o.userData.segments),
   shownFlags: layer.objects.map((o) => o.geometry.getAttribute('instanceShown').count),
   hits: picks.reduce((a, b) => a + b, 0),
@@ -150,6 +159,9 @@ test('the line layer draws and picks its segments as LineSegments2 does', async 
   assert.ok(result.first.drawn > 2000 && result.second.drawn > 2000, JSON.stringify(result));
   assert.equal(result.first.differ, 0, 'pixels differing from LineSegments2, first threshold');
   assert.equal(result.second.differ, 0, 'pixels differing from LineSegments2, after setKept');
+  assert.ok(result.strong.drawn > 1000, JSON.stringify(result.strong));
+  assert.equal(result.strong.differ, 0, 'pixels differing from LineSegments2, the strong lines kept');
+  assert.deepEqual(result.ranges, result.shownIndices, 'the draw ranges: the indices of the shown segments, no more');
   assert.ok(result.hits > 50, `${result.hits} hits over ${result.rays} rays`);
   assert.equal(result.mismatches, 0, 'rays whose hits (object, segment, point) differ from LineSegments2');
 });

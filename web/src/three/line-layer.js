@@ -66,17 +66,19 @@ const SEGMENT_INDEX = [0, 2, 1, 2, 3, 1, 2, 4, 3, 4, 5, 3, 4, 6, 5, 6, 7, 5];
  * The segments `positions` (end point pairs, as segmentPositions makes them)
  * as a plain indexed geometry: 8 vertices per segment, each with both end
  * points (instanceStart, instanceEnd: one interleaved buffer) and the
- * segment's shown flag (instanceShown, 0 until setKept).
+ * segment's shown flag (instanceShown, 0 until setKept). `runs` ([first
+ * segment, count] pairs covering every segment once) is the order of the
+ * triangles in the index: a draw range over its start draws those runs only.
  */
 export class SegmentGeometry extends BufferGeometry {
-  constructor(positions = new Float32Array(0)) {
+  constructor(positions = new Float32Array(0), runs = [[0, positions.length / 6]]) {
     super();
     this.type = 'SegmentGeometry';
     const count = positions.length / 6;
     this.segmentCount = count;
     const ends = new Float32Array(count * SEGMENT_VERTICES * 6);
     const index = new Uint32Array(count * SEGMENT_INDEX.length);
-    for (let s = 0, o = 0, i = 0; s < count; s++) {
+    for (let s = 0, o = 0; s < count; s++) {
       // The segment's end points (6 floats) on each of its vertices.
       const p = 6 * s;
       for (let k = 0; k < SEGMENT_VERTICES; k++, o += 6) {
@@ -87,9 +89,15 @@ export class SegmentGeometry extends BufferGeometry {
         ends[o + 4] = positions[p + 4];
         ends[o + 5] = positions[p + 5];
       }
-      const first = s * SEGMENT_VERTICES;
-      for (let k = 0; k < SEGMENT_INDEX.length; k++) index[i++] = first + SEGMENT_INDEX[k];
     }
+    let i = 0;
+    for (const [start, length] of runs) {
+      for (let s = start; s < start + length; s++) {
+        const first = s * SEGMENT_VERTICES;
+        for (let k = 0; k < SEGMENT_INDEX.length; k++) index[i++] = first + SEGMENT_INDEX[k];
+      }
+    }
+    if (i !== index.length) throw new Error('SegmentGeometry: the runs do not cover every segment once');
     const buffer = new InterleavedBuffer(ends, 6);
     this.setAttribute('instanceStart', new InterleavedBufferAttribute(buffer, 3, 0));
     this.setAttribute('instanceEnd', new InterleavedBufferAttribute(buffer, 3, 3));
@@ -179,6 +187,7 @@ export class LineLayer {
     this.segments = new Uint32Array(0); // line → its segment count
     this.types = new Uint8Array(0);
     this.kept = new Uint8Array(0); // line → shown (1) or not
+    this.drawEnd = new Uint32Array(0);
   }
 
   /**
@@ -197,10 +206,25 @@ export class LineLayer {
       this.firstSegment[l] = next[lines.types[l]];
       next[lines.types[l]] += this.segments[l];
     }
+    // The triangles in order of decreasing strength: the lines a threshold keeps (filter.cpp: strength at
+    // least the threshold, but short weak ones) come first, and a draw range ends at the weakest one kept.
+    // The hidden segments past it cost nothing; drawn and hidden, they cost SwiftShader about as much as shown.
+    const strengths = lines.strengths;
+    const byStrength = Array.from({ length: count }, (_, l) => l).sort((a, b) => (strengths ? strengths[b] - strengths[a] : 0) || a - b);
+    this.drawEnd = new Uint32Array(count); // line → the segments drawn up to and with it, in its type's order
+    const runs = [[], []];
+    const drawn = [0, 0];
+    for (const l of byStrength) {
+      const type = lines.types[l];
+      if (type !== RIDGE && type !== VALLEY) continue;
+      runs[type].push([this.firstSegment[l], this.segments[l]]);
+      drawn[type] += this.segments[l];
+      this.drawEnd[l] = drawn[type];
+    }
     for (const type of [RIDGE, VALLEY]) {
       const object = this.objects[type];
       object.geometry.dispose();
-      const geometry = new SegmentGeometry(segmentPositions(lines, type, origin));
+      const geometry = new SegmentGeometry(segmentPositions(lines, type, origin), runs[type]);
       object.geometry = geometry;
       object.userData.segments = geometry.segmentCount;
     }
@@ -229,7 +253,13 @@ export class LineLayer {
     }
     this.kept = next;
     this.shownSegments = [0, 0];
-    for (let l = 0; l < this.lineCount; l++) if (next[l]) this.shownSegments[this.types[l]] += this.segments[l];
+    const ends = [0, 0];
+    for (let l = 0; l < this.lineCount; l++) {
+      if (!next[l]) continue;
+      this.shownSegments[this.types[l]] += this.segments[l];
+      ends[this.types[l]] = Math.max(ends[this.types[l]], this.drawEnd[l]);
+    }
+    for (const type of [RIDGE, VALLEY]) this.objects[type].geometry.setDrawRange(0, ends[type] * SEGMENT_INDEX.length);
     for (const type of [RIDGE, VALLEY]) {
       const [start, end] = ranges[type];
       if (end < 0) continue;
