@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "crestline/mesh/cotan.h"
@@ -40,10 +41,13 @@ Curvature compute_curvature(const Mesh& mesh, const Topology& topology) {
   // S(p) = ½ Σ_{e∋p} ⟨N_p, N_e⟩ S(e), S(e) = H_e (ē×N_e)(ē×N_e)^T.
   // Each edge's S(e) and N_e are computed on every thread, a block of edges
   // at a time, then added to its two vertices on the calling thread in edge
-  // order: the same sums for any number of threads.
-  std::vector<Eigen::Matrix3d> shape(nv, Eigen::Matrix3d::Zero());
+  // order: the same sums for any number of threads. Only the lower
+  // triangles are kept, (0,0) (1,0) (2,0) (1,1) (2,1) (2,2): all that the
+  // eigen-solver reads.
+  using Lower = std::array<double, 6>;
+  std::vector<Lower> shape(nv, Lower{});
   struct EdgeTerm {
-    Eigen::Matrix3d s_e;
+    Lower s_e;
     Vec3 n_e;
     bool used;  // false on boundary and degenerate edges
   };
@@ -73,7 +77,9 @@ Curvature compute_curvature(const Mesh& mesh, const Topology& topology) {
         const double side = normals[t0].dot(x[far] - x[a]);
         const double h_e = (side > 0 ? -1.0 : 1.0) * length * (normals[t0] - normals[t1]).norm();
         const Vec3 w = (edge / length).cross(n_e);
-        term.s_e = h_e * (w * w.transpose());
+        // (H_e w_i) w_j: the products, and so the bits, Eigen formed for H_e (w w^T).
+        const Vec3 hw = h_e * w;
+        term.s_e = {hw[0] * w[0], hw[1] * w[0], hw[2] * w[0], hw[1] * w[1], hw[2] * w[1], hw[2] * w[2]};
         term.n_e = n_e;
         term.used = true;
       }
@@ -82,8 +88,10 @@ Curvature compute_curvature(const Mesh& mesh, const Topology& topology) {
       const EdgeTerm& term = terms[e - begin];
       if (!term.used) continue;
       const uint32_t a = topology.edges[e][0], b = topology.edges[e][1];
-      shape[a] += 0.5 * c.vertex_normals[a].dot(term.n_e) * term.s_e;
-      shape[b] += 0.5 * c.vertex_normals[b].dot(term.n_e) * term.s_e;
+      const double weight_a = 0.5 * c.vertex_normals[a].dot(term.n_e);
+      const double weight_b = 0.5 * c.vertex_normals[b].dot(term.n_e);
+      for (int k = 0; k < 6; ++k) shape[a][k] += weight_a * term.s_e[k];
+      for (int k = 0; k < 6; ++k) shape[b][k] += weight_b * term.s_e[k];
     }
   }
 
@@ -95,8 +103,12 @@ Curvature compute_curvature(const Mesh& mesh, const Topology& topology) {
   // the same results on any number of threads.
   parallel_for(nv, [&](size_t begin, size_t end) {
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
+    Eigen::Matrix3d s;
     for (size_t v = begin; v < end; ++v) {
-      eigen.compute(shape[v]);
+      const Lower& l = shape[v];
+      s(0, 0) = l[0], s(1, 0) = l[1], s(2, 0) = l[2], s(1, 1) = l[3], s(2, 1) = l[4], s(2, 2) = l[5];
+      s(0, 1) = l[1], s(0, 2) = l[2], s(1, 2) = l[4];
+      eigen.compute(s);
       const Eigen::Vector3d lambda = eigen.eigenvalues();  // ascending
       const Eigen::Matrix3d vectors = eigen.eigenvectors();
       // The paper keeps the two eigenvalues of largest magnitude; the third
