@@ -49,6 +49,15 @@ SignedPairMatrix grid_system(uint32_t n) {
   return a;
 }
 
+// Both fields' right-hand sides, uniform in [−1, 1].
+std::vector<double> random_pairs(size_t rows, unsigned seed) {
+  std::vector<double> b(2 * rows);
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> value(-1.0, 1.0);
+  for (double& v : b) v = value(random);
+  return b;
+}
+
 // ‖b_k − A_k x_k‖ / ‖b_k‖ for field k, summed directly; with `rounded`, the
 // off-diagonal entries σw rounded to float, as the solver stores them.
 double relative_residual(const SignedPairMatrix& a, const std::vector<double>& b, const std::vector<double>& x, int k,
@@ -73,10 +82,7 @@ double relative_residual(const SignedPairMatrix& a, const std::vector<double>& b
 TEST_CASE("the paired Gauss-Seidel CG meets its tolerance and gives the same bits on 1 and 2 threads",
           "[numerics][threads]") {
   const SignedPairMatrix a = grid_system(300);  // 90,000 rows: every colour holds many 1,024-row chunks
-  std::vector<double> b(2 * a.rows());
-  std::mt19937 random(5);
-  std::uniform_real_distribution<double> value(-1.0, 1.0);
-  for (double& v : b) v = value(random);
+  const std::vector<double> b = random_pairs(a.rows(), 5);
   const SignedPairSolver solver(a);
   CHECK(solver.colours() >= 3);
   CHECK(solver.colours() <= 8);
@@ -103,10 +109,7 @@ TEST_CASE("the paired Gauss-Seidel CG meets its tolerance and gives the same bit
 TEST_CASE("the paired solver's float weights leave its solution within the tolerance of the exact system's",
           "[numerics]") {
   const SignedPairMatrix a = grid_system(60);
-  std::vector<double> b(2 * a.rows());
-  std::mt19937 random(7);
-  std::uniform_real_distribution<double> value(-1.0, 1.0);
-  for (double& v : b) v = value(random);
+  const std::vector<double> b = random_pairs(a.rows(), 7);
   const SignedPairSolver solver(a);
   std::vector<double> scratch = b, tight(2 * a.rows(), 0.0), loose(2 * a.rows(), 0.0);
   REQUIRE(solver.solve(scratch, tight, 1e-13, 500));
@@ -123,6 +126,27 @@ TEST_CASE("the paired solver's float weights leave its solution within the toler
     // per entry): a residual far below the smoothing tolerance of 1e-6.
     CHECK(relative_residual(a, b, tight, k, false) <= 1e-7);
     CHECK(relative_residual(a, b, loose, k, false) <= 1.1e-6);
+  }
+}
+
+TEST_CASE("the paired solver stops at the first iterate whose true residual meets the tolerance", "[numerics]") {
+  // The residual is formed at every iteration (in the sweep that updates x),
+  // not only once an estimate comes near the tolerance: one iteration fewer
+  // leaves a field above it, the iterate the solver returns meets it.
+  const SignedPairMatrix a = grid_system(60);
+  const std::vector<double> b = random_pairs(a.rows(), 9);
+  const SignedPairSolver solver(a);
+  const double tolerance = 1e-6;
+  int iterations = 0;
+  std::vector<double> scratch = b, x(2 * a.rows(), 0.0), early(2 * a.rows(), 0.0);
+  REQUIRE(solver.solve(scratch, x, tolerance, 500, [&](int it) { iterations = it; }));
+  REQUIRE(iterations > 2);
+  scratch = b;
+  CHECK_FALSE(solver.solve(scratch, early, tolerance, iterations - 1));
+  CHECK(std::max(relative_residual(a, b, early, 0), relative_residual(a, b, early, 1)) > tolerance);
+  for (int k = 0; k < 2; ++k) {
+    INFO("field " << k);
+    CHECK(relative_residual(a, b, x, k) <= tolerance);
   }
 }
 
