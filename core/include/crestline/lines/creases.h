@@ -35,9 +35,10 @@ struct CreaseMeasureOptions {
 /// Crease boundaries (CreaseOptions::boundaries) only on components whose
 /// surface_noise_level is at most this: above it the crease stage draws false
 /// creases on smooth surfaces (tests/quality: none up to normal noise σ = 0.1
-/// mean edges, level ~0.075; some at σ = 0.25 on anisotropic meshes, level
-/// 0.20, and at σ = 0.5, level 0.31–0.36), and cutting along them would break
-/// the smooth lines.
+/// mean edges, level ~0.075; before the non-maximum suppression of
+/// creases.cpp, which runs above this level, some at σ = 0.25 on anisotropic
+/// meshes, level 0.20, and at σ = 0.5, level 0.31–0.36, a few still), and
+/// cutting along them would break the smooth lines.
 constexpr double kBoundaryNoiseLimit = 0.15;
 
 /// Gaps in creases are bridged along edges of strong one-sided support
@@ -66,7 +67,9 @@ struct CreaseAngles {
   std::vector<double> angle;
   /// Per edge, radians ≥ 0: the angle between the mean raw normals of the
   /// faces around its ends on either side of it (creases.cpp); 0 where the
-  /// angle is below 20°. A crease must have both.
+  /// angle is below 20°, and on surfaces noisier than kBoundaryNoiseLimit
+  /// (read over three rings there) 0 where it is no local maximum across the
+  /// edge. A crease must have both.
   std::vector<double> support;
   int normal_filter_steps = 0;  // used (the automatic choice resolved)
   /// The median |angle| over (every fourth) interior edge, degrees: how much
