@@ -82,10 +82,8 @@ void export_soup(const TriangleSoup& soup, const std::string& path) {
 
 // The soup as an OBJ file (v and f lines), so that the CLI's whole process
 // (reading included) can be timed on the generated meshes. Coordinates in
-// the shortest text that a correctly rounded parse reads back to the same
-// double; tinyobjloader's parse is not correctly rounded (it differs in the
-// last bit or two), so the CLI's lines on such a file can differ from the
-// benchmark's in the last digits.
+// the shortest text that a correctly rounded parse (the OBJ reader's) reads
+// back to the same double, so the CLI reads the benchmark's soup exactly.
 void export_obj(const TriangleSoup& soup, const std::string& path) {
   std::ofstream out(path, std::ios::binary);
   std::string text;

@@ -251,8 +251,9 @@ TEST_CASE("reader messages quote at most about 60 characters and no internal nam
   // Hexadecimal coordinates were read as 0 (then "degenerate").
   CHECK(std::string(refusal("hex.obj", "v 0 0 0\nv 0x1p0 0 0\nv 0 1 0\nf 1 2 3\n").what()) ==
         "hex.obj: the vertex on line 2 has the hexadecimal number '0x1p0', which OBJ does not allow.");
-  // A ten-digit exponent overflowed tinyobjloader's int (undefined behaviour,
-  // found by the fuzzer), in normals as in positions; leading zeros are fine.
+  // A ten-digit exponent overflowed the int of the parser before (undefined
+  // behaviour, found by the fuzzer); still refused, in normals as in
+  // positions, as no double needs one. Leading zeros are fine.
   CHECK(std::string(refusal("exp.obj", "v 0 0 0\nvn 1e2147483648 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").what()) ==
         "exp.obj: line 2 has the number '1e2147483648', whose exponent is out of range.");
   CHECK(std::string(refusal("exp.obj", "v 0 0 0\nv 1E-9999999999 0 0\nv 0 1 0\nf 1 2 3\n").what()) ==

@@ -2,6 +2,7 @@
 target_sources(crestline_tests PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/read_mesh_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/read_formats_test.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/read_obj_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/read_cross_format_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/read_robust_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/weights_file_test.cpp

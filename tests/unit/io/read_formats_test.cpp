@@ -387,8 +387,8 @@ TEST_CASE("glTF read from memory with its .bin companion", "[io][gltf][meshes]")
 
 TEST_CASE("OBJ: nan and inf stay non-finite in any case and place; other words with a or i change nothing",
           "[io][obj]") {
-  // tinyobjloader reads nan and inf as 0; the reader restores them where the
-  // text mentions either word anywhere (mentions_non_finite).
+  // nan and inf (any case) stay non-finite so that repair drops their
+  // triangles (tinyobjloader read them as 0); other words are no number.
   const std::string faces = "f 1 2 3\n";
   struct Case {
     const char* vertices;
@@ -401,8 +401,8 @@ TEST_CASE("OBJ: nan and inf stay non-finite in any case and place; other words w
       {"# main info, a Nan-free file: a i A I\nv 1 2 3\nv 4 5 6\nv 7 8 9\n",
        {true, true, true, true, true, true, true, true, true}},
   };
-  // Texts too short to hold either word (memchr is not called on them: an
-  // empty view may hold no pointer; the fuzzer's sanitizers found it).
+  // Texts too short to hold a triangle (the fuzzer's sanitizers once found
+  // memchr called on an empty view, which may hold no pointer).
   for (const std::string text : {"", "v", "f 1"}) CHECK_THROWS_AS(read_text("t.obj", text), Error);
   for (const Case& c : cases) {
     INFO(c.vertices);

@@ -1,0 +1,142 @@
+// The OBJ reader's own parse (core/src/io/read_obj.cpp): coordinates
+// correctly rounded, the line ends, comments and attribute forms it reads,
+// and messages that name the line of the face at fault.
+#include <catch2/catch.hpp>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "crestline/error.h"
+#include "crestline/io/read_mesh.h"
+#include "read_test_bytes.h"
+
+using crestline::Error;
+using crestline::ErrorKind;
+using crestline::TriangleSoup;
+using crestline::io::read_mesh_bytes;
+using crestline::testing::bytes_of;
+
+namespace {
+
+TriangleSoup read_text(const std::string& text, const crestline::io::ReadOptions& options = {}) {
+  return read_mesh_bytes("t.obj", bytes_of(text), {}, options);
+}
+
+std::string refusal(const std::string& text, const crestline::io::ReadOptions& options = {}) {
+  try {
+    read_text(text, options);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  FAIL("read without an error: " << text);
+  return "";
+}
+
+const std::string square = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
+
+}  // namespace
+
+TEST_CASE("OBJ: coordinates are the nearest doubles to their decimal text", "[io][obj]") {
+  // Each number is the x of one vertex. The expected values are exact binary
+  // constants; tinyobjloader's sum of digit x 10^-k missed several by a few
+  // units in the last place.
+  struct Case {
+    const char* text;
+    double expected;
+  };
+  const Case cases[] = {
+      {"0.1", 0.1},
+      {"-0.30000000000000004", -0.30000000000000004},
+      {"0.1234567890123456789", 0x1.f9add3746f65fp-4},
+      {"9007199254740993", 9007199254740992.0},                          // 2^53 + 1: a tie, to even
+      {"1.00000000000000011102230246251565404236316680908203125", 1.0},  // 1 + 2^-53: a tie, to even
+      {"1.00000000000000011102230246251565404236316680908203126", 1.0 + 0x1p-52},
+      {"2.2250738585072011e-308", 0x0.fffffffffffffp-1022},  // the largest subnormal
+      {"4.9406564584124654e-324", 0x1p-1074},                // the smallest
+      {"1.7976931348623157e308", 0x1.fffffffffffffp+1023},
+      {"7.038531e-26", 0x1.5c87fbp-84},
+      {"+1.5", 1.5},
+      {".5", 0.5},
+      {"5.", 5.0},
+      {"-.25e-3", -0.00025},
+      {"1E2", 100.0},
+      {"123456789012345678901234567890e-20", 1234567890.1234567},
+  };
+  std::string text;
+  for (const Case& c : cases) text += std::string("v ") + c.text + " 0 0\n";
+  text += "f 1 2 3\n";
+  const TriangleSoup soup = read_text(text);
+  REQUIRE(soup.vertex_count() == std::size(cases));
+  for (size_t i = 0; i < std::size(cases); ++i) {
+    INFO(cases[i].text);
+    CHECK(soup.positions[3 * i] == cases[i].expected);
+    CHECK(soup.positions[3 * i] == std::strtod(cases[i].text, nullptr));  // glibc's strtod rounds correctly
+  }
+}
+
+TEST_CASE("OBJ: line ends, comments, attributes and short vertex lines", "[io][obj]") {
+  const std::vector<double> xyz = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+  const std::vector<uint32_t> two = read_text(square + "f 1 2 3 4\n").indices;  // ear-clipped
+  REQUIRE(two.size() == 6);
+  // LF, CRLF, a lone CR (classic Mac OS) and a mix of them.
+  for (const char* end : {"\n", "\r\n", "\r"}) {
+    std::string text = square + "f 1 2 3 4\n";
+    for (size_t at = 0; (at = text.find('\n', at)) != std::string::npos; at += std::string(end).size()) {
+      text.replace(at, 1, end);
+    }
+    INFO(text);
+    const TriangleSoup soup = read_text(text);
+    CHECK(soup.positions == xyz);
+    CHECK(soup.indices == two);
+  }
+  // Comments after the data, tabs, texture and normal indices, w and
+  // colours after x y z, and lines that give no geometry.
+  const TriangleSoup rich = read_text(
+      "# a comment\n\nmtllib m.mtl\no box\ng side\ns 1\nusemtl red\n"
+      "v 0 0 0 1\t# corner\n\tv 1 0 0 0.5 0.25 1\nv  1\t1 0\nv 0 1 0 # last\n"
+      "vt 0 0\nvt 1e-3 1\nvn 0 0 1\nvp 0.5\nl 1 2\np 3\n"
+      "f 1/1/1 2/2/1 3//1 4/1 # a quad\n");
+  CHECK(rich.positions == xyz);
+  CHECK(rich.indices == two);
+  CHECK(rich.notes.empty());
+  // Missing coordinates are 0, as are words that hold no number.
+  const TriangleSoup partial = read_text("v 1\nv 0 2\nv x 0 3\nf 1 2 3\n");
+  CHECK(partial.positions == std::vector<double>{1, 0, 0, 0, 2, 0, 0, 0, 3});
+  // A face of fewer than three corners is skipped with a note; "f" alone is no face.
+  const TriangleSoup short_faces = read_text(square + "f 1 2\nf\nf 3\nf 1 2 3\n");
+  CHECK(short_faces.triangle_count() == 1);
+  REQUIRE(short_faces.notes.size() == 1);
+  CHECK(short_faces.notes[0] == "2 faces with fewer than 3 vertices were skipped.");
+}
+
+TEST_CASE("OBJ: a face's index errors name its line; vertices are bounded", "[io][obj][hardening]") {
+  CHECK(refusal(square + "\nf 1 2 0\n") ==
+        "t.obj: the face on line 6 uses vertex index 0, which does not exist (OBJ indices start at 1, negative ones "
+        "count back from 4).");
+  CHECK(refusal(square + "f -1 -2 -5\n") ==
+        "t.obj: the face on line 5 uses vertex index -5, which does not exist (OBJ indices start at 1, negative ones "
+        "count back from 4).");
+  // A face may refer to a vertex that comes later, not to one that never does.
+  CHECK(read_text("f 1 2 3\n" + square).triangle_count() == 1);
+  CHECK(refusal("f 1 2 3\nf 2 3 9\n" + square) ==
+        "t.obj: the face on line 2 refers to vertex 9 but the file has 4 vertices.");
+  // Lines end at a lone CR as at LF; a continuation keeps the file's numbering.
+  CHECK(refusal("v 0 0 0\rv 1 0 0\r\nv 0 1 0\rf 1 2 x\r") ==
+        "t.obj: the face on line 4 has the vertex index 'x', which is not a whole number.");
+  CHECK(refusal("v 0 0 \\\n0\nv 1 0 0\nv 0 1 0\nf 1 2 \\\n 0\n") ==
+        "t.obj: the face on line 5 uses vertex index 0, which does not exist (OBJ indices start at 1, negative ones "
+        "count back from 3).");
+  // Vertices are bounded like glTF accessors: 3 x the triangle limit + 3.
+  crestline::io::ReadOptions options;
+  options.max_triangles = 1;
+  std::string six;
+  for (int k = 0; k < 6; ++k) six += "v 0 0 " + std::to_string(k) + "\n";
+  CHECK(read_text(six + "f 1 2 3\n", options).vertex_count() == 6);
+  try {
+    read_text(six + "v 1 1 1\nf 1 2 3\n", options);
+    FAIL("seven vertices read");
+  } catch (const Error& e) {
+    CHECK(e.kind() == ErrorKind::TooLarge);
+    CHECK(std::string(e.what()) == "t.obj: the file has more than 6 vertices.");
+  }
+}
