@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "crestline/curvature/shape_operator.h"
 #include "crestline/error.h"
 #include "crestline/mesh/cotan.h"
 #include "crestline/mesh/topology.h"
@@ -50,8 +51,8 @@ SignedPairMatrix signed_pair_matrix(const Topology& topology, const CotanWeights
     if (w == 0) continue;
     const uint32_t p = topology.edges[e][0], q = topology.edges[e][1];
     // The entry is −σ w: stored as −w, negated where σ = −1.
-    const uint32_t mask = (curvature.dir_max[p].dot(curvature.dir_max[q]) >= 0 ? 0u : 1u) |
-                          (curvature.dir_min[p].dot(curvature.dir_min[q]) >= 0 ? 0u : 2u);
+    const uint32_t mask = (direction_sign(curvature.dir_max[p], curvature.dir_max[q]) > 0 ? 0u : 1u) |
+                          (direction_sign(curvature.dir_min[p], curvature.dir_min[q]) > 0 ? 0u : 2u);
     a.columns[fill[p]] = q | mask << 30, a.weights[fill[p]++] = -w;
     a.columns[fill[q]] = p | mask << 30, a.weights[fill[q]++] = -w;
   }
@@ -97,7 +98,7 @@ Eigen::VectorXd smooth_field(const Topology& topology, const CotanWeights& cotan
     const double w = edge_strength[e];
     if (w == 0) continue;
     const uint32_t p = topology.edges[e][0], q = topology.edges[e][1];
-    const double sigma = directions[p].dot(directions[q]) >= 0 ? 1.0 : -1.0;
+    const double sigma = direction_sign(directions[p], directions[q]);
     diagonal[p] += w;
     diagonal[q] += w;
     triplets.emplace_back(p, q, -sigma * w);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "crestline/curvature/shape_operator.h"
 #include "crestline/numerics/parallel.h"
 
 namespace crestline {
@@ -43,7 +44,7 @@ uint32_t crossing_node(FeatureGraph& graph, const Mesh& mesh, const Topology& to
   uint32_t& node = graph.edge_node[edge];
   if (node != kNone) return node;
   const uint32_t u = topology.edges[edge][0], v = topology.edges[edge][1];
-  const double sigma = field.dir[u].dot(field.dir[v]) >= 0 ? 1.0 : -1.0;
+  const double sigma = direction_sign(field.dir[u], field.dir[v]);
   const double a = nonzero(field.e[u]), b = sigma * nonzero(field.e[v]);
   const double t = a / (a - b);
   node = static_cast<uint32_t>(graph.points.size());

@@ -26,6 +26,24 @@ struct Curvature {
   std::vector<double> star_area;  // sum of the areas of the triangles around each vertex
 };
 
+/// σ = sign⟨a, b⟩ for two principal directions, each defined only up to
+/// sign (paper §5.1): +1 or −1, and negated when either direction is. Where
+/// the two are exactly perpendicular (axis-aligned eigenvectors on flat or
+/// symmetric meshes) the dot product is 0 whatever the signs, so the signs
+/// of the two directions' first nonzero coordinates decide instead; taking
+/// +1 there made the smoothed extremalities, and the lines, depend on the
+/// eigen-solver's arbitrary signs.
+inline double direction_sign(const Vec3& a, const Vec3& b) {
+  const double dot = a.dot(b);
+  if (dot != 0) return dot > 0 ? 1.0 : -1.0;
+  auto leading_sign = [](const Vec3& d) {
+    for (int i = 0; i < 3; ++i)
+      if (d[i] != 0) return d[i] > 0 ? 1.0 : -1.0;
+    return 1.0;
+  };
+  return leading_sign(a) * leading_sign(b);
+}
+
 /// S(e) = H_e (ē×N_e)(ē×N_e)^T with H_e = 2|e|cos(θ_e/2) (signed: + on convex
 /// edges), S(p) = ½ Σ_{e∋p} ⟨N_p,N_e⟩ S(e). Principal curvatures are the
 /// eigenvalues of the two eigenvectors farthest from the vertex normal (the
