@@ -163,8 +163,13 @@ test('a camera move, a resize, the background and a colour map draw the surface 
   const still = await counted(() => app.page.evaluate(() => window.crestline.viewer.render()));
   assert.deepEqual([still.surface, still.frames], [0, 1], 'the next frame with the camera still');
   const resize = await counted(async () => {
+    const frames = await app.page.evaluate(() => window.crestline.viewer.renderCount);
     await app.page.setViewportSize({ width: 900, height: 700 });
     await app.page.waitForFunction(() => window.crestline.viewer.renderer.domElement.clientWidth === 900);
+    // The ResizeObserver asks for its frame after the animation frames of
+    // the frame that laid the page out, so counting two frames from here
+    // can end before it is drawn: wait for it.
+    await app.page.waitForFunction((n) => window.crestline.viewer.renderCount > n, frames);
   });
   assert.equal(resize.surface, 1, `a resize: ${JSON.stringify(resize)}`);
   const dark = await counted(() => app.page.evaluate(() => window.crestline.update({ dark: true })));
