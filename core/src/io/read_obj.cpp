@@ -170,32 +170,31 @@ class ObjParser {
     return end;
   }
 
+  // The numbers of a `v`, `vn` or `vt` line, up to its end or a comment,
+  // each checked; the first three go to xyz where it is given.
+  const char* numbers(const char* p, bool vertex, double* xyz) {
+    for (int k = 0;; ++k) {
+      while (p < end_ && is_blank(*p)) ++p;
+      if (p == end_ || is_line_end(*p) || *p == '#') return p;
+      double value = 0;
+      p = number(p, value, vertex);
+      if (xyz && k < 3) xyz[k] = value;
+    }
+  }
+
   // `v x y z [w | r g b]`: missing coordinates are 0.
   const char* vertex(const char* p) {
     if (soup_.vertex_count() >= max_vertices_) {
       fail(ErrorKind::TooLarge, in_, "the file has more than " + std::to_string(max_vertices_) + " vertices.");
     }
     double xyz[3] = {0, 0, 0};
-    for (int k = 0;; ++k) {
-      while (p < end_ && is_blank(*p)) ++p;
-      if (p == end_ || is_line_end(*p) || *p == '#') break;
-      double value = 0;
-      p = number(p, value, true);
-      if (k < 3) xyz[k] = value;
-    }
+    p = numbers(p, true, xyz);
     soup_.positions.insert(soup_.positions.end(), xyz, xyz + 3);
     return p;
   }
 
   // `vn` and `vt`: not used, but their numbers are checked as in `v`.
-  const char* attribute(const char* p) {
-    for (;;) {
-      while (p < end_ && is_blank(*p)) ++p;
-      if (p == end_ || is_line_end(*p) || *p == '#') return p;
-      double value = 0;
-      p = number(p, value, false);
-    }
-  }
+  const char* attribute(const char* p) { return numbers(p, false, nullptr); }
 
   // `f i[/t[/n]] ...`: every vertex index a whole number up to kMaxIndex,
   // 1-based or counting back from the last vertex read so far.
