@@ -51,13 +51,13 @@ TEST_CASE("creases of the CAD-like surfaces: targets at σ = 0 and 0.1", "[quali
       }
 }
 
-// At σ = 0.25 the targets hold in a few cases only; asserted over the 27
+// At σ = 0.25 the targets hold in some cases only; asserted over the 27
 // cases of crestline_crease_report --seeds 3 (seeds 1–3, three mesh kinds),
-// one case alone varies too much. Measured with the 3-ring support and its
-// non-maximum suppression (creases.cpp; before it in brackets): 4 cases meet
-// every target (3), precision ≥ 0.983 (0.959), coverage mean 0.902 (0.891)
-// and min 0.684 (0.658, the 45° chamfer), lines per true edge mean 1.39
-// (1.45) and max 2.25 (2.67).
+// one case alone varies too much. Regression guards at the values measured,
+// before → after redundant chains are dropped (creases.cpp): 4 → 7 cases meet
+// every target, precision ≥ 0.983 → 0.987, coverage mean 0.902 → 0.901 and
+// min 0.684 (the 45° chamfer), lines per true edge mean 1.39 → 1.21 and max
+// 2.25 → 2.00.
 TEST_CASE("creases at σ = 0.25: what is found is right", "[quality][creases]") {
   int cases = 0, met = 0;
   double coverage_sum = 0, coverage_min = 1, fragments_sum = 0, fragments_max = 0;
@@ -71,7 +71,7 @@ TEST_CASE("creases at σ = 0.25: what is found is right", "[quality][creases]") 
             score_creases(c.surface, find_creases(c.mesh, build_topology(c.mesh), {}, c.h).lines, c.h);
         INFO(name << " (" << triangulation_name(t) << "), seed " << seed << ": coverage " << s.coverage
                   << ", precision " << s.precision << ", fragments " << s.fragments);
-        CHECK(s.precision >= 0.98);
+        CHECK(s.precision >= 0.985);
         CHECK(s.wrong_sign == 0);
         if (name == "filleted-box") CHECK(s.coverage >= 0.8);  // its creases are 90°
         ++cases;
@@ -82,16 +82,17 @@ TEST_CASE("creases at σ = 0.25: what is found is right", "[quality][creases]") 
   INFO(met << " of " << cases << " met; coverage mean " << coverage_sum / cases << ", min " << coverage_min
            << "; fragments mean " << fragments_sum / cases << ", max " << fragments_max);
   CHECK(cases == 27);
-  CHECK(met >= 4);
+  CHECK(met >= 7);
   CHECK(coverage_sum / cases >= 0.90);
   CHECK(coverage_min >= 0.68);
-  CHECK(fragments_sum / cases <= 1.40);
-  CHECK(fragments_max <= 2.25);
+  CHECK(fragments_sum / cases <= 1.21);
+  CHECK(fragments_max <= 2.0);
 }
 
 // Every mesh kind up to σ = 0.25 (at 0.25 the anisotropic meshes had 9 false
 // crease lines in 4 cases before the 3-ring support and its non-maximum
-// suppression, creases.cpp). At 0.5: 11 lines in the 36 cases (140 before).
+// suppression, creases.cpp). At 0.5: 9 lines in the 36 cases (140 before
+// it, 11 before redundant chains were dropped).
 TEST_CASE("the smooth surfaces of the ridge/valley harness have no creases", "[quality][creases]") {
   for (const std::string& name : surface_names())
     for (Triangulation t : triangulations())
