@@ -204,6 +204,7 @@ struct Orientation {
   std::vector<uint8_t> cut;  // 3 per triangle, edge k = corners k, k+1
   std::vector<uint32_t> component;
   size_t components = 0;
+  size_t single_edges = 0;  // edges of one triangle: boundary edges whatever the repair does
 };
 
 Orientation orient(std::vector<Triangle>& tris, const std::vector<Vec3>& points, RepairReport& report) {
@@ -215,12 +216,14 @@ Orientation orient(std::vector<Triangle>& tris, const std::vector<Vec3>& points,
   // Half-edges (corners) grouped by undirected edge.
   std::vector<uint32_t> partner(3 * nt, kNone);  // the corner across a manifold edge
   const detail::HalfEdgeOrder order = detail::order_half_edges(tris, points.size());
-  std::atomic<size_t> nonmanifold{0};
+  std::atomic<size_t> nonmanifold{0}, single{0};
   parallel_for(points.size(), [&](size_t begin, size_t end) {
-    size_t count = 0;
+    size_t count = 0, singles = 0;
     order.for_each_edge(begin, end, [&](uint32_t, uint32_t, const uint64_t* first, const uint64_t* last) {
       using H = detail::HalfEdgeOrder;
-      if (last - first == 2) {
+      if (last - first == 1) {
+        ++singles;
+      } else if (last - first == 2) {
         partner[H::corner(first[0])] = H::corner(first[1]);
         partner[H::corner(first[1])] = H::corner(first[0]);
       } else if (last - first > 2) {
@@ -229,8 +232,10 @@ Orientation orient(std::vector<Triangle>& tris, const std::vector<Vec3>& points,
       }
     });
     nonmanifold += count;
+    single += singles;
   });
   report.nonmanifold_edges += nonmanifold;
+  out.single_edges = single;
 
   // same[c]: corner c's partner runs the same way (the two triangles
   // disagree while neither is flipped); on every thread.
@@ -446,6 +451,28 @@ void split_fans(std::vector<Triangle>& tris, std::vector<Vec3>& points, const st
   });
 }
 
+// Boundary edges of the repaired mesh, without grouping its half-edges
+// again: an edge of one triangle stays one; the two triangles of an uncut
+// edge share both its ends after the fans are split (they are in one fan at
+// each end); only the cut edges' half-edges, few, are grouped anew by their
+// renamed ends, and one left alone is a boundary edge.
+size_t count_boundary_edges(const std::vector<Triangle>& tris, const Orientation& orientation) {
+  std::vector<uint64_t> cut_edges;
+  for (size_t c = 0; c < orientation.cut.size(); ++c)
+    if (orientation.cut[c]) {
+      const uint32_t a = tris[c / 3][c % 3], b = tris[c / 3][(c + 1) % 3];
+      cut_edges.push_back(uint64_t{std::min(a, b)} << 32 | std::max(a, b));
+    }
+  std::sort(cut_edges.begin(), cut_edges.end());
+  size_t boundary = orientation.single_edges;
+  for (size_t i = 0, j = 0; i < cut_edges.size(); i = j) {
+    while (j < cut_edges.size() && cut_edges[j] == cut_edges[i]) ++j;
+    if (j - i > 2) throw Error(ErrorKind::InvalidInput, "the mesh has an edge that could not be made manifold.");
+    boundary += j - i == 1;
+  }
+  return boundary;
+}
+
 }  // namespace
 
 RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options) {
@@ -563,19 +590,7 @@ RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options)
   for (Triangle& t : result.mesh.triangles)
     for (uint32_t& v : t) v = index[v];
 
-  // Boundary edges of the repaired mesh: undirected edges used once.
-  const detail::HalfEdgeOrder order = detail::order_half_edges(result.mesh.triangles, next);
-  std::atomic<size_t> boundary{0};
-  parallel_for(next, [&](size_t begin, size_t end) {
-    size_t count = 0;
-    order.for_each_edge(begin, end, [&](uint32_t, uint32_t, const uint64_t* first, const uint64_t* last) {
-      if (last - first == 1) ++count;
-      if (last - first > 2)
-        throw Error(ErrorKind::InvalidInput, "the mesh has an edge that could not be made manifold.");
-    });
-    boundary += count;
-  });
-  report.boundary_edges = boundary;
+  report.boundary_edges = count_boundary_edges(result.mesh.triangles, orientation);
   return result;
 }
 

@@ -290,6 +290,35 @@ TEST_CASE("welding picks the earliest representative within tolerance, as a brut
   CHECK(mismatches == 0);
 }
 
+// repair_mesh counts boundary edges without grouping the repaired mesh's
+// half-edges again (only the cut ones): on random soups, dense in
+// non-manifold edges, fans and non-orientable loops, the count must be what
+// the repaired mesh's adjacency says.
+TEST_CASE("the repair report counts the repaired mesh's boundary edges", "[repair]") {
+  std::mt19937 random(7);
+  size_t with_cuts = 0;
+  for (int round = 0; round < 200; ++round) {
+    TriangleSoup s;
+    const uint32_t nv = 6 + round % 20;
+    for (uint32_t v = 0; v < nv; ++v) add_vertex(s, Vec3(random() % 7, random() % 7, random() % 7));
+    std::uniform_int_distribution<uint32_t> vertex(0, nv - 1);
+    for (uint32_t t = 0; t < 3 * nv; ++t) add_triangle(s, vertex(random), vertex(random), vertex(random));
+    RepairResult r;
+    try {
+      r = repair_mesh(s);
+    } catch (const Error&) {
+      continue;  // nothing usable (all degenerate)
+    }
+    const Topology topo = build_topology(r.mesh);
+    size_t boundary = 0;
+    for (size_t e = 0; e < topo.edges.size(); ++e) boundary += topo.is_boundary_edge(static_cast<uint32_t>(e));
+    INFO("round " << round);
+    CHECK(r.report.boundary_edges == boundary);
+    with_cuts += r.report.nonmanifold_edges > 0 && r.report.nonmanifold_vertices > 0;
+  }
+  CHECK(with_cuts > 50);  // the soups exercise the cuts
+}
+
 TEST_CASE("repair gives the same mesh and report on 1 and 2 threads", "[repair][threads]") {
   // 20,000 triangles (enough for the parallel loops to split), seams welded
   // from a copy of every vertex, some triangles repeated or collapsed.
