@@ -98,13 +98,11 @@ void Pipeline::measure_creases() {
   // frame (angles do not depend on it, but the normals of a model at 1e-100
   // would underflow), the automatic filter decided by the largest
   // component's noise level, as stats() reports it.
-  const auto start = std::chrono::steady_clock::now();
   CreaseMeasureOptions measure{options_.creases.normal_filter_steps};
   const double noise = noise_levels_.empty() ? 0.0 : noise_levels_[frames_.largest()];
   if (measure.normal_filter_steps < 0) measure.normal_filter_steps = automatic_normal_filter_steps(noise);
   crease_angles_ = measure_crease_angles(local_input(), topology(), measure);
   crease_angles_valid_ = true;
-  crease_measure_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 void Pipeline::update_boundaries() {
@@ -115,7 +113,10 @@ void Pipeline::update_boundaries() {
     measure_creases();
     CreaseOptions automatic = options_.creases;
     automatic.angle = -1;
-    edges = select_creases(local_input(), topology, crease_angles_, automatic, 1.0).edges;
+    CreaseResult selected = select_creases(local_input(), topology, crease_angles_, automatic, 1.0);
+    edges = selected.edges;
+    // With the automatic angle the creases stage selects exactly these: kept for it.
+    if (options_.creases.angle < 0 && creases_dirty_) automatic_creases_ = std::move(selected);
     // Not on noisy components, where creases are not to be trusted.
     edges.erase(std::remove_if(edges.begin(), edges.end(),
                                [&](uint32_t e) {
@@ -135,19 +136,21 @@ void Pipeline::update_boundaries() {
   // serve, and the smooth stages run exactly as without creases.
   cut_active_ = !cut_.copy_of.empty();
   if (!cut_active_) cut_ = CutMesh();
-  cut_topology_ = cut_active_ ? build_topology(cut_.mesh) : Topology();
+  cut_topology_ = cut_active_ ? cut_topology(topology, cut_) : Topology();
   cut_components_.clear();
   if (cut_active_) cut_components_ = on_cut_vertices(cut_, frames_.vertex_component);
 }
 
 double Pipeline::select_crease_lines() {
-  measure_creases();
   double seconds = 0;
   {
     StageTimer timer(seconds);
+    measure_creases();
     // In the working frame (every component's mean edge 1, as the spur and
     // turn lengths expect), then mapped back per component.
-    creases_ = select_creases(local_input(), topology(), crease_angles_, options_.creases, 1.0);
+    creases_ = automatic_creases_ ? std::move(*automatic_creases_)
+                                  : select_creases(local_input(), topology(), crease_angles_, options_.creases, 1.0);
+    automatic_creases_.reset();
     for (size_t i = 0; i < creases_.lines.size(); ++i) {
       const uint32_t component = frames_.vertex_component[creases_.line_vertex[i]];
       creases_.lines[i] = to_user(std::move(creases_.lines[i]), frames_, component);
@@ -166,8 +169,12 @@ void Pipeline::run(const ProgressCallback& progress) {
       };
     return report;
   };
-  crease_measure_seconds_ = 0;
-  update_boundaries();
+  const bool boundaries_due = boundaries_dirty_;
+  double boundary_seconds = 0;
+  {
+    StageTimer timer(boundary_seconds);
+    update_boundaries();
+  }
   // The creases are selected now, while the input's adjacency and crease
   // angles are at hand (the boundaries read them too), so that while a cut
   // serves the smooth stages these need not be held through them: released
@@ -177,6 +184,7 @@ void Pipeline::run(const ProgressCallback& progress) {
   const bool creases_due = creases_dirty_;
   double crease_seconds = 0;
   if (creases_due) crease_seconds = select_crease_lines();
+  automatic_creases_.reset();
   if (cut_active_) {
     topology_ = Topology(), topology_valid_ = false;
     crease_angles_ = CreaseAngles(), crease_angles_valid_ = false;
@@ -312,14 +320,15 @@ void Pipeline::run(const ProgressCallback& progress) {
     }
     std::sort(filtered_.kept.begin(), filtered_.kept.end());
   });
-  if (creases_due) {
+  if (creases_due || boundaries_due) {
     // Outside step(): no other stage makes it dirty, and a new crease angle
     // re-runs nothing else. Its work was done before the smooth stages; it
     // is reported and done here, last, as the stage order says (a cancel
     // before this point leaves it dirty: the next run selects again). Its
-    // time includes the measure, whether for the creases or the boundaries.
-    if (progress && !progress(Stage::Creases, 0.0)) throw Cancelled();
-    seconds_[static_cast<int>(Stage::Creases)] = crease_seconds + crease_measure_seconds_;
+    // time includes the measure and the boundary creases' selection, cut and
+    // adjacency, so that the stages account for the whole run.
+    if (creases_due && progress && !progress(Stage::Creases, 0.0)) throw Cancelled();
+    seconds_[static_cast<int>(Stage::Creases)] = crease_seconds + boundary_seconds;
     creases_dirty_ = false;
   }
 }

@@ -23,6 +23,7 @@
 // segments(), …) stay in the working frame (lengths in mean edges of their
 // component, curvatures in 1 / mean edge).
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -193,7 +194,6 @@ class Pipeline {
   FilterResult filtered_;
   bool creases_dirty_ = true;
   bool crease_angles_valid_ = false;
-  double crease_measure_seconds_ = 0;  // of this run's measure, added to the creases stage
   bool boundaries_dirty_ = true;
   std::vector<uint32_t> boundary_edges_;
   bool cut_active_ = false;
@@ -202,6 +202,7 @@ class Pipeline {
   std::vector<uint32_t> cut_components_;  // component of each cut vertex
   CreaseAngles crease_angles_;
   CreaseResult creases_;
+  std::optional<CreaseResult> automatic_creases_;  // within a run: the boundaries' selection, when it is the creases'
   double seconds_[static_cast<int>(Stage::Count)] = {};
   double topology_seconds_ = 0;
 };

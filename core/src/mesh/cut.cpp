@@ -1,5 +1,6 @@
 #include "crestline/mesh/cut.h"
 
+#include <algorithm>
 #include <numeric>
 
 namespace crestline {
@@ -55,6 +56,109 @@ CutMesh cut_along_edges(const Mesh& mesh, const Topology& topology, const std::v
     for (uint32_t s = 1; s < sides; ++s) out.copy_of.push_back(v), out.mesh.positions.push_back(mesh.positions[v]);
     for (uint32_t i = 0; i < n; ++i) local[topology.vertex_triangles[begin + i]] = kNone;
   }
+  return out;
+}
+
+Topology cut_topology(const Topology& input, const CutMesh& cut) {
+  const std::vector<Triangle>& tris = cut.mesh.triangles;
+  const size_t nv = cut.input_vertices, ne = input.edges.size();
+  std::vector<uint8_t> split(nv, 0);
+  for (uint32_t v : cut.copy_of) split[v] = 1;
+  // The cut mesh's vertex at corner `source` of triangle t.
+  auto renamed = [&](uint32_t t, uint32_t source) {
+    for (uint32_t v : tris[t])
+      if (cut.source(v) == source) return v;
+    return kNone;
+  };
+
+  // Edges at a split vertex: each triangle's half-edge takes its renamed
+  // ends, and the two stay one edge only if those agree. The rest keep their
+  // ends and triangles; build_topology orders edges by (smaller end, larger
+  // end), so both lists are merged in that order.
+  struct Piece {
+    uint64_t key;  // smaller end << 32 | larger end
+    uint32_t triangles[2];
+    uint32_t edge;  // of the input
+    uint8_t slot;   // the input edge's first piece (0) or second (1)
+  };
+  std::vector<Piece> pieces;
+  for (uint32_t e = 0; e < ne; ++e) {
+    const auto [p, q] = input.edges[e];
+    if (!split[p] && !split[q]) continue;
+    const auto [t0, t1] = input.edge_triangles[e];
+    auto key = [&](uint32_t t) {
+      const uint32_t a = renamed(t, p), b = renamed(t, q);
+      return uint64_t{std::min(a, b)} << 32 | std::max(a, b);
+    };
+    const uint64_t k0 = key(t0);
+    if (t1 != kNone && key(t1) == k0) {
+      pieces.push_back({k0, {t0, t1}, e, 0});
+      continue;
+    }
+    pieces.push_back({k0, {t0, kNone}, e, 0});
+    if (t1 != kNone) pieces.push_back({key(t1), {t1, kNone}, e, 1});
+  }
+  std::sort(pieces.begin(), pieces.end(), [](const Piece& a, const Piece& b) { return a.key < b.key; });
+
+  Topology out;
+  const size_t edge_count =
+      ne - std::count_if(pieces.begin(), pieces.end(), [](const Piece& x) { return x.slot == 0; }) + pieces.size();
+  out.edges.reserve(edge_count);
+  out.edge_triangles.reserve(edge_count);
+  // new_edge[e]: the new index of the unchanged edge, or of a split one's
+  // first piece; second[e]: of its second piece where it came apart.
+  std::vector<uint32_t> new_edge(ne, kNone), second(ne, kNone);
+  size_t next_piece = 0;
+  auto emit_pieces_before = [&](uint64_t key) {
+    for (; next_piece < pieces.size() && pieces[next_piece].key < key; ++next_piece) {
+      const Piece& x = pieces[next_piece];
+      (x.slot ? second : new_edge)[x.edge] = static_cast<uint32_t>(out.edges.size());
+      out.edges.push_back({uint32_t(x.key >> 32), uint32_t(x.key)});
+      out.edge_triangles.push_back({x.triangles[0], x.triangles[1]});
+    }
+  };
+  for (uint32_t e = 0; e < ne; ++e) {
+    const auto [p, q] = input.edges[e];
+    if (split[p] || split[q]) continue;
+    emit_pieces_before(uint64_t{p} << 32 | q);
+    new_edge[e] = static_cast<uint32_t>(out.edges.size());
+    out.edges.push_back(input.edges[e]);
+    out.edge_triangles.push_back(input.edge_triangles[e]);
+  }
+  emit_pieces_before(~uint64_t{0});
+
+  out.triangle_edges.resize(tris.size());
+  for (size_t t = 0; t < tris.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t e = input.triangle_edges[t][k];
+      out.triangle_edges[t][k] = second[e] != kNone && input.edge_triangles[e][1] == t ? second[e] : new_edge[e];
+    }
+
+  // Each vertex's triangles in ascending order: a split vertex's go to the
+  // side (the vertex or a copy) their corner was renamed to.
+  const size_t vertices = cut.mesh.positions.size();
+  out.vertex_offsets.assign(vertices + 1, 0);
+  for (uint32_t v = 0; v < nv; ++v) {
+    const uint32_t begin = input.vertex_offsets[v], end = input.vertex_offsets[v + 1];
+    if (!split[v]) {
+      out.vertex_offsets[v + 1] = end - begin;
+      continue;
+    }
+    for (uint32_t i = begin; i < end; ++i) ++out.vertex_offsets[renamed(input.vertex_triangles[i], v) + 1];
+  }
+  for (size_t v = 0; v < vertices; ++v) out.vertex_offsets[v + 1] += out.vertex_offsets[v];
+  out.vertex_triangles.resize(out.vertex_offsets[vertices]);
+  std::vector<uint32_t> fill(out.vertex_offsets.begin(), out.vertex_offsets.end() - 1);
+  for (uint32_t v = 0; v < nv; ++v)
+    for (uint32_t i = input.vertex_offsets[v]; i < input.vertex_offsets[v + 1]; ++i) {
+      const uint32_t t = input.vertex_triangles[i];
+      out.vertex_triangles[fill[split[v] ? renamed(t, v) : v]++] = t;
+    }
+
+  out.boundary_vertex.assign(vertices, 0);
+  for (size_t e = 0; e < out.edges.size(); ++e)
+    if (out.is_boundary_edge(static_cast<uint32_t>(e)))
+      out.boundary_vertex[out.edges[e][0]] = out.boundary_vertex[out.edges[e][1]] = 1;
   return out;
 }
 

@@ -5,8 +5,11 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <random>
 
+#include "../mesh/same_topology.h"
 #include "analytic_meshes.h"
+#include "crestline/mesh/cut.h"
 #include "crestline/mesh/repair.h"
 #include "crestline/pipeline.h"
 
@@ -177,6 +180,7 @@ TEST_CASE("the pipeline reports creases and re-runs only their selection for a n
   CHECK(p.stats().crease_length == Approx(24.0));
   CHECK(p.stats().crease_angle == kDefaultCreaseAngle);
   CHECK(p.all_kinds().size() == p.lines().size() + 12);
+  const CreaseResult first = p.crease_result();
 
   PipelineOptions o = p.options();
   o.creases.angle = 95;
@@ -188,6 +192,15 @@ TEST_CASE("the pipeline reports creases and re-runs only their selection for a n
   });
   CHECK(ran == std::vector<Stage>{Stage::Creases});
   CHECK(p.stats().creases == 0);
+
+  // The first run took the creases from the boundaries' selection (the same
+  // automatic angle); back at that angle, selected on their own: the same lines.
+  o.creases.angle = -1;
+  p.set_options(o);
+  p.run();
+  CHECK(p.crease_result().edges == first.edges);
+  REQUIRE(p.creases().size() == first.lines.size());
+  for (size_t i = 0; i < first.lines.size(); ++i) CHECK(p.creases()[i].points == first.lines[i].points);
 }
 
 // Crease boundaries (mesh/cut.h): the cube cut along its 90° edges falls
@@ -246,6 +259,42 @@ TEST_CASE("cutting along creases splits each crease vertex into its sides", "[cr
   CHECK(open_boundary == flat_boundary + 6);
   // Nothing to cut: the same mesh.
   CHECK(cut_along_edges(flat, ft, {}).copy_of.empty());
+}
+
+// cut_topology regroups only the edges at split vertices; it must give
+// exactly the adjacency build_topology gives the cut mesh: on a closed mesh
+// (the cube along its creases) and on an open jittered grid with random
+// cuts of every density, boundary edges among them.
+TEST_CASE("the cut mesh's adjacency from the input's is build_topology's", "[creases][cut]") {
+  auto check = [](const Mesh& mesh, const Topology& topology, const std::vector<uint32_t>& edges) {
+    const CutMesh cut = cut_along_edges(mesh, topology, edges);
+    testing::check_same_topology(cut_topology(topology, cut), build_topology(cut.mesh));
+    return cut.copy_of.size();
+  };
+  const Run box = measure(repair_mesh(cube(6)).mesh);
+  std::vector<uint32_t> sharp;
+  for (uint32_t e = 0; e < box.topology.edges.size(); ++e)
+    if (std::abs(box.angles.angle[e]) > 1) sharp.push_back(e);
+  CHECK(check(box.mesh, box.topology, sharp) > 0);
+
+  testing::GridOptions grid;
+  grid.nu = grid.nv = 20;
+  grid.jitter = 0.2;
+  grid.random_diagonals = true;
+  const Mesh sheet =
+      repair_mesh(testing::height_field([](double x, double y) { return 0.2 * std::sin(3 * x * y); }, 2, 2, grid)).mesh;
+  const Topology topology = build_topology(sheet);
+  std::mt19937 random(3);
+  size_t copies = 0;
+  for (double density : {0.02, 0.1, 0.3, 0.7}) {
+    std::bernoulli_distribution pick(density);
+    std::vector<uint32_t> edges;
+    for (uint32_t e = 0; e < topology.edges.size(); ++e)
+      if (pick(random)) edges.push_back(e);
+    INFO("density " << density);
+    copies += check(sheet, topology, edges);
+  }
+  CHECK(copies > 100);
 }
 
 TEST_CASE("crease boundaries: without creases the smooth stages run on the input mesh itself", "[creases][cut]") {

@@ -12,6 +12,7 @@
 #include "crestline/error.h"
 #include "crestline/mesh/repair.h"
 #include "crestline/numerics/parallel.h"
+#include "same_topology.h"
 
 using namespace crestline;
 
@@ -76,13 +77,7 @@ TEST_CASE("topology matches a map of the edges and is the same on 1, 2 and 3 thr
 
   for (int threads : {2, 3}) {
     INFO("threads: " << threads);
-    const Topology other = topology_on(threads, mesh);
-    CHECK(other.edges == one.edges);
-    CHECK(other.edge_triangles == one.edge_triangles);
-    CHECK(other.triangle_edges == one.triangle_edges);
-    CHECK(other.vertex_offsets == one.vertex_offsets);
-    CHECK(other.vertex_triangles == one.vertex_triangles);
-    CHECK(other.boundary_vertex == one.boundary_vertex);
+    testing::check_same_topology(topology_on(threads, mesh), one);
   }
 }
 

@@ -33,6 +33,11 @@ struct CutMesh {
 /// nothing. Linear in the mesh size.
 CutMesh cut_along_edges(const Mesh& mesh, const Topology& topology, const std::vector<uint32_t>& edges);
 
+/// The cut mesh's adjacency from the input's: exactly build_topology(cut.mesh)
+/// (the same edge numbering), in linear time without sorting the
+/// half-edges again; only the edges at split vertices are regrouped.
+Topology cut_topology(const Topology& input, const CutMesh& cut);
+
 /// A per-vertex array of the input extended to the cut mesh: each copy takes
 /// the value of the vertex it split from.
 template <typename T>
