@@ -4,6 +4,7 @@
 // double.
 #include "crestline/io/write_lines.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -30,18 +31,6 @@ char* format_general(char* first, char* last, double value, int precision) {
 #endif
 }
 
-double parse_double(const char* first, const char* last) {
-#ifdef __cpp_lib_to_chars
-  double value = 0;
-  // Out of range (a subnormal, for some implementations): strtod decides, as before.
-  if (std::from_chars(first, last, value).ec != std::errc()) return std::strtod(first, nullptr);
-  return value;
-#else
-  (void)last;
-  return std::strtod(first, nullptr);
-#endif
-}
-
 // Shortest of %.15g/%.16g/%.17g that reads back bit-identically: compact
 // files for "nice" numbers, exact round trip for all.
 void append_number(std::string& out, double value) {
@@ -51,10 +40,29 @@ void append_number(std::string& out, double value) {
   }
   char buffer[32];
   char* end = buffer;
+#ifdef __cpp_lib_to_chars
+  // The shortest digits that read back, d of them, decide it in one
+  // formatting (instead of up to three, each parsed back): %.15g reads back
+  // exactly when d ≤ 15, and otherwise %.{d}g is the first that does — the
+  // correctly rounded d digits read back when any d digits do, because the
+  // decimals that read back as a double lie in an interval centred on it.
+  // Not so at a power of two (the next double down is half as far): the
+  // loop below.
+  int exponent = 0;
+  if (std::abs(std::frexp(value, &exponent)) != 0.5) {
+    char digits[32];
+    const char* digits_end = std::to_chars(digits, digits + sizeof digits, value, std::chars_format::scientific).ptr;
+    int d = 0;
+    for (const char* c = digits; c < digits_end && *c != 'e'; ++c) d += *c >= '0' && *c <= '9';
+    end = format_general(buffer, buffer + sizeof buffer - 1, value, std::max(15, d));
+    out.append(buffer, end);
+    return;
+  }
+#endif
   for (int precision = 15; precision <= 17; ++precision) {
     end = format_general(buffer, buffer + sizeof buffer - 1, value, precision);
     *end = '\0';
-    if (precision == 17 || parse_double(buffer, end) == value) break;
+    if (precision == 17 || std::strtod(buffer, nullptr) == value) break;
   }
   out.append(buffer, end);
 }
