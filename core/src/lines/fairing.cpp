@@ -10,14 +10,16 @@ namespace {
 constexpr size_t kLinesPerThread = 64;
 
 // Discrete curve Laplacian ½(x_{i−1} + x_{i+1}) − x_i; zero at fixed ends.
+// The ends apart, so that the interior needs no wrap-around index (n ≥ 3).
 void laplacian(const std::vector<Vec3>& x, bool closed, std::vector<Vec3>& out) {
   const size_t n = x.size();
-  out.assign(n, Vec3::Zero());
-  for (size_t i = 0; i < n; ++i) {
-    if (!closed && (i == 0 || i + 1 == n)) continue;
-    const Vec3& prev = x[(i + n - 1) % n];
-    const Vec3& next = x[(i + 1) % n];
-    out[i] = 0.5 * (prev + next) - x[i];
+  out.resize(n);
+  for (size_t i = 1; i + 1 < n; ++i) out[i] = 0.5 * (x[i - 1] + x[i + 1]) - x[i];
+  if (closed) {
+    out[0] = 0.5 * (x[n - 1] + x[1]) - x[0];
+    out[n - 1] = 0.5 * (x[n - 2] + x[0]) - x[n - 1];
+  } else {
+    out[0] = out[n - 1] = Vec3::Zero();
   }
 }
 
