@@ -83,7 +83,7 @@ Topology cut_topology(const Topology& input, const CutMesh& cut) {
   };
   std::vector<Piece> pieces;
   for (uint32_t e = 0; e < ne; ++e) {
-    const auto [p, q] = input.edges[e];
+    const uint32_t p = input.edges[e][0], q = input.edges[e][1];  // not a binding: the lambda below captures them
     if (!split[p] && !split[q]) continue;
     const auto [t0, t1] = input.edge_triangles[e];
     auto key = [&](uint32_t t) {
