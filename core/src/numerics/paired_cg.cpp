@@ -66,6 +66,7 @@ struct Pair {
 inline Pair operator+(Pair a, Pair b) { return {_mm_add_pd(a.v, b.v)}; }
 inline Pair operator-(Pair a, Pair b) { return {_mm_sub_pd(a.v, b.v)}; }
 inline Pair operator*(Pair a, Pair b) { return {_mm_mul_pd(a.v, b.v)}; }
+inline Pair operator/(Pair a, Pair b) { return {_mm_div_pd(a.v, b.v)}; }
 #else
 struct Pair {
   double a, b;
@@ -78,6 +79,7 @@ struct Pair {
 inline Pair operator+(Pair x, Pair y) { return {x.a + y.a, x.b + y.b}; }
 inline Pair operator-(Pair x, Pair y) { return {x.a - y.a, x.b - y.b}; }
 inline Pair operator*(Pair x, Pair y) { return {x.a * y.a, x.b * y.b}; }
+inline Pair operator/(Pair x, Pair y) { return {x.a / y.a, x.b / y.b}; }
 #endif
 
 // Σ a_ij v_j over entries [begin, end) of a row, both fields: weights holds
@@ -191,10 +193,10 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix) {
   // Weights first, then columns, each input array released once copied: at
   // most one and a half matrices are held, not two.
   a_.diagonal.resize(n);
-  inverse_diagonal_.resize(n);
+  roots_.resize(n);
   for (size_t k = 0; k < n; ++k) {
     a_.diagonal[k] = matrix.diagonal[order_[k]];
-    inverse_diagonal_[k] = 1.0 / a_.diagonal[k];
+    roots_[k] = std::sqrt(a_.diagonal[k]);
   }
   std::vector<double>().swap(matrix.diagonal);
   // Calls entry(input entry, output entry) in the output's order.
@@ -210,13 +212,19 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix) {
     }
   };
   weights_.resize(2 * matrix.weights.size());
+  std::vector<uint32_t> row(matrix.columns.size());  // the output row of each input entry
+  for (size_t k = 0; k < n; ++k)
+    for (uint32_t e = matrix.offsets[order_[k]]; e < matrix.offsets[order_[k] + 1]; ++e) row[e] = uint32_t(k);
   permute([&](uint32_t from, uint32_t to) {
-    const double w = matrix.weights[from];
+    // The product of the roots is the same both ways: A stays symmetric.
+    const double w = matrix.weights[from] /
+                     (roots_[row[from]] * roots_[position[matrix.columns[from] & SignedPairMatrix::kColumnMask]]);
     const uint32_t mask = matrix.columns[from] >> 30;
     weights_[2 * size_t{to}] = static_cast<float>(mask & 1 ? -w : w);
     weights_[2 * size_t{to} + 1] = static_cast<float>(mask & 2 ? -w : w);
   });
   std::vector<double>().swap(matrix.weights);
+  std::vector<uint32_t>().swap(row);
   a_.columns.resize(matrix.columns.size());
   permute([&](uint32_t from, uint32_t to) {
     a_.columns[to] = position[matrix.columns[from] & SignedPairMatrix::kColumnMask];
@@ -245,17 +253,23 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix) {
 // residual r = (D + L) r̃ that the stopping rule uses (before: three passes,
 // and a fourth near the tolerance; callgrind, the bench's bunny solves: 858
 // M → 830 M instructions, 737 M with the locals below, the same iterations).
+// The solver works on Â = S A S, S = diag(1 / √A(i,i)), whose diagonal is
+// 1: with D = I the sweeps read no diagonal and multiply by none (x̂ = S⁻¹
+// x and b̂ = S b on the way in, x = S x̂ out; the stopping rule's residual is
+// r = S⁻¹ r̂). PCG with the Gauss–Seidel M is the same method on either.
+// It iterates on the correction to the caller's x₀, whose first residual is
+// formed unscaled: a row with r = 0 and no entries (the smoothing's frozen
+// band, b = M x₀) keeps x₀ to the bit, not x₀ √d / √d.
 bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, double tolerance, int max_iterations,
                              const std::function<void(int)>& on_iteration) const {
   const SignedPairMatrix& a = a_;
-  const std::vector<double>& inverse_diagonal = inverse_diagonal_;
-  const size_t n = a.rows();
-  std::vector<double> xp(2 * n), rt(2 * n), p(2 * n);
+  const size_t n = roots_.size();
+  std::vector<double> xp(2 * n), rt(2 * n), p(2 * n), t(2 * n);
   for (size_t k = 0; k < n; ++k)
     for (int f = 0; f < 2; ++f)
       xp[2 * k + f] = x[2 * size_t{order_[k]} + f], rt[2 * k + f] = b[2 * size_t{order_[k]} + f];
-  std::vector<double>& t = x;  // the caller's vectors serve as scratch
-  std::vector<double>& u = b;
+  std::vector<double>& u = b;  // the caller's vector serves as scratch: S⁻¹ x₀ first
+  for (size_t j = 0; j < 2 * n; ++j) u[j] = xp[j] * roots_[j / 2];
   Sums partial;
   const BlockSums b2 = sum_blocks(n, partial, [&](size_t begin, size_t end, BlockSums& sums) {
     for (size_t j = 2 * begin; j < 2 * end; ++j) sums[j & 1] += rt[j] * rt[j];
@@ -264,7 +278,7 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
   // sweeps of every iteration: a store through Pair may alias anything, so
   // the compiler reloads whatever sits in memory, the closure's copies too,
   // once per row (bunny, solve: 830 M → 737 M instructions).
-  const double *const diagonal = a.diagonal.data(), *const inverse = inverse_diagonal.data();
+  const double *const root = roots_.data(), *const diagonal = a.diagonal.data();
   const uint32_t *const offsets = a.offsets.data(), *const lower = lower_begin_.data();
   const uint32_t* const columns = a.columns.data();
   const float* const weights = weights_.data();
@@ -272,32 +286,35 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
   const auto row_sum = [columns, weights](const double* v, uint32_t begin, uint32_t end) {
     return accumulate(columns, weights, v, begin, end);
   };
-  // r = b − A x, then r̃ = (D + L)⁻¹ r in place, colour by colour.
+  // r = b − A x₀ = b − D x₀ − S⁻¹ N̂ S⁻¹ x₀ and r̂ = S r, then r̃ = (I + L)⁻¹
+  // r̂ in place, colour by colour.
   BlockSums rr = sweep(colour_begin_, false, partial, [=](size_t begin, size_t end, BlockSums& sums) {
     Pair rsum = Pair::load(&sums[0]), dsum = Pair::load(&sums[2]);
     for (size_t i = begin; i < end; ++i) {
-      const Pair d = Pair::both(diagonal[i]);
-      const Pair r = Pair::load(rv + 2 * i) - d * Pair::load(xv + 2 * i) - row_sum(xv, offsets[i], offsets[i + 1]);
+      const Pair ri = Pair::both(root[i]);
+      const Pair r = Pair::load(rv + 2 * i) - Pair::both(diagonal[i]) * Pair::load(xv + 2 * i) -
+                     ri * row_sum(uv, offsets[i], offsets[i + 1]);
       rsum = rsum + r * r;
-      const Pair z = (r - row_sum(rv, lower[i], offsets[i + 1])) * Pair::both(inverse[i]);
+      const Pair z = r / ri - row_sum(rv, lower[i], offsets[i + 1]);
       z.store(rv + 2 * i);
-      dsum = dsum + z * z * d;
+      dsum = dsum + z * z;
     }
     rsum.store(&sums[0]), dsum.store(&sums[2]);
   });
-  double rz[2] = {rr[2], rr[3]};  // ⟨r̃, D r̃⟩ per field
+  std::fill(xp.begin(), xp.end(), 0.0);  // the correction S⁻¹ (x − x₀)
+  double rz[2] = {rr[2], rr[3]};         // ⟨r̃, r̃⟩ per field
   bool active[2];
   const double limit[2] = {tolerance * tolerance * b2[0], tolerance * tolerance * b2[1]};
   for (int k = 0; k < 2; ++k) {
     // As Eigen: a zero right-hand side has the solution 0.
     if (b2[k] == 0) {
-      for (size_t i = 0; i < n; ++i) xp[2 * i + k] = 0;
+      for (size_t i = 0; i < n; ++i) x[2 * i + k] = 0;
       active[k] = false;
     } else {
       active[k] = rr[k] > limit[k];
     }
   }
-  // ‖r‖² / ⟨r̃, D r̃⟩ at the last iterate whose true residual was formed.
+  // ‖r‖² / ⟨r̃, r̃⟩ at the last iterate whose true residual was formed.
   double ratio[2];
   for (int k = 0; k < 2; ++k) ratio[k] = rz[k] > 0 ? rr[k] / rz[k] : 0.0;
   // From the first iteration if the residual is within a factor kNearFactor
@@ -307,58 +324,54 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
   double beta[2] = {0, 0};
   for (int it = 0; it < max_iterations && (active[0] || active[1]); ++it) {
     const Pair keep = Pair::of(active[0] ? 1.0 : 0.0, active[1] ? 1.0 : 0.0), beta_pair = Pair::of(beta[0], beta[1]);
-    // Last colour first: p = D r̃ + β p, t = (D + U)⁻¹ p, and ⟨p, Ã p⟩ =
-    // ⟨t, A t⟩ (as (D + U)ᵀ = D + L) = Σ t_i (D t_i + 2 (U t)_i) from the
+    // Last colour first: p = r̃ + β p, t = (I + U)⁻¹ p, and ⟨p, Ã p⟩ =
+    // ⟨t, A t⟩ (as (I + U)ᵀ = I + L) = Σ t_i (t_i + 2 (U t)_i) from the
     // sums this sweep forms anyway: α is known before the second sweep.
     const BlockSums pq = sweep(colour_begin_, true, partial, [=](size_t begin, size_t end, BlockSums& sums) {
-      const double *const diagonal_ = diagonal, *const inverse_ = inverse;
       const uint32_t *const offsets_ = offsets, *const lower_ = lower, *const columns_ = columns;
       const float* const weights_ = weights;
       double *const rv_ = rv, *const pv_ = pv, *const tv_ = tv;
       const Pair keep_ = keep, beta_ = beta_pair;
       Pair sum = Pair::load(&sums[0]);
       for (size_t i = begin; i < end; ++i) {
-        const Pair d = Pair::both(diagonal_[i]);
-        const Pair pi = keep_ * (Pair::load(rv_ + 2 * i) * d + beta_ * Pair::load(pv_ + 2 * i));
+        const Pair pi = keep_ * (Pair::load(rv_ + 2 * i) + beta_ * Pair::load(pv_ + 2 * i));
         pi.store(pv_ + 2 * i);
-        const Pair ut = accumulate(columns_, weights_, tv_, offsets_[i], lower_[i]),
-                   ti = (pi - ut) * Pair::both(inverse_[i]);
+        const Pair ut = accumulate(columns_, weights_, tv_, offsets_[i], lower_[i]), ti = pi - ut;
         ti.store(tv_ + 2 * i);
-        sum = sum + ti * (d * ti + Pair::both(2.0) * ut);
+        sum = sum + ti * (ti + Pair::both(2.0) * ut);
       }
       sum.store(&sums[0]);
     });
     double alpha[2];
     for (int k = 0; k < 2; ++k) alpha[k] = active[k] ? rz[k] / pq[k] : 0.0;
     const Pair alpha_pair = Pair::of(alpha[0], alpha[1]);
-    // First colour first: u = (D + L)⁻¹ (p − D t), Ã p = t + u; x += α t,
+    // First colour first: u = (I + L)⁻¹ (p − t), Ã p = t + u; x += α t,
     // r̃ −= α Ã p; and, once the residual is near the tolerance, the true
     // residual r = (D + L) r̃, whose L part reads rows of earlier colours,
     // updated already, over the entries that u reads.
     const auto second = [=](auto form_residual, size_t begin, size_t end, BlockSums& s) {
-      const double *const diagonal_ = diagonal, *const inverse_ = inverse;
+      const double* const root_ = root;
       const uint32_t *const offsets_ = offsets, *const lower_ = lower, *const columns_ = columns;
       const float* const weights_ = weights;
       double *const xv_ = xv, *const rv_ = rv, *const pv_ = pv, *const tv_ = tv, *const uv_ = uv;
       const Pair alpha_ = alpha_pair;
       Pair norm = Pair::load(&s[0]), dot = Pair::load(&s[2]);
       for (size_t i = begin; i < end; ++i) {
-        const Pair d = Pair::both(diagonal_[i]);
         Pair lu, lr;
         if constexpr (decltype(form_residual)::value)
           accumulate2(columns_, weights_, uv_, rv_, lower_[i], offsets_[i + 1], lu, lr);
         else
           lu = accumulate(columns_, weights_, uv_, lower_[i], offsets_[i + 1]);
-        const Pair ti = Pair::load(tv_ + 2 * i), ui = (Pair::load(pv_ + 2 * i) - d * ti - lu) * Pair::both(inverse_[i]);
+        const Pair ti = Pair::load(tv_ + 2 * i), ui = Pair::load(pv_ + 2 * i) - ti - lu;
         ui.store(uv_ + 2 * i);
         (Pair::load(xv_ + 2 * i) + alpha_ * ti).store(xv_ + 2 * i);
         const Pair ri = Pair::load(rv_ + 2 * i) - alpha_ * (ti + ui);
         ri.store(rv_ + 2 * i);
         if constexpr (decltype(form_residual)::value) {
-          const Pair r = d * ri + lr;
+          const Pair r = (ri + lr) * Pair::both(root_[i]);
           norm = norm + r * r;
         }
-        dot = dot + d * ri * ri;
+        dot = dot + ri * ri;
       }
       norm.store(&s[0]), dot.store(&s[2]);
     };
@@ -374,7 +387,7 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
         if (sums[2 + k] > 0) ratio[k] = sums[k] / sums[2 + k];
       }
       // The next residual, predicted from this iteration's reduction of
-      // ⟨r̃, D r̃⟩ and the ratio at the last true residual.
+      // ⟨r̃, r̃⟩ and the ratio at the last true residual.
       const double predicted = ratio[k] * sums[2 + k] * (sums[2 + k] / rz[k]);
       near = near || (active[k] && !(predicted > kNearFactor * limit[k]));
       beta[k] = active[k] ? sums[2 + k] / rz[k] : 0.0;
@@ -383,7 +396,9 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
     check = check || near;
     if (on_iteration) on_iteration(it + 1);
   }
-  for (size_t k = 0; k < n; ++k) x[2 * size_t{order_[k]}] = xp[2 * k], x[2 * size_t{order_[k]} + 1] = xp[2 * k + 1];
+  for (size_t k = 0; k < n; ++k)
+    for (int f = 0; f < 2; ++f)
+      if (b2[f] != 0) x[2 * size_t{order_[k]} + f] += xp[2 * k + f] / roots_[k];
   for (double v : x)
     if (!std::isfinite(v)) return false;
   return !active[0] && !active[1];

@@ -59,7 +59,8 @@ std::vector<double> random_pairs(size_t rows, unsigned seed) {
 }
 
 // ‖b_k − A_k x_k‖ / ‖b_k‖ for field k, summed directly; with `rounded`, the
-// off-diagonal entries σw rounded to float, as the solver stores them.
+// off-diagonal entries as the solver stores them: σw / √(a_ii a_jj) rounded
+// to float (the system scaled to a unit diagonal), scaled back.
 double relative_residual(const SignedPairMatrix& a, const std::vector<double>& b, const std::vector<double>& x, int k,
                          bool rounded = true) {
   double rr = 0, bb = 0;
@@ -68,7 +69,8 @@ double relative_residual(const SignedPairMatrix& a, const std::vector<double>& b
     for (uint32_t e = a.offsets[i]; e < a.offsets[i + 1]; ++e) {
       const uint32_t c = a.columns[e];
       const double sign = (c >> (30 + k)) & 1 ? -1.0 : 1.0;
-      const double w = rounded ? double{static_cast<float>(sign * a.weights[e])} : sign * a.weights[e];
+      const double scale = std::sqrt(a.diagonal[i]) * std::sqrt(a.diagonal[c & SignedPairMatrix::kColumnMask]);
+      const double w = rounded ? double{static_cast<float>(sign * a.weights[e] / scale)} * scale : sign * a.weights[e];
       y += w * x[2 * size_t{c & SignedPairMatrix::kColumnMask} + k];
     }
     rr += (b[2 * i + k] - y) * (b[2 * i + k] - y);
@@ -198,4 +200,27 @@ TEST_CASE("the paired solver reorders rows by breadth-first search over every co
     if (input_of[r] >= 2 * grid_rows)
       for (int k = 0; k < 2; ++k)
         CHECK(std::abs(b[2 * r + k] - a.diagonal[r] * x[2 * r + k]) <= 1.01e-6 * std::sqrt(bb[k]));
+}
+
+TEST_CASE("rows without entries whose start already solves them keep it to the bit", "[numerics]") {
+  // The smoothing's frozen band: weight 0 leaves a vertex without entries,
+  // and b = M x₀ there. The solver scales rows by √a_ii; it must not round
+  // such a row's x₀ through the scaling (x₀ √d / √d).
+  SignedPairMatrix a = grid_system(40);
+  const uint32_t grid_rows = static_cast<uint32_t>(a.rows()), rows = grid_rows + 50;
+  std::mt19937 random(13);
+  std::uniform_real_distribution<double> value(-1.0, 1.0), mass(0.1, 3.0);
+  for (uint32_t r = grid_rows; r < rows; ++r) a.diagonal.push_back(mass(random)), a.offsets.push_back(a.offsets.back());
+  std::vector<double> x0(2 * rows), b = random_pairs(rows, 17);
+  for (double& v : x0) v = value(random);
+  for (uint32_t r = grid_rows; r < rows; ++r)
+    for (int k = 0; k < 2; ++k) b[2 * r + k] = a.diagonal[r] * x0[2 * r + k];
+  const SignedPairSolver solver(a);
+  std::vector<double> scratch = b, x = x0;
+  REQUIRE(solver.solve(scratch, x, 1e-6, 500));
+  size_t kept = 0;
+  for (uint32_t r = grid_rows; r < rows; ++r)
+    for (int k = 0; k < 2; ++k) kept += x[2 * r + k] == x0[2 * r + k];
+  CHECK(kept == 2 * size_t{rows - grid_rows});
+  CHECK(relative_residual(a, b, x, 0) <= 1.01e-6);
 }

@@ -5,7 +5,11 @@
 // off-diagonal entries. Conjugate gradients on both in lockstep read each
 // matrix entry once for both fields, which is what a sparse matrix-vector
 // product is limited by. The solver stores an entry as its column and the
-// pair (σ_0 w, σ_1 w) in float (12 bytes, no sign to apply per product): the
+// pair (σ_0 w, σ_1 w) / √(a_ii a_jj) in float (12 bytes, no sign to apply
+// per product; the system scaled to a unit diagonal, so that no sweep reads
+// a diagonal or its inverse: 32 of ≈ 340 bytes per row and iteration, and
+// bunny 397 M → 379 M instructions, last-level misses −18 %, the same
+// iterations on the bunny, 1.1M and the dragon): the
 // system it solves differs from the double one by 2⁻²⁴ relative per entry,
 // a residual below 10⁻⁷ where the smoothing stops at 10⁻⁶ (measured on the
 // bunny, its 1.1M subdivision and the dragon: zero crossings against a 10⁻¹²
@@ -83,10 +87,10 @@ class SignedPairSolver {
  private:
   SignedPairMatrix a_;           // rows in colour order; entries: later colours | earlier ones;
                                  // columns without sign bits, weights empty:
-  std::vector<float> weights_;   // (σ_0 w, σ_1 w) per entry, rounded to float
+  std::vector<float> weights_;   // (σ_0 w, σ_1 w) / √(a_ii a_jj) per entry, rounded to float
   std::vector<uint32_t> order_;  // the input row of each row of a_
   std::vector<uint32_t> colour_begin_, lower_begin_;
-  std::vector<double> inverse_diagonal_;
+  std::vector<double> roots_;  // √A(i,i): the solver works on the system scaled to a unit diagonal
 };
 
 }  // namespace crestline
