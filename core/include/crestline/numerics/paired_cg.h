@@ -34,17 +34,31 @@
 // Each colour's rows are in breadth-first order (6 % fewer cache misses at
 // 1.1M); an iteration is two passes over the rows, one per sweep, that
 // stream the matrix once and five vectors of the pair, so the iteration
-// count is what is left to cut. The true residual (the stopping rule's)
-// costs one more gather of r̃ per entry of L: it is formed only from the
-// iteration whose predicted residual is within 4× (in norm) of the limit,
-// predicted from ⟨r̃, D r̃⟩, its last reduction and its ratio to ‖r‖² at the
-// last check (4.6–5.7 over the bunny's solves): the same iterates and
-// stopping iterations on the bunny, 1.1M and the dragon, instructions −4.6 %
-// on the bunny. Measured at 1.1M and dropped: SSOR with
+// count is what is left to cut. What an iteration still cost was cut in
+// three ways (paired_cg.cpp; callgrind of the 5 smoothing steps with a
+// 4 MB last-level cache, bunny and 1.1M; the same iterations, 57 and 94,
+// and 248 on the dragon): the true residual (the stopping rule's: one more
+// gather of r̃ per entry of L) is formed only from the iteration whose
+// residual, predicted from ⟨r̃, r̃⟩, its last reduction and its ratio to ‖r‖²
+// at the last check (4.6–5.7 over the bunny's solves), is within 4× (in
+// norm) of the limit: the same iterates, bunny 416.9 M → 397.5 M
+// instructions; the unit diagonal (above): 379.2 M, and the two together
+// at 1.1M 9.73 G → 8.65 G instructions, last-level misses 371 M → 320 M; t
+// in float: misses 320 M → 296 M (bunny 4.53 M → 3.85 M) for 2 % more
+// instructions (8.85 G; bunny 387.5 M). At 1.1M −9 % instructions and
+// −20 % misses in all. Measured at 1.1M and dropped: SSOR with
 // ω = 1.3 or 1.6 instead of 1 (the bench's two smoothings: 221 and 288
 // iterations against 199); starting each step from the A-optimal
 // combination of x_k and its last two differences (94 → 90: the first
 // residual is ≈ 10⁻² of b, and four orders of magnitude remain to cut).
+//
+// Left to cut: the dragon (871k) takes 44–57 iterations per solve against
+// 17–23 at 1.1M. R = t·Σ_q w_pq / m_p there has its 90th and 99th
+// percentiles and maximum at 47, 128 and 3.3·10⁵ (1.1M: 6.6, 14, 3.2·10³;
+// bunny: 7.1, 10, 144): clusters of vertices far smaller than the mean
+// carry the slow modes. A multiplicative coarse correction over signed
+// aggregates of strongly coupled vertices, with these sweeps as smoother,
+// would aim at them (not tried: it pays only below half the iterations).
 #include <cstddef>
 #include <cstdint>
 #include <functional>
