@@ -45,8 +45,11 @@
 // instructions; the unit diagonal (above): 379.2 M, and the two together
 // at 1.1M 9.73 G → 8.65 G instructions, last-level misses 371 M → 320 M; t
 // in float: misses 320 M → 296 M (bunny 4.53 M → 3.85 M) for 2 % more
-// instructions (8.85 G; bunny 387.5 M). At 1.1M −9 % instructions and
-// −20 % misses in all. Measured at 1.1M and dropped: SSOR with
+// instructions. As landed (with the correction form that keeps the frozen
+// band exact): 1.1M 9.73 G → 8.94 G instructions (−8 %), misses 371 M →
+// 297 M (−20 %); bunny 416.9 M → 393.1 M (−6 %), 5.53 M → 4.08 M (−26 %);
+// dragon 17.30 G → 15.35 G (−11 %), 657 M → 513 M (−22 %). Measured at
+// 1.1M and dropped: SSOR with
 // ω = 1.3 or 1.6 instead of 1 (the bench's two smoothings: 221 and 288
 // iterations against 199); starting each step from the A-optimal
 // combination of x_k and its last two differences (94 → 90: the first
