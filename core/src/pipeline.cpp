@@ -105,10 +105,11 @@ void Pipeline::measure_creases() {
   crease_angles_valid_ = true;
 }
 
-void Pipeline::update_boundaries() {
-  if (!boundaries_dirty_) return;
+std::optional<CreaseResult> Pipeline::update_boundaries() {
+  if (!boundaries_dirty_) return std::nullopt;
   const Topology& topology = this->topology();
   std::vector<uint32_t> edges;
+  std::optional<CreaseResult> reusable;
   if (options_.creases.boundaries) {
     measure_creases();
     CreaseOptions automatic = options_.creases;
@@ -116,7 +117,7 @@ void Pipeline::update_boundaries() {
     CreaseResult selected = select_creases(local_input(), topology, crease_angles_, automatic, 1.0);
     edges = selected.edges;
     // With the automatic angle the creases stage selects exactly these: kept for it.
-    if (options_.creases.angle < 0 && creases_dirty_) automatic_creases_ = std::move(selected);
+    if (options_.creases.angle < 0 && creases_dirty_) reusable = std::move(selected);
     // Not on noisy components, where creases are not to be trusted.
     edges.erase(std::remove_if(edges.begin(), edges.end(),
                                [&](uint32_t e) {
@@ -127,7 +128,7 @@ void Pipeline::update_boundaries() {
     std::sort(edges.begin(), edges.end());
   }
   boundaries_dirty_ = false;
-  if (edges == boundary_edges_) return;
+  if (edges == boundary_edges_) return reusable;
   boundary_edges_ = std::move(edges);
   mark_dirty(Stage::Presmooth);
   cut_ = CutMesh();
@@ -139,18 +140,18 @@ void Pipeline::update_boundaries() {
   cut_topology_ = cut_active_ ? cut_topology(topology, cut_) : Topology();
   cut_components_.clear();
   if (cut_active_) cut_components_ = on_cut_vertices(cut_, frames_.vertex_component);
+  return reusable;
 }
 
-double Pipeline::select_crease_lines() {
+double Pipeline::select_crease_lines(std::optional<CreaseResult> automatic) {
   double seconds = 0;
   {
     StageTimer timer(seconds);
     measure_creases();
     // In the working frame (every component's mean edge 1, as the spur and
     // turn lengths expect), then mapped back per component.
-    creases_ = automatic_creases_ ? std::move(*automatic_creases_)
-                                  : select_creases(local_input(), topology(), crease_angles_, options_.creases, 1.0);
-    automatic_creases_.reset();
+    creases_ = automatic ? std::move(*automatic)
+                         : select_creases(local_input(), topology(), crease_angles_, options_.creases, 1.0);
     for (size_t i = 0; i < creases_.lines.size(); ++i) {
       const uint32_t component = frames_.vertex_component[creases_.line_vertex[i]];
       creases_.lines[i] = to_user(std::move(creases_.lines[i]), frames_, component);
@@ -170,21 +171,23 @@ void Pipeline::run(const ProgressCallback& progress) {
     return report;
   };
   const bool boundaries_due = boundaries_dirty_;
+  const bool creases_due = creases_dirty_;
   double boundary_seconds = 0;
-  {
-    StageTimer timer(boundary_seconds);
-    update_boundaries();
-  }
+  double crease_seconds = 0;
   // The creases are selected now, while the input's adjacency and crease
   // angles are at hand (the boundaries read them too), so that while a cut
   // serves the smooth stages these need not be held through them: released
   // (at 1.1M triangles 50 and 24 bytes per triangle), rebuilt the same when
   // the crease options change (a new crease angle then takes the adjacency
   // and the measure again) or an SVG asks for the adjacency.
-  const bool creases_due = creases_dirty_;
-  double crease_seconds = 0;
-  if (creases_due) crease_seconds = select_crease_lines();
-  automatic_creases_.reset();
+  {
+    std::optional<CreaseResult> automatic_creases;
+    {
+      StageTimer timer(boundary_seconds);
+      automatic_creases = update_boundaries();
+    }
+    if (creases_due) crease_seconds = select_crease_lines(std::move(automatic_creases));
+  }  // an unused boundary selection is freed here, before the smooth stages
   if (cut_active_) {
     topology_ = Topology(), topology_valid_ = false;
     crease_angles_ = CreaseAngles(), crease_angles_valid_ = false;

@@ -160,8 +160,11 @@ class Pipeline {
   const Mesh& local_input();
   void release_local_input();
   void measure_creases();
-  void update_boundaries();
-  double select_crease_lines();  // the creases stage's work; returns its seconds
+  // Returns the boundaries' selection when it is also the creases' (the
+  // automatic angle, creases due), so that the creases stage need not select again.
+  std::optional<CreaseResult> update_boundaries();
+  // The creases stage's work; returns its seconds.
+  double select_crease_lines(std::optional<CreaseResult> automatic);
   const Mesh& smooth_input() const { return cut_active_ ? cut_.mesh : local_input_; }
   const std::vector<uint32_t>& smooth_components() const {
     return cut_active_ ? cut_components_ : frames_.vertex_component;
@@ -202,7 +205,6 @@ class Pipeline {
   std::vector<uint32_t> cut_components_;  // component of each cut vertex
   CreaseAngles crease_angles_;
   CreaseResult creases_;
-  std::optional<CreaseResult> automatic_creases_;  // within a run: the boundaries' selection, when it is the creases'
   double seconds_[static_cast<int>(Stage::Count)] = {};
   double topology_seconds_ = 0;
 };
