@@ -22,6 +22,20 @@ void group_by_bucket(size_t count, size_t buckets, const Visit& visit, std::vect
                      std::vector<T>& entries) {
   start.assign(buckets + 1, 0);
   const size_t parts = count < (size_t{1} << 15) ? 1 : std::min<size_t>(size_t(max_threads()), 8);
+  if (parts == 1) {
+    // One part: start[b + 1] counts bucket b, then holds where its next
+    // entry goes, and ends as bucket b + 1's start (no cursor array).
+    for (size_t i = 0; i < count; ++i) visit(i, [&](uint32_t b, const T&) { ++start[b + 1]; });
+    uint32_t sum = 0;
+    for (size_t b = 0; b < buckets; ++b) {
+      const uint32_t n = start[b + 1];
+      start[b + 1] = sum;
+      sum += n;
+    }
+    entries.resize(sum);
+    for (size_t i = 0; i < count; ++i) visit(i, [&](uint32_t b, const T& value) { entries[start[b + 1]++] = value; });
+    return;
+  }
   // next[p * buckets + b]: part p's count in bucket b, then where its next entry goes.
   std::vector<uint32_t> next(parts * buckets, 0);
   auto each_part = [&](const auto& body) {
@@ -85,7 +99,11 @@ struct HalfEdgeOrder {
   }
 };
 
-inline HalfEdgeOrder order_half_edges(const std::vector<Triangle>& tris, size_t vertex_count) {
+/// With `edges` given, also sets (*edges)[v + 1] to the number of
+/// undirected edges whose smaller end is v ((*edges)[0] = 0), counted while
+/// each vertex's entries are at hand rather than in another pass over them.
+inline HalfEdgeOrder order_half_edges(const std::vector<Triangle>& tris, size_t vertex_count,
+                                      std::vector<uint32_t>* edges = nullptr) {
   HalfEdgeOrder order;
   group_by_bucket(
       tris.size(), vertex_count,
@@ -99,18 +117,25 @@ inline HalfEdgeOrder order_half_edges(const std::vector<Triangle>& tris, size_t 
   // Each vertex's entries are sorted on their own: on every thread, with the
   // same result for any count.
   uint64_t* data = order.entries.data();
+  if (edges) edges->assign(vertex_count + 1, 0);
   parallel_for(vertex_count, [&](size_t begin, size_t end) {
     for (size_t v = begin; v < end; ++v) {
       uint64_t *first = data + order.start[v], *last = data + order.start[v + 1];
       if (last - first > 16) {
         std::sort(first, last);
-        continue;
+      } else {
+        for (uint64_t* i = first + 1; i < last; ++i) {  // insertion sort: a vertex has ~6
+          const uint64_t x = *i;
+          uint64_t* j = i;
+          for (; j > first && j[-1] > x; --j) *j = j[-1];
+          *j = x;
+        }
       }
-      for (uint64_t* i = first + 1; i < last; ++i) {  // insertion sort: a vertex has ~6
-        const uint64_t x = *i;
-        uint64_t* j = i;
-        for (; j > first && j[-1] > x; --j) *j = j[-1];
-        *j = x;
+      if (edges) {
+        uint32_t n = 0;
+        for (const uint64_t* i = first; i < last; ++i)
+          n += i == first || HalfEdgeOrder::far_end(*i) != HalfEdgeOrder::far_end(i[-1]);
+        (*edges)[v + 1] = n;
       }
     }
   });

@@ -92,10 +92,12 @@ struct Union {
 // representative (a vertex that joined no other) j < i within tolerance, or
 // represents itself. The grid is a flat open-addressing table from cell to a
 // list (through `next`) of the vertices in it: one probe per cell instead of
-// a node chase. Cells measure twice the tolerance, so the box of ±tolerance
-// (plus a margin of half a tolerance for rounding) around a vertex touches
-// at most two cells per axis: 1 to 8 probes instead of the 27 of
-// tolerance-sized cells. The result does not depend on the cells: exact
+// a node chase. Cells measure 16 tolerances, so the box of ±tolerance (plus
+// a margin of half a tolerance for rounding) around a vertex spans 3/16 of a
+// cell per axis: 1.7 probes on average (1 to 8), where cells of 2
+// tolerances took 15.6 (8 to 27). Vertices closer than a few cells are rare
+// at a tolerance of 1e-7 of the diagonal (seam copies sit at distance 0),
+// so the lists stay short. The result does not depend on the cells: exact
 // distances decide.
 // On several threads the table holds every vertex; the searches run on every thread and find
 // the earliest vertex within tolerance, which is the answer unless that
@@ -108,8 +110,10 @@ std::vector<uint32_t> weld(const std::vector<Vec3>& points, const std::vector<ui
   std::vector<uint32_t> representative(points.size());
   std::iota(representative.begin(), representative.end(), 0u);
   if (!(tolerance > 0)) return representative;
-  const double inv = 0.5 / tolerance;
-  if (!std::isfinite(inv)) return representative;  // a subnormal tolerance: nothing to weld
+  constexpr double kCell = 16;                                 // cell size in tolerances
+  constexpr double kReach = 1.5 / kCell;                       // tolerance and margin, in cells
+  if (!std::isfinite(0.5 / tolerance)) return representative;  // a subnormal tolerance: nothing to weld
+  const double inv = 1 / (kCell * tolerance);
   // Grid cell of a scaled coordinate, clamped so the conversion is defined.
   auto cell = [](double q) {
     constexpr double limit = 4e18;
@@ -153,9 +157,8 @@ std::vector<uint32_t> weld(const std::vector<Vec3>& points, const std::vector<ui
   // if `representatives_only`).
   auto earliest = [&](uint32_t i, bool representatives_only) {
     const Vec3 q = (points[i] - lo) * inv;
-    // A tolerance is half a cell; the search reaches 0.75 cells either way.
-    const int64_t x0 = cell(q.x() - 0.75), x1 = cell(q.x() + 0.75), y0 = cell(q.y() - 0.75), y1 = cell(q.y() + 0.75),
-                  z0 = cell(q.z() - 0.75), z1 = cell(q.z() + 0.75);
+    const int64_t x0 = cell(q.x() - kReach), x1 = cell(q.x() + kReach), y0 = cell(q.y() - kReach),
+                  y1 = cell(q.y() + kReach), z0 = cell(q.z() - kReach), z1 = cell(q.z() + kReach);
     uint32_t found = kNone;
     for (int64_t x = x0; x <= x1; ++x)
       for (int64_t y = y0; y <= y1; ++y)
@@ -197,6 +200,85 @@ std::vector<uint32_t> weld(const std::vector<Vec3>& points, const std::vector<ui
   return representative;
 }
 
+// Half-edges (corners) paired across their undirected edges: the partner
+// across a manifold edge, whether it runs the same way, and every corner of
+// a non-manifold edge cut. Also finds duplicate triangles (the same three
+// vertices): two of them share all three edges, and in each edge's group
+// they have the same opposite corner; conversely two half-edges of one edge
+// with the same opposite corner are a duplicate pair. So a clean mesh needs
+// no pass of its own to prove it has none.
+struct EdgePairs {
+  std::vector<uint32_t> partner;  // the corner across a manifold edge, kNone elsewhere
+  std::vector<uint8_t> same;      // partner runs the same way (the triangles disagree)
+  std::vector<uint8_t> cut;       // 3 per triangle, edge k = corners k, k+1
+  size_t nonmanifold = 0;         // edges of more than two triangles
+  size_t single = 0;              // edges of one triangle
+  bool duplicates = false;        // two triangles have the same three vertices
+};
+
+EdgePairs pair_half_edges(const std::vector<Triangle>& tris, size_t vertex_count) {
+  const size_t nt = tris.size();
+  EdgePairs out;
+  out.partner.assign(3 * nt, kNone);
+  out.same.assign(3 * nt, 0);
+  out.cut.assign(3 * nt, 0);
+  const detail::HalfEdgeOrder order = detail::order_half_edges(tris, vertex_count);
+  using H = detail::HalfEdgeOrder;
+  auto from = [&](uint32_t c) { return tris[c / 3][c % 3]; };
+  auto opposite = [&](uint32_t c) { return tris[c / 3][(c % 3 + 2) % 3]; };
+  std::atomic<size_t> nonmanifold{0}, single{0};
+  std::atomic<bool> duplicates{false};
+  parallel_for(vertex_count, [&](size_t begin, size_t end) {
+    size_t count = 0, singles = 0;
+    bool repeated = false;
+    order.for_each_edge(begin, end, [&](uint32_t, uint32_t, const uint64_t* first, const uint64_t* last) {
+      if (last - first == 1) {
+        ++singles;
+      } else if (last - first == 2) {
+        const uint32_t a = H::corner(first[0]), b = H::corner(first[1]);
+        out.partner[a] = b, out.partner[b] = a;
+        out.same[a] = out.same[b] = from(a) == from(b);
+        repeated |= opposite(a) == opposite(b);
+      } else {
+        ++count;
+        for (const uint64_t* h = first; h < last; ++h) {
+          out.cut[H::corner(*h)] = 1;
+          for (const uint64_t* g = first; g < h; ++g) repeated |= opposite(H::corner(*g)) == opposite(H::corner(*h));
+        }
+      }
+    });
+    nonmanifold += count;
+    single += singles;
+    if (repeated) duplicates = true;
+  });
+  out.nonmanifold = nonmanifold;
+  out.single = single;
+  out.duplicates = duplicates;
+  return out;
+}
+
+// Drops triangles with the same vertex set as an earlier one: bucketed by
+// the smallest vertex, ordered by the other two (one key).
+void drop_duplicates(std::vector<Triangle>& tris, size_t vertex_count, RepairReport& report) {
+  std::vector<uint64_t> larger(tris.size());
+  for (size_t t = 0; t < tris.size(); ++t) {
+    const Triangle k = sorted_corners(tris[t]);
+    larger[t] = uint64_t{k[1]} << 32 | k[2];
+  }
+  const auto smallest = [&](size_t t) { return std::min({tris[t][0], tris[t][1], tris[t][2]}); };
+  const std::vector<uint32_t> keyed = bucket_order(tris.size(), vertex_count, smallest, [&](uint32_t x, uint32_t y) {
+    return larger[x] != larger[y] ? larger[x] < larger[y] : x < y;
+  });
+  std::vector<uint8_t> keep(tris.size(), 1);
+  for (size_t i = 1; i < keyed.size(); ++i)
+    if (larger[keyed[i]] == larger[keyed[i - 1]] && smallest(keyed[i]) == smallest(keyed[i - 1]))
+      keep[keyed[i]] = 0, ++report.duplicate_triangles;
+  size_t n = 0;
+  for (size_t t = 0; t < tris.size(); ++t)
+    if (keep[t]) tris[n++] = tris[t];
+  tris.resize(n);
+}
+
 // Orients triangles consistently across shared edges, component by
 // component; edges that cannot agree (non-orientable surfaces) are cut.
 // Returns per-corner "edge is cut" flags and the component of each triangle.
@@ -207,57 +289,31 @@ struct Orientation {
   size_t single_edges = 0;  // edges of one triangle: boundary edges whatever the repair does
 };
 
-Orientation orient(std::vector<Triangle>& tris, const std::vector<Vec3>& points, RepairReport& report) {
+Orientation orient(std::vector<Triangle>& tris, const std::vector<Vec3>& points, EdgePairs pairs,
+                   RepairReport& report) {
   const size_t nt = tris.size();
   Orientation out;
-  out.cut.assign(3 * nt, 0);
+  out.cut = std::move(pairs.cut);
   out.component.assign(nt, kNone);
-
-  // Half-edges (corners) grouped by undirected edge.
-  std::vector<uint32_t> partner(3 * nt, kNone);  // the corner across a manifold edge
-  const detail::HalfEdgeOrder order = detail::order_half_edges(tris, points.size());
-  std::atomic<size_t> nonmanifold{0}, single{0};
-  parallel_for(points.size(), [&](size_t begin, size_t end) {
-    size_t count = 0, singles = 0;
-    order.for_each_edge(begin, end, [&](uint32_t, uint32_t, const uint64_t* first, const uint64_t* last) {
-      using H = detail::HalfEdgeOrder;
-      if (last - first == 1) {
-        ++singles;
-      } else if (last - first == 2) {
-        partner[H::corner(first[0])] = H::corner(first[1]);
-        partner[H::corner(first[1])] = H::corner(first[0]);
-      } else if (last - first > 2) {
-        ++count;
-        for (const uint64_t* h = first; h < last; ++h) out.cut[H::corner(*h)] = 1;
-      }
-    });
-    nonmanifold += count;
-    single += singles;
-  });
-  report.nonmanifold_edges += nonmanifold;
-  out.single_edges = single;
-
-  // same[c]: corner c's partner runs the same way (the two triangles
-  // disagree while neither is flipped); on every thread.
-  std::vector<uint8_t> same(3 * nt, 0);
-  parallel_for(nt, [&](size_t begin, size_t end) {
-    for (size_t c = 3 * begin; c < 3 * end; ++c) {
-      const uint32_t other = partner[c];
-      if (other != kNone) same[c] = tris[c / 3][c % 3] == tris[other / 3][other % 3];
-    }
-  });
+  report.nonmanifold_edges += pairs.nonmanifold;
+  out.single_edges = pairs.single;
+  const std::vector<uint32_t>& partner = pairs.partner;
+  std::vector<uint8_t>& same = pairs.same;
 
   // The traversal, component by component: a triangle is flipped relative to
   // the component's first triangle (its seed, the smallest index) when an odd
   // number of disagreeing edges lead to it. `members` lists every component's
   // triangles in traversal order, component c from member_start[c].
-  std::vector<uint8_t> flipped(nt, 0);
+  // A component is closed when none of its corners lacks a partner or is
+  // cut (a cut made here is between two of its own triangles).
+  std::vector<uint8_t> flipped(nt, 0), closed;
   std::vector<uint32_t> stack, members, member_start;
   members.reserve(nt);
   for (uint32_t seed = 0; seed < nt; ++seed) {
     if (out.component[seed] != kNone) continue;
     const uint32_t c = static_cast<uint32_t>(out.components++);
     member_start.push_back(static_cast<uint32_t>(members.size()));
+    closed.push_back(1);
     stack.assign(1, seed);
     out.component[seed] = c;
     while (!stack.empty()) {
@@ -266,7 +322,10 @@ Orientation orient(std::vector<Triangle>& tris, const std::vector<Vec3>& points,
       members.push_back(t);
       for (uint32_t corner = 3 * t; corner < 3 * t + 3; ++corner) {
         const uint32_t other = partner[corner];
-        if (other == kNone || out.cut[corner]) continue;
+        if (other == kNone || out.cut[corner]) {
+          closed[c] = 0;
+          continue;
+        }
         const uint32_t u = other / 3;
         const uint8_t disagree = same[corner] ^ flipped[t];
         if (out.component[u] == kNone) {
@@ -275,6 +334,7 @@ Orientation orient(std::vector<Triangle>& tris, const std::vector<Vec3>& points,
           stack.push_back(u);
         } else if (disagree != flipped[u]) {
           out.cut[corner] = out.cut[other] = 1;  // non-orientable here
+          closed[c] = 0;
         }
       }
     }
@@ -286,10 +346,6 @@ Orientation orient(std::vector<Triangle>& tris, const std::vector<Vec3>& points,
   // the first corner of its component, in units of the component's first
   // edge (the same sign at any position and scale), on every thread; each
   // component's terms are then added in traversal order.
-  std::vector<uint8_t> closed(out.components, 1);
-  for (uint32_t t = 0; t < nt; ++t)
-    for (uint32_t corner = 3 * t; corner < 3 * t + 3; ++corner)
-      if (partner[corner] == kNone || out.cut[corner]) closed[out.component[t]] = 0;
   std::vector<double> volume(nt, 0);
   parallel_for(nt, [&](size_t begin, size_t end) {
     for (size_t t = begin; t < end; ++t) {
@@ -543,32 +599,18 @@ RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options)
       ++(status[t] == kNonFinite ? report.nonfinite_triangles : report.degenerate_triangles);
   }
   status = std::vector<uint8_t>();
-  {
-    // Duplicates: triangles with the same vertex set; the first one stays.
-    // Bucketed by the smallest vertex, ordered by the other two (one key).
-    std::vector<uint64_t> larger(tris.size());
-    for (size_t t = 0; t < tris.size(); ++t) {
-      const Triangle k = sorted_corners(tris[t]);
-      larger[t] = uint64_t{k[1]} << 32 | k[2];
-    }
-    const auto smallest = [&](size_t t) { return std::min({tris[t][0], tris[t][1], tris[t][2]}); };
-    const std::vector<uint32_t> keyed = bucket_order(tris.size(), points.size(), smallest, [&](uint32_t x, uint32_t y) {
-      return larger[x] != larger[y] ? larger[x] < larger[y] : x < y;
-    });
-    std::vector<uint8_t> keep(tris.size(), 1);
-    for (size_t i = 1; i < keyed.size(); ++i)
-      if (larger[keyed[i]] == larger[keyed[i - 1]] && smallest(keyed[i]) == smallest(keyed[i - 1]))
-        keep[keyed[i]] = 0, ++report.duplicate_triangles;
-    size_t n = 0;
-    for (size_t t = 0; t < tris.size(); ++t)
-      if (keep[t]) tris[n++] = tris[t];
-    tris.resize(n);
-  }
   if (tris.empty())
     throw Error(ErrorKind::InvalidInput,
                 "no usable triangle remains (all are degenerate or have non-finite coordinates).");
 
-  Orientation orientation = orient(tris, points, report);
+  // Duplicates (the same vertex set; the first one stays) are found while
+  // the half-edges are paired, and only a mesh that has some is paired again.
+  EdgePairs pairs = pair_half_edges(tris, points.size());
+  if (pairs.duplicates) {
+    drop_duplicates(tris, points.size(), report);
+    pairs = pair_half_edges(tris, points.size());
+  }
+  Orientation orientation = orient(tris, points, std::move(pairs), report);
   report.components = orientation.components;
   split_fans(tris, points, orientation.cut, report);
 

@@ -14,18 +14,13 @@ Topology build_topology(const Mesh& mesh) {
 
   // Half-edges grouped by undirected edge, in (smaller end, larger end,
   // corner) order: edges are numbered in that order.
-  const detail::HalfEdgeOrder order = detail::order_half_edges(mesh.triangles, nv);
+  // Edges are numbered vertex by vertex: each vertex's count of edges
+  // (counted as the order is built), then every vertex's edges numbered from
+  // the sum of the counts before it, on every thread.
+  std::vector<uint32_t> first_edge;
+  const detail::HalfEdgeOrder order = detail::order_half_edges(mesh.triangles, nv, &first_edge);
   topo.triangle_edges.assign(nt, {kNone, kNone, kNone});
   using H = detail::HalfEdgeOrder;
-  // Edges are numbered vertex by vertex: each vertex's count of edges, then
-  // every vertex's edges numbered from the sum of the counts before it, on
-  // every thread.
-  std::vector<uint32_t> first_edge(nv + 1, 0);
-  parallel_for(nv, [&](size_t begin, size_t end) {
-    for (size_t v = begin; v < end; ++v)
-      for (uint32_t i = order.start[v]; i < order.start[v + 1]; ++i)
-        first_edge[v + 1] += i == order.start[v] || H::far_end(order.entries[i]) != H::far_end(order.entries[i - 1]);
-  });
   for (size_t v = 0; v < nv; ++v) first_edge[v + 1] += first_edge[v];
   const size_t edge_count = first_edge[nv];
   topo.edges.resize(edge_count);

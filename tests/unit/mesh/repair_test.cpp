@@ -41,6 +41,14 @@ double signed_volume(const Mesh& m) {
   return v;
 }
 
+RepairResult repair_on(int threads, const TriangleSoup& soup) {
+  const int before = max_threads();
+  set_max_threads(threads);
+  RepairResult r = repair_mesh(soup);
+  set_max_threads(before);
+  return r;
+}
+
 }  // namespace
 
 TEST_CASE("repair welds seam vertices and orients a closed mesh outwards", "[repair]") {
@@ -343,12 +351,7 @@ TEST_CASE("repair gives the same mesh and report on 1 and 2 threads", "[repair][
     add_triangle(s, a, b, top);
     add_triangle(s, s.indices[3 * t + 2], top + 1, top);
   }
-  const int before = max_threads();
-  set_max_threads(1);
-  const RepairResult one = repair_mesh(s);
-  set_max_threads(2);
-  const RepairResult two = repair_mesh(s);
-  set_max_threads(before);
+  const RepairResult one = repair_on(1, s), two = repair_on(2, s);
   CHECK(one.report.welded_vertices > 1000);  // the referenced copies
   CHECK(one.report.duplicate_triangles > 0);
   CHECK(one.report.degenerate_triangles > 0);
@@ -356,6 +359,63 @@ TEST_CASE("repair gives the same mesh and report on 1 and 2 threads", "[repair][
   CHECK(one.report.nonmanifold_vertices > 100);
   CHECK(one.report.notes() == two.report.notes());
   CHECK(one.report.boundary_edges == two.report.boundary_edges);
+  CHECK(one.mesh.triangles == two.mesh.triangles);
+  CHECK(one.mesh.positions == two.mesh.positions);
+}
+
+TEST_CASE("repair drops duplicates wherever they sit, as a set of vertex triples does, on 1 and 2 threads",
+          "[repair][threads]") {
+  // Duplicates are found while the half-edges are paired (two triangles with
+  // one opposite corner across a shared edge): copies inside the surface
+  // (edges of three or four triangles), reversed and rotated copies, three
+  // copies, and an isolated pair (a manifold edge of exactly the two). Over
+  // 2^15 triangles, so the groupings split over threads; a clean grid has none.
+  testing::GridOptions grid;
+  grid.nu = grid.nv = 130;
+  grid.random_diagonals = true;
+  TriangleSoup s = testing::height_field([](double x, double y) { return 0.1 * std::sin(3 * x + 5 * y); }, 2, 2, grid);
+  const size_t clean = s.triangle_count();
+  CHECK(repair_mesh(s).report.duplicate_triangles == 0);
+  for (size_t t = 0; t < clean; t += 37) {
+    const uint32_t a = s.indices[3 * t], b = s.indices[3 * t + 1], c = s.indices[3 * t + 2];
+    add_triangle(s, b, c, a);                  // rotated
+    if (t % 3 == 0) add_triangle(s, a, c, b);  // reversed: a third copy
+    if (t % 5 == 0) add_triangle(s, c, a, b);  // a fourth
+  }
+  const uint32_t base = uint32_t(s.vertex_count());
+  add_vertex(s, Vec3(5, 0, 0)), add_vertex(s, Vec3(6, 0, 0)), add_vertex(s, Vec3(5, 1, 0));
+  add_triangle(s, base, base + 1, base + 2), add_triangle(s, base + 2, base + 1, base);  // an isolated pair
+
+  std::set<std::array<uint32_t, 3>> seen;
+  std::vector<std::array<uint32_t, 3>> firsts;
+  for (size_t t = 0; t < s.triangle_count(); ++t) {
+    std::array<uint32_t, 3> f{s.indices[3 * t], s.indices[3 * t + 1], s.indices[3 * t + 2]};
+    std::sort(f.begin(), f.end());
+    if (seen.insert(f).second) firsts.push_back(f);
+  }
+  const size_t duplicates = s.triangle_count() - firsts.size();
+  REQUIRE(duplicates > 1000);
+  REQUIRE(s.triangle_count() > size_t{1} << 15);
+  const RepairResult one = repair_on(1, s), two = repair_on(2, s);
+  CHECK(one.report.duplicate_triangles == duplicates);
+  CHECK(one.report.nonmanifold_edges == 0);  // the copies leave nothing to cut
+  REQUIRE(one.mesh.triangle_count() == firsts.size());
+  size_t mismatches = 0;  // the first of each vertex set stays, in input order
+  for (size_t t = 0; t < firsts.size(); ++t) {
+    std::array<uint32_t, 3> got = one.mesh.triangles[t];
+    std::array<Vec3, 3> want_p, got_p;
+    for (int k = 0; k < 3; ++k)
+      want_p[k] =
+          Vec3(s.positions[3 * firsts[t][k]], s.positions[3 * firsts[t][k] + 1], s.positions[3 * firsts[t][k] + 2]),
+      got_p[k] = one.mesh.positions[got[k]];
+    auto less = [](const Vec3& a, const Vec3& b) {
+      return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+    };
+    std::sort(want_p.begin(), want_p.end(), less), std::sort(got_p.begin(), got_p.end(), less);
+    mismatches += want_p != got_p;
+  }
+  CHECK(mismatches == 0);
+  CHECK(two.report.duplicate_triangles == duplicates);
   CHECK(one.mesh.triangles == two.mesh.triangles);
   CHECK(one.mesh.positions == two.mesh.positions);
 }
