@@ -114,13 +114,14 @@ std::vector<uint32_t> weld(const std::vector<Vec3>& points, const std::vector<ui
   constexpr double kReach = 1.5 / kCell;                       // tolerance and margin, in cells
   if (!std::isfinite(0.5 / tolerance)) return representative;  // a subnormal tolerance: nothing to weld
   const double inv = 1 / (kCell * tolerance);
-  // Grid cell of a scaled coordinate, clamped so the conversion is defined.
+  // A weldable vertex lies in the box from `lo`, so its coordinates in
+  // cells, shifted by one cell, are at least 1 and every coordinate searched
+  // (within kReach of one) is positive: truncation is the floor. Clamped
+  // above so the conversion is defined (a tiny weld tolerance).
+  auto scaled = [&](const Vec3& p) -> Vec3 { return ((p - lo) * inv).array() + 1.0; };
   auto cell = [](double q) {
     constexpr double limit = 4e18;
-    if (!(q < limit)) return int64_t(limit);
-    if (q <= -limit) return -int64_t(limit);
-    const int64_t c = static_cast<int64_t>(q);  // toward zero, then down: floor without a libm call
-    return c - int64_t(static_cast<double>(c) > q);
+    return q < limit ? static_cast<int64_t>(q) : int64_t(limit);
   };
   auto cell_key = [](int64_t x, int64_t y, int64_t z) {
     return static_cast<uint64_t>(x) * 73856093u ^ static_cast<uint64_t>(y) * 19349663u ^
@@ -129,7 +130,7 @@ std::vector<uint32_t> weld(const std::vector<Vec3>& points, const std::vector<ui
   int bits = 1;
   while ((size_t{1} << bits) < 2 * points.size()) ++bits;
   const size_t mask = (size_t{1} << bits) - 1;
-  std::vector<uint64_t> keys(mask + 1), vertex_key(points.size());
+  std::vector<uint64_t> keys(mask + 1);
   std::vector<uint32_t> head(mask + 1, kNone), next(points.size(), kNone);
   // The slot of a cell (empty if head == kNone); cells whose keys collide
   // share a list, which only costs distance tests.
@@ -138,17 +139,14 @@ std::vector<uint32_t> weld(const std::vector<Vec3>& points, const std::vector<ui
     while (head[s] != kNone && keys[s] != key) s = (s + 1) & mask;
     return s;
   };
-  parallel_for(points.size(), [&](size_t begin, size_t end) {
-    for (size_t i = begin; i < end; ++i)
-      if (weldable[i]) {
-        const Vec3 q = (points[i] - lo) * inv;
-        vertex_key[i] = cell_key(cell(q.x()), cell(q.y()), cell(q.z()));
-      }
-  });
+  auto key_of = [&](uint32_t i) {
+    const Vec3 q = scaled(points[i]);
+    return cell_key(cell(q.x()), cell(q.y()), cell(q.z()));
+  };
   // Lists in descending index order (each vertex is pushed at its head).
-  auto insert = [&](uint32_t i) {
-    const size_t s = slot(vertex_key[i]);
-    keys[s] = vertex_key[i];
+  auto insert = [&](uint32_t i, uint64_t key) {
+    const size_t s = slot(key);
+    keys[s] = key;
     next[i] = head[s];
     head[s] = i;
   };
@@ -156,7 +154,7 @@ std::vector<uint32_t> weld(const std::vector<Vec3>& points, const std::vector<ui
   // The earliest vertex j < i within tolerance (among representatives only
   // if `representatives_only`).
   auto earliest = [&](uint32_t i, bool representatives_only) {
-    const Vec3 q = (points[i] - lo) * inv;
+    const Vec3 q = scaled(points[i]);
     const int64_t x0 = cell(q.x() - kReach), x1 = cell(q.x() + kReach), y0 = cell(q.y() - kReach),
                   y1 = cell(q.y() + kReach), z0 = cell(q.z() - kReach), z1 = cell(q.z() + kReach);
     uint32_t found = kNone;
@@ -179,12 +177,18 @@ std::vector<uint32_t> weld(const std::vector<Vec3>& points, const std::vector<ui
       if (found != kNone)
         representative[i] = found, ++welded;
       else
-        insert(i);
+        insert(i, key_of(i));
     }
     return representative;
   }
+  // Several threads: the keys on every thread, then the table in input order.
+  std::vector<uint64_t> vertex_key(points.size());
+  parallel_for(points.size(), [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i)
+      if (weldable[i]) vertex_key[i] = key_of(uint32_t(i));
+  });
   for (uint32_t i = 0; i < points.size(); ++i)
-    if (weldable[i]) insert(i);
+    if (weldable[i]) insert(i, vertex_key[i]);
   vertex_key = std::vector<uint64_t>();
   std::vector<uint32_t> nearest(points.size(), kNone);
   parallel_for(points.size(), [&](size_t begin, size_t end) {

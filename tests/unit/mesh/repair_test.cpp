@@ -235,6 +235,8 @@ TEST_CASE("welding picks the earliest representative within tolerance, as a brut
   // The clusters lie inside [1e3, 1e3 + 1] × …; two corner vertices fix the diagonal.
   const Vec3 lo(1e3 - 0.1, -2e3 - 0.1, -0.1), hi(1e3 + 1.1, -2e3 + 1.1, 1.1);
   const double tolerance = RepairOptions().weld_tolerance * (hi - lo).norm();
+  // Two clusters touch the box's corners, where the weld's grid begins and ends.
+  centres[0] = lo + Vec3::Constant(1.5 * tolerance), centres[1] = hi - Vec3::Constant(1.5 * tolerance);
   for (int c = 0; c < clusters; ++c)
     for (int k = 0; k < per_cluster; ++k) {
       Vec3 offset;
