@@ -105,11 +105,11 @@ void Pipeline::measure_creases() {
   crease_angles_valid_ = true;
 }
 
-std::optional<CreaseResult> Pipeline::update_boundaries() {
-  if (!boundaries_dirty_) return std::nullopt;
+Pipeline::BoundarySelection Pipeline::select_boundaries() {
+  BoundarySelection out;
+  if (!boundaries_dirty_) return out;
   const Topology& topology = this->topology();
   std::vector<uint32_t> edges;
-  std::optional<CreaseResult> reusable;
   if (options_.creases.boundaries) {
     measure_creases();
     CreaseOptions automatic = options_.creases;
@@ -117,7 +117,7 @@ std::optional<CreaseResult> Pipeline::update_boundaries() {
     CreaseResult selected = select_creases(local_input(), topology, crease_angles_, automatic, 1.0);
     edges = selected.edges;
     // With the automatic angle the creases stage selects exactly these: kept for it.
-    if (options_.creases.angle < 0 && creases_dirty_) reusable = std::move(selected);
+    if (options_.creases.angle < 0 && creases_dirty_) out.automatic = std::move(selected);
     // Not on noisy components, where creases are not to be trusted.
     edges.erase(std::remove_if(edges.begin(), edges.end(),
                                [&](uint32_t e) {
@@ -128,19 +128,32 @@ std::optional<CreaseResult> Pipeline::update_boundaries() {
     std::sort(edges.begin(), edges.end());
   }
   boundaries_dirty_ = false;
-  if (edges == boundary_edges_) return reusable;
+  if (edges != boundary_edges_) out.changed = std::move(edges);
+  return out;
+}
+
+void Pipeline::cut_along_boundaries(std::vector<uint32_t> edges) {
   boundary_edges_ = std::move(edges);
   mark_dirty(Stage::Presmooth);
-  cut_ = CutMesh();
-  cut_ = cut_along_edges(local_input(), topology, boundary_edges_);
+  cut_ = CutMesh(), cut_active_ = false, cut_topology_ = Topology(), cut_components_.clear();
+  // The cut takes over the input's mesh in the working frame and its
+  // adjacency (no copy of either: at 1.1M triangles 24 and 50 bytes per
+  // triangle); they are rebuilt, the same, when asked for again.
+  const Topology& topology = this->topology();
+  local_input();
+  local_input_valid_ = false;
+  cut_ = cut_along_edges(std::move(local_input_), topology, boundary_edges_);
   // Without copies the cut changed nothing: the input's mesh and adjacency
   // serve, and the smooth stages run exactly as without creases.
   cut_active_ = !cut_.copy_of.empty();
-  if (!cut_active_) cut_ = CutMesh();
-  cut_topology_ = cut_active_ ? cut_topology(topology, cut_) : Topology();
-  cut_components_.clear();
-  if (cut_active_) cut_components_ = on_cut_vertices(cut_, frames_.vertex_component);
-  return reusable;
+  if (!cut_active_) {
+    local_input_ = std::move(cut_.mesh), local_input_valid_ = true;
+    cut_ = CutMesh();
+    return;
+  }
+  topology_valid_ = false;
+  cut_topology_ = cut_topology(std::move(topology_), cut_);
+  cut_components_ = on_cut_vertices(cut_, frames_.vertex_component);
 }
 
 double Pipeline::select_crease_lines(std::optional<CreaseResult> automatic) {
@@ -175,18 +188,24 @@ void Pipeline::run(const ProgressCallback& progress) {
   double boundary_seconds = 0;
   double crease_seconds = 0;
   // The creases are selected now, while the input's adjacency and crease
-  // angles are at hand (the boundaries read them too), so that while a cut
+  // angles are at hand (the boundaries read them too), and before the cut
+  // along the boundary creases takes the adjacency over, so that while a cut
   // serves the smooth stages these need not be held through them: released
   // (at 1.1M triangles 50 and 24 bytes per triangle), rebuilt the same when
   // the crease options change (a new crease angle then takes the adjacency
   // and the measure again) or an SVG asks for the adjacency.
+  double cut_seconds = 0;
   {
-    std::optional<CreaseResult> automatic_creases;
+    BoundarySelection boundaries;
     {
       StageTimer timer(boundary_seconds);
-      automatic_creases = update_boundaries();
+      boundaries = select_boundaries();
     }
-    if (creases_due) crease_seconds = select_crease_lines(std::move(automatic_creases));
+    if (creases_due) crease_seconds = select_crease_lines(std::move(boundaries.automatic));
+    if (boundaries.changed) {
+      StageTimer timer(cut_seconds);
+      cut_along_boundaries(std::move(*boundaries.changed));
+    }
   }  // an unused boundary selection is freed here, before the smooth stages
   if (cut_active_) {
     topology_ = Topology(), topology_valid_ = false;
@@ -331,7 +350,7 @@ void Pipeline::run(const ProgressCallback& progress) {
     // time includes the measure and the boundary creases' selection, cut and
     // adjacency, so that the stages account for the whole run.
     if (creases_due && progress && !progress(Stage::Creases, 0.0)) throw Cancelled();
-    seconds_[static_cast<int>(Stage::Creases)] = crease_seconds + boundary_seconds;
+    seconds_[static_cast<int>(Stage::Creases)] = crease_seconds + boundary_seconds + cut_seconds;
     creases_dirty_ = false;
   }
 }

@@ -160,9 +160,16 @@ class Pipeline {
   const Mesh& local_input();
   void release_local_input();
   void measure_creases();
-  // Returns the boundaries' selection when it is also the creases' (the
-  // automatic angle, creases due), so that the creases stage need not select again.
-  std::optional<CreaseResult> update_boundaries();
+  struct BoundarySelection {
+    std::optional<std::vector<uint32_t>> changed;  // the boundary creases, when they changed
+    // The selection when it is also the creases' (the automatic angle,
+    // creases due), so that the creases stage need not select again.
+    std::optional<CreaseResult> automatic;
+  };
+  BoundarySelection select_boundaries();
+  // Cuts the input along the boundary creases; takes over its working-frame
+  // mesh and adjacency when the cut splits any vertex.
+  void cut_along_boundaries(std::vector<uint32_t> edges);
   // The creases stage's work; returns its seconds.
   double select_crease_lines(std::optional<CreaseResult> automatic);
   const Mesh& smooth_input() const { return cut_active_ ? cut_.mesh : local_input_; }

@@ -1,15 +1,17 @@
 #include "crestline/mesh/cut.h"
 
 #include <algorithm>
+#include <array>
 #include <numeric>
+#include <utility>
 
 namespace crestline {
 
-CutMesh cut_along_edges(const Mesh& mesh, const Topology& topology, const std::vector<uint32_t>& edges) {
+CutMesh cut_along_edges(Mesh mesh, const Topology& topology, const std::vector<uint32_t>& edges) {
   CutMesh out;
-  out.mesh = mesh;
-  out.input_vertices = mesh.positions.size();
-  const size_t nv = mesh.positions.size();
+  out.mesh = std::move(mesh);
+  out.input_vertices = out.mesh.positions.size();
+  const size_t nv = out.input_vertices;
   std::vector<uint8_t> cut(topology.edges.size(), 0), touched(nv, 0);
   for (uint32_t e : edges) {
     if (e >= topology.edges.size() || topology.is_boundary_edge(e)) continue;
@@ -18,7 +20,7 @@ CutMesh cut_along_edges(const Mesh& mesh, const Topology& topology, const std::v
   }
   // Per vertex: its triangles' sides by union-find over the uncut edges at
   // the vertex. `local` maps a triangle to its place in the vertex's fan.
-  std::vector<uint32_t> local(mesh.triangles.size(), kNone), parent, side;
+  std::vector<uint32_t> local(out.mesh.triangles.size(), kNone), parent, side;
   auto find = [&](uint32_t i) {
     while (parent[i] != i) i = parent[i] = parent[parent[i]];
     return i;
@@ -53,17 +55,36 @@ CutMesh cut_along_edges(const Mesh& mesh, const Topology& topology, const std::v
       for (uint32_t& corner : t)
         if (corner == v) corner = copy;
     }
-    for (uint32_t s = 1; s < sides; ++s) out.copy_of.push_back(v), out.mesh.positions.push_back(mesh.positions[v]);
+    out.copy_of.insert(out.copy_of.end(), sides - 1, v);
     for (uint32_t i = 0; i < n; ++i) local[topology.vertex_triangles[begin + i]] = kNone;
   }
+  out.mesh.positions = on_cut_vertices(out, std::move(out.mesh.positions));
   return out;
 }
 
-Topology cut_topology(const Topology& input, const CutMesh& cut) {
+namespace {
+
+// An edge at a split vertex as it stands in the cut mesh: an input edge with
+// new ends, or one of the two pieces it came apart into.
+struct Piece {
+  uint64_t key;  // smaller end << 32 | larger end
+  std::array<uint32_t, 2> triangles;
+  std::array<uint32_t, 2> corners;  // 3 t + k of each triangle's half-edge along it; kNone where none
+  uint32_t at;                      // the input edges before it: those with a smaller key
+  uint32_t index;                   // in the cut mesh
+};
+
+uint64_t key_of(const std::array<uint32_t, 2>& edge) { return uint64_t{edge[0]} << 32 | edge[1]; }
+
+}  // namespace
+
+Topology cut_topology(Topology topology, const CutMesh& cut) {
+  if (cut.copy_of.empty()) return topology;
   const std::vector<Triangle>& tris = cut.mesh.triangles;
-  const size_t nv = cut.input_vertices, ne = input.edges.size();
-  std::vector<uint8_t> split(nv, 0);
-  for (uint32_t v : cut.copy_of) split[v] = 1;
+  const size_t nv = cut.input_vertices, ne = topology.edges.size(), vertices = cut.mesh.positions.size();
+  // cut_along_edges lists the split vertices in ascending order, each once per copy.
+  std::vector<uint32_t> split = cut.copy_of;
+  split.erase(std::unique(split.begin(), split.end()), split.end());
   // The cut mesh's vertex at corner `source` of triangle t.
   auto renamed = [&](uint32_t t, uint32_t source) {
     for (uint32_t v : tris[t])
@@ -71,95 +92,125 @@ Topology cut_topology(const Topology& input, const CutMesh& cut) {
     return kNone;
   };
 
-  // Edges at a split vertex: each triangle's half-edge takes its renamed
-  // ends, and the two stay one edge only if those agree. The rest keep their
-  // ends and triangles; build_topology orders edges by (smaller end, larger
-  // end), so both lists are merged in that order.
-  struct Piece {
-    uint64_t key;  // smaller end << 32 | larger end
-    uint32_t triangles[2];
-    uint32_t edge;  // of the input
-    uint8_t slot;   // the input edge's first piece (0) or second (1)
+  // Only the edges at split vertices can change: each triangle's half-edge
+  // takes its renamed ends, and the two stay one edge only if those agree.
+  std::vector<uint32_t> at_split;
+  for (uint32_t v : split)
+    for (uint32_t i = topology.vertex_offsets[v]; i < topology.vertex_offsets[v + 1]; ++i)
+      for (uint32_t e : topology.triangle_edges[topology.vertex_triangles[i]])
+        if (topology.edges[e][0] == v || topology.edges[e][1] == v) at_split.push_back(e);
+  std::sort(at_split.begin(), at_split.end());
+  at_split.erase(std::unique(at_split.begin(), at_split.end()), at_split.end());
+  // The split vertices' boundary flags are recomputed from these edges (all
+  // of theirs); a vertex that did not split can only gain one (an edge at it
+  // may come apart, never close).
+  topology.boundary_vertex.resize(vertices, 0);
+  for (uint32_t v : split) topology.boundary_vertex[v] = 0;
+  auto mark_boundary = [&](uint64_t key) {
+    topology.boundary_vertex[key >> 32] = topology.boundary_vertex[uint32_t(key)] = 1;
+  };
+  auto at = [&](uint64_t key) {
+    return static_cast<uint32_t>(
+        std::lower_bound(topology.edges.begin(), topology.edges.end(), key,
+                         [](const std::array<uint32_t, 2>& x, uint64_t y) { return key_of(x) < y; }) -
+        topology.edges.begin());
   };
   std::vector<Piece> pieces;
-  for (uint32_t e = 0; e < ne; ++e) {
-    const uint32_t p = input.edges[e][0], q = input.edges[e][1];  // not a binding: the lambda below captures them
-    if (!split[p] && !split[q]) continue;
-    const auto [t0, t1] = input.edge_triangles[e];
+  std::vector<uint32_t> removed;  // input edges replaced by pieces, ascending
+  for (uint32_t e : at_split) {
+    const uint32_t p = topology.edges[e][0], q = topology.edges[e][1];  // not a binding: the lambda below captures them
+    const auto [t0, t1] = topology.edge_triangles[e];
     auto key = [&](uint32_t t) {
       const uint32_t a = renamed(t, p), b = renamed(t, q);
       return uint64_t{std::min(a, b)} << 32 | std::max(a, b);
     };
+    auto corner = [&](uint32_t t) {
+      uint32_t k = 0;
+      while (k < 2 && topology.triangle_edges[t][k] != e) ++k;
+      return 3 * t + k;
+    };
     const uint64_t k0 = key(t0);
-    if (t1 != kNone && key(t1) == k0) {
-      pieces.push_back({k0, {t0, t1}, e, 0});
+    const bool whole = t1 == kNone || key(t1) == k0;
+    if (t1 == kNone || !whole) mark_boundary(k0);
+    if (whole && k0 == key_of(topology.edges[e])) continue;  // unchanged: keeps its place
+    removed.push_back(e);
+    if (whole) {
+      pieces.push_back({k0, {t0, t1}, {corner(t0), t1 == kNone ? kNone : corner(t1)}, at(k0), 0});
       continue;
     }
-    pieces.push_back({k0, {t0, kNone}, e, 0});
-    if (t1 != kNone) pieces.push_back({key(t1), {t1, kNone}, e, 1});
+    const uint64_t k1 = key(t1);
+    mark_boundary(k1);
+    pieces.push_back({k0, {t0, kNone}, {corner(t0), kNone}, at(k0), 0});
+    pieces.push_back({k1, {t1, kNone}, {corner(t1), kNone}, at(k1), 0});
   }
   std::sort(pieces.begin(), pieces.end(), [](const Piece& a, const Piece& b) { return a.key < b.key; });
 
-  Topology out;
-  const size_t edge_count =
-      ne - std::count_if(pieces.begin(), pieces.end(), [](const Piece& x) { return x.slot == 0; }) + pieces.size();
-  out.edges.reserve(edge_count);
-  out.edge_triangles.reserve(edge_count);
-  // new_edge[e]: the new index of the unchanged edge, or of a split one's
-  // first piece; second[e]: of its second piece where it came apart.
-  std::vector<uint32_t> new_edge(ne, kNone), second(ne, kNone);
-  size_t next_piece = 0;
-  auto emit_pieces_before = [&](uint64_t key) {
-    for (; next_piece < pieces.size() && pieces[next_piece].key < key; ++next_piece) {
-      const Piece& x = pieces[next_piece];
-      (x.slot ? second : new_edge)[x.edge] = static_cast<uint32_t>(out.edges.size());
-      out.edges.push_back({uint32_t(x.key >> 32), uint32_t(x.key)});
-      out.edge_triangles.push_back({x.triangles[0], x.triangles[1]});
+  // build_topology numbers edges by (smaller end, larger end): the unchanged
+  // edges keep their order, in runs between the removed edges and the
+  // pieces' places, and the pieces are merged in.
+  const size_t count = ne - removed.size() + pieces.size();
+  std::vector<std::array<uint32_t, 2>> edges(count), edge_triangles(count);
+  std::vector<uint32_t> renumber(ne);  // of the unchanged edges
+  size_t read = 0, write = 0, next_piece = 0, next_removed = 0;
+  while (read < ne || next_piece < pieces.size()) {
+    size_t stop = next_removed < removed.size() ? removed[next_removed] : ne;
+    if (next_piece < pieces.size()) stop = std::min<size_t>(stop, pieces[next_piece].at);
+    std::copy(topology.edges.begin() + read, topology.edges.begin() + stop, edges.begin() + write);
+    std::copy(topology.edge_triangles.begin() + read, topology.edge_triangles.begin() + stop,
+              edge_triangles.begin() + write);
+    std::iota(renumber.begin() + read, renumber.begin() + stop, static_cast<uint32_t>(write));
+    write += stop - read, read = stop;
+    for (; next_piece < pieces.size() && pieces[next_piece].at == read; ++next_piece, ++write) {
+      Piece& x = pieces[next_piece];
+      x.index = static_cast<uint32_t>(write);
+      edges[write] = {uint32_t(x.key >> 32), uint32_t(x.key)};
+      edge_triangles[write] = x.triangles;
     }
-  };
-  for (uint32_t e = 0; e < ne; ++e) {
-    const auto [p, q] = input.edges[e];
-    if (split[p] || split[q]) continue;
-    emit_pieces_before(uint64_t{p} << 32 | q);
-    new_edge[e] = static_cast<uint32_t>(out.edges.size());
-    out.edges.push_back(input.edges[e]);
-    out.edge_triangles.push_back(input.edge_triangles[e]);
+    if (next_removed < removed.size() && removed[next_removed] == read) ++read, ++next_removed;
   }
-  emit_pieces_before(~uint64_t{0});
+  topology.edges = std::move(edges);
+  topology.edge_triangles = std::move(edge_triangles);
+  for (std::array<uint32_t, 3>& te : topology.triangle_edges)
+    for (uint32_t& e : te) e = renumber[e];
+  for (const Piece& x : pieces)
+    for (uint32_t c : x.corners)
+      if (c != kNone) topology.triangle_edges[c / 3][c % 3] = x.index;
 
-  out.triangle_edges.resize(tris.size());
-  for (size_t t = 0; t < tris.size(); ++t)
-    for (int k = 0; k < 3; ++k) {
-      const uint32_t e = input.triangle_edges[t][k];
-      out.triangle_edges[t][k] = second[e] != kNone && input.edge_triangles[e][1] == t ? second[e] : new_edge[e];
+  // Each vertex's triangles stay in ascending order: a split vertex keeps
+  // those whose corner is still it, the others go to its copies, whose fans
+  // follow every input vertex's. The fans between split vertices move as blocks.
+  std::vector<uint32_t>& offsets = topology.vertex_offsets;
+  std::vector<uint32_t>& fans = topology.vertex_triangles;
+  std::vector<std::pair<uint32_t, uint32_t>> moved;  // (copy, triangle)
+  uint32_t shift = 0, first = 0;                     // triangles moved so far; the block's first vertex
+  for (size_t i = 0; i <= split.size(); ++i) {
+    const uint32_t s = i < split.size() ? split[i] : static_cast<uint32_t>(nv);
+    if (shift) {
+      std::copy(fans.begin() + offsets[first], fans.begin() + offsets[s], fans.begin() + (offsets[first] - shift));
+      for (uint32_t v = first; v < s; ++v) offsets[v] -= shift;
     }
-
-  // Each vertex's triangles in ascending order: a split vertex's go to the
-  // side (the vertex or a copy) their corner was renamed to.
-  const size_t vertices = cut.mesh.positions.size();
-  out.vertex_offsets.assign(vertices + 1, 0);
-  for (uint32_t v = 0; v < nv; ++v) {
-    const uint32_t begin = input.vertex_offsets[v], end = input.vertex_offsets[v + 1];
-    if (!split[v]) {
-      out.vertex_offsets[v + 1] = end - begin;
-      continue;
+    if (s == nv) break;
+    const uint32_t begin = offsets[s], end = offsets[s + 1];
+    offsets[s] = begin - shift;
+    uint32_t kept = offsets[s];
+    for (uint32_t j = begin; j < end; ++j) {
+      const uint32_t t = fans[j], v = renamed(t, s);
+      if (v == s)
+        fans[kept++] = t;
+      else
+        moved.emplace_back(v, t);
     }
-    for (uint32_t i = begin; i < end; ++i) ++out.vertex_offsets[renamed(input.vertex_triangles[i], v) + 1];
+    shift = end - kept;
+    first = s + 1;
   }
-  for (size_t v = 0; v < vertices; ++v) out.vertex_offsets[v + 1] += out.vertex_offsets[v];
-  out.vertex_triangles.resize(out.vertex_offsets[vertices]);
-  std::vector<uint32_t> fill(out.vertex_offsets.begin(), out.vertex_offsets.end() - 1);
-  for (uint32_t v = 0; v < nv; ++v)
-    for (uint32_t i = input.vertex_offsets[v]; i < input.vertex_offsets[v + 1]; ++i) {
-      const uint32_t t = input.vertex_triangles[i];
-      out.vertex_triangles[fill[split[v] ? renamed(t, v) : v]++] = t;
-    }
-
-  out.boundary_vertex.assign(vertices, 0);
-  for (size_t e = 0; e < out.edges.size(); ++e)
-    if (out.is_boundary_edge(static_cast<uint32_t>(e)))
-      out.boundary_vertex[out.edges[e][0]] = out.boundary_vertex[out.edges[e][1]] = 1;
-  return out;
+  offsets[nv] -= shift;
+  std::sort(moved.begin(), moved.end());
+  offsets.resize(vertices + 1);
+  for (size_t k = 0, c = nv; c < vertices; ++c) {
+    offsets[c + 1] = offsets[c];
+    for (; k < moved.size() && moved[k].first == c; ++k) fans[offsets[c + 1]++] = moved[k].second;
+  }
+  return topology;
 }
 
 void merge_copies(const CutMesh& cut, std::vector<Vec3>& positions) {

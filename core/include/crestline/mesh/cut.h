@@ -18,7 +18,8 @@ struct CutMesh {
   /// The same triangles in the same order; positions: the input's, then one
   /// copy per extra side of a split vertex.
   Mesh mesh;
-  /// The input vertex of each copy: vertex input_vertices + k is a copy of copy_of[k].
+  /// The input vertex of each copy: vertex input_vertices + k is a copy of
+  /// copy_of[k]. Ascending: a vertex's copies are consecutive.
   std::vector<uint32_t> copy_of;
   size_t input_vertices = 0;
   uint32_t source(uint32_t v) const { return v < input_vertices ? v : copy_of[v - input_vertices]; }
@@ -30,13 +31,17 @@ struct CutMesh {
 /// side (in the order of its first triangle) gets a copy. A cut that ends
 /// inside the surface opens up to its last split vertex; a single cut edge
 /// whose ends split nothing stays closed. Boundary edges in `edges` change
-/// nothing. Linear in the mesh size.
-CutMesh cut_along_edges(const Mesh& mesh, const Topology& topology, const std::vector<uint32_t>& edges);
+/// nothing. Takes the mesh to cut (moved in by a caller that no longer needs
+/// it: its triangles are renamed in place). Linear in the mesh size.
+CutMesh cut_along_edges(Mesh mesh, const Topology& topology, const std::vector<uint32_t>& edges);
 
-/// The cut mesh's adjacency from the input's: exactly build_topology(cut.mesh)
-/// (the same edge numbering), in linear time without sorting the
-/// half-edges again; only the edges at split vertices are regrouped.
-Topology cut_topology(const Topology& input, const CutMesh& cut);
+/// The cut mesh's adjacency made from the input's: exactly
+/// build_topology(cut.mesh) (the same edge numbering) without sorting the
+/// half-edges again. Takes the input's adjacency (moved in by a caller that
+/// no longer needs it): only the edges at split vertices are regrouped, the
+/// others move in runs, the fans and per-triangle edges are rewritten in
+/// place, so it costs one pass over the edges and the triangles.
+Topology cut_topology(Topology topology, const CutMesh& cut);
 
 /// A per-vertex array of the input extended to the cut mesh: each copy takes
 /// the value of the vertex it split from.
