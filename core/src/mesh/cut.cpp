@@ -11,38 +11,43 @@ CutMesh cut_along_edges(Mesh mesh, const Topology& topology, const std::vector<u
   CutMesh out;
   out.mesh = std::move(mesh);
   out.input_vertices = out.mesh.positions.size();
-  const size_t nv = out.input_vertices;
-  std::vector<uint8_t> cut(topology.edges.size(), 0), touched(nv, 0);
+  // The interior edges to cut and their ends, sorted: no array over the
+  // whole mesh (the cut is small, and fresh memory costs a page fault per 4 kB).
+  std::vector<uint32_t> cut, touched;
   for (uint32_t e : edges) {
     if (e >= topology.edges.size() || topology.is_boundary_edge(e)) continue;
-    cut[e] = 1;
-    touched[topology.edges[e][0]] = touched[topology.edges[e][1]] = 1;
+    cut.push_back(e);
+    touched.insert(touched.end(), topology.edges[e].begin(), topology.edges[e].end());
+  }
+  for (std::vector<uint32_t>* list : {&cut, &touched}) {
+    std::sort(list->begin(), list->end());
+    list->erase(std::unique(list->begin(), list->end()), list->end());
   }
   // Per vertex: its triangles' sides by union-find over the uncut edges at
-  // the vertex. `local` maps a triangle to its place in the vertex's fan.
-  std::vector<uint32_t> local(out.mesh.triangles.size(), kNone), parent, side;
+  // the vertex, over their places in the vertex's fan (ascending).
+  std::vector<uint32_t> parent, side;
   auto find = [&](uint32_t i) {
     while (parent[i] != i) i = parent[i] = parent[parent[i]];
     return i;
   };
-  for (uint32_t v = 0; v < nv; ++v) {
-    if (!touched[v]) continue;
+  for (uint32_t v : touched) {
+    const auto fan = topology.vertex_triangles.begin();
     const uint32_t begin = topology.vertex_offsets[v], end = topology.vertex_offsets[v + 1];
     const uint32_t n = end - begin;
-    for (uint32_t i = 0; i < n; ++i) local[topology.vertex_triangles[begin + i]] = i;
     parent.resize(n);
     std::iota(parent.begin(), parent.end(), 0u);
     for (uint32_t i = 0; i < n; ++i) {
-      const uint32_t t = topology.vertex_triangles[begin + i];
+      const uint32_t t = fan[begin + i];
       for (uint32_t e : topology.triangle_edges[t]) {
-        if (cut[e] || (topology.edges[e][0] != v && topology.edges[e][1] != v)) continue;
+        if (topology.edges[e][0] != v && topology.edges[e][1] != v) continue;
+        if (std::binary_search(cut.begin(), cut.end(), e)) continue;
         const uint32_t o = topology.opposite_triangle(e, t);
-        if (o == kNone || local[o] == kNone) continue;
-        parent[find(i)] = find(local[o]);
+        const auto place = std::lower_bound(fan + begin, fan + end, o);
+        if (o == kNone || place == fan + end || *place != o) continue;
+        parent[find(i)] = find(static_cast<uint32_t>(place - (fan + begin)));
       }
     }
-    // Sides numbered by their first triangle (the fan lists triangles in
-    // ascending order): side 0 keeps v.
+    // Sides numbered by their first triangle: side 0 keeps v.
     side.assign(n, kNone);
     uint32_t sides = 0;
     for (uint32_t i = 0; i < n; ++i) {
@@ -51,12 +56,10 @@ CutMesh cut_along_edges(Mesh mesh, const Topology& topology, const std::vector<u
       const uint32_t s = side[root];
       if (s == 0) continue;
       const uint32_t copy = static_cast<uint32_t>(out.input_vertices + out.copy_of.size()) + (s - 1);
-      Triangle& t = out.mesh.triangles[topology.vertex_triangles[begin + i]];
-      for (uint32_t& corner : t)
+      for (uint32_t& corner : out.mesh.triangles[fan[begin + i]])
         if (corner == v) corner = copy;
     }
     out.copy_of.insert(out.copy_of.end(), sides - 1, v);
-    for (uint32_t i = 0; i < n; ++i) local[topology.vertex_triangles[begin + i]] = kNone;
   }
   out.mesh.positions = on_cut_vertices(out, std::move(out.mesh.positions));
   return out;
@@ -150,7 +153,6 @@ Topology cut_topology(Topology topology, const CutMesh& cut) {
   // pieces' places, and the pieces are merged in.
   const size_t count = ne - removed.size() + pieces.size();
   std::vector<std::array<uint32_t, 2>> edges(count), edge_triangles(count);
-  std::vector<uint32_t> renumber(ne);  // of the unchanged edges
   size_t read = 0, write = 0, next_piece = 0, next_removed = 0;
   while (read < ne || next_piece < pieces.size()) {
     size_t stop = next_removed < removed.size() ? removed[next_removed] : ne;
@@ -158,8 +160,9 @@ Topology cut_topology(Topology topology, const CutMesh& cut) {
     std::copy(topology.edges.begin() + read, topology.edges.begin() + stop, edges.begin() + write);
     std::copy(topology.edge_triangles.begin() + read, topology.edge_triangles.begin() + stop,
               edge_triangles.begin() + write);
-    std::iota(renumber.begin() + read, renumber.begin() + stop, static_cast<uint32_t>(write));
-    write += stop - read, read = stop;
+    // Once copied, an input edge's first slot holds its new number: the
+    // renumbering table costs no fresh memory (4 bytes per edge otherwise).
+    for (; read < stop; ++read, ++write) topology.edges[read][0] = static_cast<uint32_t>(write);
     for (; next_piece < pieces.size() && pieces[next_piece].at == read; ++next_piece, ++write) {
       Piece& x = pieces[next_piece];
       x.index = static_cast<uint32_t>(write);
@@ -168,10 +171,11 @@ Topology cut_topology(Topology topology, const CutMesh& cut) {
     }
     if (next_removed < removed.size() && removed[next_removed] == read) ++read, ++next_removed;
   }
+  // The half-edges of removed edges get the pieces' numbers below.
+  for (std::array<uint32_t, 3>& te : topology.triangle_edges)
+    for (uint32_t& e : te) e = topology.edges[e][0];
   topology.edges = std::move(edges);
   topology.edge_triangles = std::move(edge_triangles);
-  for (std::array<uint32_t, 3>& te : topology.triangle_edges)
-    for (uint32_t& e : te) e = renumber[e];
   for (const Piece& x : pieces)
     for (uint32_t c : x.corners)
       if (c != kNone) topology.triangle_edges[c / 3][c % 3] = x.index;

@@ -284,7 +284,7 @@ TEST_CASE("the cut mesh's adjacency from the input's is build_topology's", "[cre
   const Mesh sheet =
       repair_mesh(testing::height_field([](double x, double y) { return 0.2 * std::sin(3 * x * y); }, 2, 2, grid)).mesh;
   const Topology topology = build_topology(sheet);
-  const Mesh ball = repair_mesh(testing::icosphere(3)).mesh;
+  const Mesh ball = repair_mesh(testing::icosphere(4)).mesh;
   const Topology ball_topology = build_topology(ball);
   std::mt19937 random(3);
   size_t copies = 0;
@@ -294,7 +294,7 @@ TEST_CASE("the cut mesh's adjacency from the input's is build_topology's", "[cre
       std::vector<uint32_t> edges;
       for (uint32_t e = 0; e < topology->edges.size(); ++e)
         if (pick(random)) edges.push_back(e);
-      INFO("density " << density << (mesh == &ball ? ", closed" : ", open"));
+      INFO("density " << density << (mesh == &ball ? ", sphere" : ", grid"));
       copies += check(*mesh, *topology, edges);
     }
   }

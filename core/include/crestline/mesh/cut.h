@@ -32,7 +32,8 @@ struct CutMesh {
 /// inside the surface opens up to its last split vertex; a single cut edge
 /// whose ends split nothing stays closed. Boundary edges in `edges` change
 /// nothing. Takes the mesh to cut (moved in by a caller that no longer needs
-/// it: its triangles are renamed in place). Linear in the mesh size.
+/// it: its triangles are renamed in place). Costs the size of the cut's
+/// vertex stars, and a copy of the positions to append the copies to.
 CutMesh cut_along_edges(Mesh mesh, const Topology& topology, const std::vector<uint32_t>& edges);
 
 /// The cut mesh's adjacency made from the input's: exactly
