@@ -3,6 +3,7 @@
 // crestline_crease_report prints every case.
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <map>
 
 #include "analytic_meshes.h"
 #include "cad_surfaces.h"
@@ -107,11 +108,20 @@ TEST_CASE("the smooth surfaces of the ridge/valley harness have no creases", "[q
 // Issue 16: the smooth lines respect the creases. Without crease boundaries
 // the ridges and valleys run along the sharp edges (measured, irregular
 // walls: 83–116 mean edges of line within 1 edge of a sharp edge at σ = 0,
-// 120–363 at σ = 0.1); with them (--crease-boundaries) none at σ = 0 and 0.1
-// (0–8.5 at σ = 0.1 before gaps in the 45° chamfer's creases were bridged).
+// 120–363 at σ = 0.1, 125–369 at σ = 0.25); with them (--crease-boundaries)
+// none at σ = 0 and 0.1 (0–8.5 at σ = 0.1 before gaps in the 45° chamfer's
+// creases were bridged). At σ = 0.25 (noise level 0.211–0.222) boundaries
+// are on since kBoundaryNoiseLimit is 0.225 (0.15 before, so these meshes
+// kept their 125–369 h beside the edges); what remains lies where the
+// creases have gaps (chamfer coverage 0.85 here, crestline_crease_report).
 TEST_CASE("smooth lines keep off the sharp edges with crease boundaries", "[quality][creases]") {
+  // At σ = 0.25, per surface: the most within 1 and 2 h, measured 0.0 / 0.5
+  // h of 28 (box), 41.4 / 44.0 of 163 (cylinder), 5.9 / 5.9 of 5.9 (prism:
+  // one ridge, all of it along a sharp edge where its crease has a gap).
+  const std::map<std::string, std::pair<double, double>> noisy_limits = {
+      {"filleted-box", {0.5, 1.0}}, {"chamfered-cylinder", {42.0, 44.5}}, {"notched-prism", {6.0, 6.0}}};
   for (const std::string& name : cad_surface_names())
-    for (double noise : {0.0, 0.1}) {
+    for (double noise : {0.0, 0.1, 0.25}) {
       const CadCase c = make_cad_case(name, Triangulation::Irregular, noise, 101);
       const std::vector<Polyline> sharp = sharp_edges_as_lines(c.surface);
       PipelineOptions off;
@@ -130,6 +140,12 @@ TEST_CASE("smooth lines keep off the sharp edges with crease boundaries", "[qual
       INFO(name << ", noise " << noise << ": within 1 h of a sharp edge " << without.near_length << " h of "
                 << without.length << " without boundaries, " << with.near_length << " h of " << with.length
                 << " with them, " << with2.near_length << " h within 2 h");
+      if (noise == 0.25) {
+        CHECK(without.near_length > 100);
+        CHECK(with.near_length <= noisy_limits.at(name).first);
+        CHECK(with2.near_length <= noisy_limits.at(name).second);
+        continue;
+      }
       CHECK(without.near_length > 5);
       CHECK(with.near_length < 0.5);
       CHECK(with2.near_length <= 0.035 * with.length + 0.5);

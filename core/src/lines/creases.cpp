@@ -85,7 +85,7 @@ constexpr double kBridgeCos = 0.5;
 // failed on the chamfered cylinder at σ = 0.25, seed 1, uniform mesh, 7 of
 // 17 on the checker mesh), the
 // walk goes on along the strongest edge ahead (within 90°) if its support
-// reaches the angle; on very noisy surfaces only (above kBoundaryNoiseLimit:
+// reaches the angle; on very noisy surfaces only (above kVeryNoisyCreaseLevel:
 // on two meshes of shared/meshes at noise level 0.09–0.10, fandisk-quads and
 // OrientationTest.glb, it changed the creases and, through the crease cut,
 // the smooth lines). σ = 0.25, --seeds 3 (before → after): coverage mean
@@ -114,7 +114,7 @@ constexpr double kSupportShare = 0.8;
 // surfaces over those within two rings: at σ = 0.25 mean edges that halved
 // the crease lines on the noisy smooth surfaces of tests/quality.
 constexpr int kNoisySupportRings = 2;
-// On very noisy surfaces (noise level above kBoundaryNoiseLimit; normal noise
+// On very noisy surfaces (noise level above kVeryNoisyCreaseLevel; normal noise
 // σ = 0.25 mean edges is ~0.21) the support reads three rings and counts only
 // where it is a local maximum across the edge: at least that with the
 // splitting plane moved by kSuppressionShift × the edge's length to either
@@ -704,7 +704,7 @@ CreaseAngles measure_crease_angles(const Mesh& mesh, const Topology& topology, c
   out.angle.assign(ne, 0.0);
   out.support.assign(ne, 0.0);
   std::vector<uint32_t> scratch;
-  const bool very_noisy = out.normal_filter_steps > 0 && out.noise_level > kBoundaryNoiseLimit;
+  const bool very_noisy = out.normal_filter_steps > 0 && out.noise_level > kVeryNoisyCreaseLevel;
   const int rings = very_noisy ? kVeryNoisySupportRings : out.normal_filter_steps > 0 ? kNoisySupportRings : 1;
   // 1 − cos of every fourth interior edge's angle, for the median (monotonic in the angle).
   std::vector<double> sample;
@@ -766,7 +766,7 @@ CreaseResult select_creases(const Mesh& mesh, const Topology& topology, const Cr
       mesh, topology, angles.angle, [&](uint32_t e) { return passes(e, kHysteresisShare * threshold); }, on);
   // The angles the chains read: bridged edges take their support's.
   std::vector<double> bridged;
-  const bool very_noisy = angles.normal_filter_steps > 0 && angles.noise_level > kBoundaryNoiseLimit;
+  const bool very_noisy = angles.normal_filter_steps > 0 && angles.noise_level > kVeryNoisyCreaseLevel;
   const bool noisy = angles.normal_filter_steps > 0 && angles.noise_level <= kBridgeNoiseLimit;
   if (noisy) {
     bridged = angles.angle;
