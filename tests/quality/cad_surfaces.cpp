@@ -337,18 +337,20 @@ std::vector<Polyline> sharp_edges_as_lines(const CadSurface& surface) {
 }
 
 SmoothNearCreases smooth_lines_near(const std::vector<Polyline>& sharp, const std::vector<Polyline>& lines, double h,
-                                    double radius) {
+                                    double radius, const std::vector<Polyline>& away, double away_radius) {
   SmoothNearCreases out;
   const double tol = radius * h;
-  PointGrid truth(tol);
+  PointGrid truth(tol), found(away_radius * h);
   for (size_t e = 0; e < sharp.size(); ++e)
     for (const Sample& s : resample(sharp[e], 0.1 * h)) truth.add(s.point, static_cast<uint32_t>(e));
+  for (const Polyline& l : away)
+    for (const Sample& s : resample(l, 0.1 * h)) found.add(s.point, 0);
   for (const Polyline& line : lines) {
     if (line.type == LineType::Crease) continue;
     ++out.lines;
     for (const Sample& s : resample(line, 0.25 * h)) {
       out.length += s.length / h;
-      if (truth.any_near(s.point, tol)) out.near_length += s.length / h;
+      if (truth.any_near(s.point, tol) && !found.any_near(s.point, away_radius * h)) out.near_length += s.length / h;
     }
   }
   return out;

@@ -73,14 +73,16 @@ std::vector<Polyline> sharp_edges_as_lines(const CadSurface& surface);
 /// Ridges and valleys beside sharp edges, in mean edges h: how much of their
 /// length lies within `radius` h of one of `sharp` (what crease boundaries
 /// should bring to ~0), and their whole length. Crease lines in `lines` are
-/// skipped.
+/// skipped. Samples within `away_radius` h of one of `away` (the creases
+/// found) do not count as near: what is left lies in the creases' gaps.
 struct SmoothNearCreases {
   double near_length = 0;
   double length = 0;
   int lines = 0;
 };
 SmoothNearCreases smooth_lines_near(const std::vector<Polyline>& sharp, const std::vector<Polyline>& lines, double h,
-                                    double radius = 1.0);
+                                    double radius = 1.0, const std::vector<Polyline>& away = {},
+                                    double away_radius = 2.0);
 
 /// Runs the whole pipeline on the case's noisy mesh.
 Pipeline run_cad_pipeline(const CadCase& c, const PipelineOptions& options = {});

@@ -129,7 +129,9 @@ TEST_CASE("smooth lines keep off the sharp edges with crease boundaries", "[qual
       const SmoothNearCreases without = smooth_lines_near(sharp, run_cad_pipeline(c, off).lines(), c.h);
       PipelineOptions on;
       on.creases.boundaries = true;
-      const std::vector<Polyline> lines_with = run_cad_pipeline(c, on).lines();
+      const Pipeline with_boundaries = run_cad_pipeline(c, on);
+      const std::vector<Polyline> lines_with = with_boundaries.lines();
+      const std::vector<Polyline>& creases_with = with_boundaries.creases();
       const SmoothNearCreases with = smooth_lines_near(sharp, lines_with, c.h);
       // Issue 16 asks for no smooth line within 2 edges of a crease. Measured
       // within 2 h: the fillets' ridges end 1–2 h from the box's sharp edges
@@ -144,6 +146,10 @@ TEST_CASE("smooth lines keep off the sharp edges with crease boundaries", "[qual
         CHECK(without.near_length > 100);
         CHECK(with.near_length <= noisy_limits.at(name).first);
         CHECK(with2.near_length <= noisy_limits.at(name).second);
+        // And it lies in the creases' gaps, more than 2 h from every crease
+        // found (measured 40.9 of 41.4 h, 5.4 of 5.9).
+        const SmoothNearCreases in_gaps = smooth_lines_near(sharp, lines_with, c.h, 1.0, creases_with);
+        CHECK(in_gaps.near_length >= 0.9 * with.near_length);
         continue;
       }
       CHECK(without.near_length > 5);
