@@ -58,10 +58,24 @@
 // Left to cut: the dragon (871k) takes 44–57 iterations per solve against
 // 17–23 at 1.1M. R = t·Σ_q w_pq / m_p there has its 90th and 99th
 // percentiles and maximum at 47, 128 and 3.3·10⁵ (1.1M: 6.6, 14, 3.2·10³;
-// bunny: 7.1, 10, 144): clusters of vertices far smaller than the mean
-// carry the slow modes. A multiplicative coarse correction over signed
-// aggregates of strongly coupled vertices, with these sweeps as smoother,
-// would aim at them (not tried: it pays only below half the iterations).
+// bunny: 7.1, 10, 144). Block symmetric Gauss–Seidel, measured outside
+// this solver (2ff2dda's systems, each field alone in double, blocks
+// solved exactly by Cholesky; iterations of the 5 bench steps, the larger
+// field's per step, summed: bunny, 1.1M, dragon 57, 94, 248 with the point
+// sweeps here): blocks grown from the strongest couplings |w_pq| / √(a_pp
+// a_qq) above θ up to a cap of vertices, then coloured. Strongly coupled
+// clusters alone do not carry the slow modes: θ = 0.45 puts 16 % of the
+// dragon's vertices in blocks of ≤ 5 and gives 248 → 246. θ = 0.2 (90–97 %
+// of the vertices in blocks) with caps 4, 8, 16, 32: bunny 41, 40, 39, 37;
+// 1.1M 65, 58, 45, 46; dragon 180, 155, 127, 103. The same order with point
+// sweeps (θ = 0.2, cap 8; a block's rows consecutive, in turn): 54, 85,
+// 226. Exact blocks cost two triangular solves per sweep: at cap 32, 1.3–1.5
+// strictly lower factor entries a row (vertex order in the block) besides
+// 3.5–3.8 off-block entries, against 5.4–5.8 entries now, and a gather is
+// 11 instructions an entry, about a third of an iteration's: an iteration
+// would cost ≈ 1.5× (estimated), so ≈ −40 % on the dragon, −25 % at 1.1M
+// and nothing on the bunny, before memory traffic (not built: Eisenstat's
+// trick then runs in the variables scaled by each block's Cholesky factor).
 #include <cstddef>
 #include <cstdint>
 #include <functional>
