@@ -698,8 +698,11 @@ CreaseAngles measure_crease_angles(const Mesh& mesh, const Topology& topology, c
   out.normal_filter_steps =
       options.normal_filter_steps >= 0 ? options.normal_filter_steps : automatic_normal_filter_steps(out.noise_level);
   const FaceNormals faces = face_normals(mesh);
-  const std::vector<Vec3> normal =
-      out.normal_filter_steps > 0 ? filter_normals(mesh, topology, faces, out.normal_filter_steps) : faces.normal;
+  // The raw normals themselves where no filter runs (clean meshes): no copy,
+  // 24 bytes per triangle less fresh memory.
+  std::vector<Vec3> filtered;
+  if (out.normal_filter_steps > 0) filtered = filter_normals(mesh, topology, faces, out.normal_filter_steps);
+  const std::vector<Vec3>& normal = out.normal_filter_steps > 0 ? filtered : faces.normal;
   const size_t ne = topology.edges.size();
   out.angle.assign(ne, 0.0);
   out.support.assign(ne, 0.0);
