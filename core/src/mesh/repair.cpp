@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <mutex>
 #include <numeric>
 #include <string>
 
@@ -70,23 +71,6 @@ void check_soup(const TriangleSoup& soup, const RepairOptions& options) {
                                                std::to_string(soup.indices[i]) + " but there are only " +
                                                std::to_string(nv) + " vertices.");
 }
-
-// Union-find over 0 … n − 1, reset per use without allocating.
-struct Union {
-  std::vector<uint32_t> parent;
-  void reset(size_t n) {
-    parent.resize(n);
-    std::iota(parent.begin(), parent.end(), 0u);
-  }
-  uint32_t find(uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void join(uint32_t a, uint32_t b) {
-    a = find(a), b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
 
 // Merges vertices closer than `tolerance`: vertex i joins the earliest
 // representative (a vertex that joined no other) j < i within tolerance, or
@@ -288,6 +272,9 @@ void drop_duplicates(std::vector<Triangle>& tris, size_t vertex_count, RepairRep
 // Returns per-corner "edge is cut" flags and the component of each triangle.
 struct Orientation {
   std::vector<uint8_t> cut;  // 3 per triangle, edge k = corners k, k+1
+  // EdgePairs::partner, its slots following the flips (its values still
+  // name the other triangle, the corner there as paired): split_fans walks it.
+  std::vector<uint32_t> partner;
   std::vector<uint32_t> component;
   size_t components = 0;
   size_t single_edges = 0;  // edges of one triangle: boundary edges whatever the repair does
@@ -301,7 +288,8 @@ Orientation orient(std::vector<Triangle>& tris, const std::vector<Vec3>& points,
   out.component.assign(nt, kNone);
   report.nonmanifold_edges += pairs.nonmanifold;
   out.single_edges = pairs.single;
-  const std::vector<uint32_t>& partner = pairs.partner;
+  out.partner = std::move(pairs.partner);
+  const std::vector<uint32_t>& partner = out.partner;
   std::vector<uint8_t>& same = pairs.same;
 
   // The traversal, component by component: a triangle is flipped relative to
@@ -389,126 +377,94 @@ Orientation orient(std::vector<Triangle>& tris, const std::vector<Vec3>& points,
         // Corner k of the swapped triangle: edges (0,2),(2,1),(1,0) — remap cut flags.
         uint8_t* cut = &out.cut[3 * t];
         std::swap(cut[0], cut[2]);
+        std::swap(out.partner[3 * t], out.partner[3 * t + 2]);
       }
   });
   return out;
 }
 
 // Splits every vertex whose triangles form several fans (connected through
-// uncut edges around it) into one vertex per fan. The fans of each vertex
-// are found on every thread from the unsplit triangles (renaming a vertex's
-// corners never changes which uncut edges other vertices see: the two
-// triangles of an uncut edge are in one fan at each of its ends), then the
-// copies are numbered in vertex order, as one pass in that order would.
-void split_fans(std::vector<Triangle>& tris, std::vector<Vec3>& points, const std::vector<uint8_t>& cut,
+// uncut edges around it) into one vertex per fan: the fan of the vertex's
+// first corner keeps it, the others get copies, numbered in vertex order and
+// at each vertex in the order of their first corners.
+//
+// A fan is walked over the half-edge pairing, from corner to corner across
+// the uncut edges at its vertex (the triangles agree in orientation across
+// those, so the edge leaving v in one enters v in the next), instead of
+// grouping every vertex's corners: ~5 bytes per triangle of fresh memory
+// instead of ~30. A fan holding all of its vertex's triangles is the
+// vertex's only one: nearly every fan. The rest, found on every thread, are
+// sorted by (vertex, first corner).
+void split_fans(std::vector<Triangle>& tris, std::vector<Vec3>& points, const Orientation& orientation,
                 RepairReport& report) {
   const size_t nv = points.size(), nt = tris.size();
-  std::vector<uint32_t> offsets, corners;  // the corners at each vertex, CSR
-  detail::group_by_bucket(
-      nt, nv,
-      [&](size_t t, const auto& emit) {
-        for (uint32_t k = 0; k < 3; ++k) emit(tris[t][k], uint32_t(3 * t + k));
-      },
-      offsets, corners);
-
-  // fan[i]: the fan of corner corners[i] at its vertex, numbered by first
-  // appearance (0 keeps the vertex); extra[v]: the vertex's fans beyond the first.
-  std::vector<uint32_t> fan(3 * nt, 0), extra(nv, 0);
-  parallel_for(nv, [&](size_t first, size_t last) {
-    // Buffers reused for every vertex of the chunk with many triangles.
-    std::vector<uint64_t> ends;  // other end of an uncut edge at v << 32 | local triangle
-    Union fans;
-    // A vertex's triangles i, j are in one fan when they share an uncut edge
-    // at v: the same other end. Few triangles (nearly every vertex): all
-    // pairs of ends compared, on the stack; many: the ends sorted.
-    constexpr uint32_t kFew = 16;
-    uint32_t parent[kFew], end_of[2 * kFew], owner[2 * kFew];
-    auto find = [&](uint32_t x) {
-      while (parent[x] != x) x = parent[x] = parent[parent[x]];
-      return x;
-    };
-    for (size_t v = first; v < last; ++v) {
-      const uint32_t begin = offsets[v], n = offsets[v + 1] - begin;
-      if (n < 2) continue;
-      uint32_t* root = parent;
-      if (n <= kFew) {
-        // Nearly every vertex: one closed fan whose triangles follow each
-        // other, the edge leaving v in one entering v in the next. Following
-        // that chain from the first triangle through all n of them, every
-        // edge uncut, proves a single fan (its fan numbers stay 0).
-        bool uncut = true;
-        for (uint32_t i = 0; i < n && uncut; ++i) {
-          const uint32_t corner = corners[begin + i], t = corner / 3, k = corner % 3;
-          uncut = !cut[3 * t + k] && !cut[3 * t + (k + 2) % 3];
-          end_of[i] = tris[t][(k + 1) % 3];         // the edge v → end_of[i]
-          end_of[kFew + i] = tris[t][(k + 2) % 3];  // the edge end_of[kFew + i] → v
-        }
-        bool single = uncut;
-        for (uint32_t i = 0, steps = 0; single;) {
-          uint32_t j = 0;
-          while (j < n && end_of[kFew + j] != end_of[i]) ++j;
-          i = j, ++steps;
-          if (i == 0) {
-            single = steps == n;  // back at the first triangle after all n
-            break;
-          }
-          single = i < n && steps < n;
-        }
-        if (single) continue;
-        uint32_t m = 0;
-        for (uint32_t i = 0; i < n; ++i) {
-          parent[i] = i;
-          const uint32_t corner = corners[begin + i], t = corner / 3, k = corner % 3;
-          if (!cut[3 * t + k]) end_of[m] = tris[t][(k + 1) % 3], owner[m++] = i;
-          if (!cut[3 * t + (k + 2) % 3]) end_of[m] = tris[t][(k + 2) % 3], owner[m++] = i;
-        }
-        for (uint32_t a = 0; a < m; ++a)
-          for (uint32_t b = a + 1; b < m; ++b)
-            if (end_of[a] == end_of[b]) {
-              const uint32_t x = find(owner[a]), y = find(owner[b]);
-              if (x != y) parent[std::max(x, y)] = std::min(x, y);
-            }
-        for (uint32_t i = 0; i < n; ++i) parent[i] = find(i);
-      } else {
-        ends.clear();
-        for (uint32_t i = 0; i < n; ++i) {
-          const uint32_t corner = corners[begin + i], t = corner / 3, k = corner % 3;
-          if (!cut[3 * t + k]) ends.push_back(uint64_t{tris[t][(k + 1) % 3]} << 32 | i);
-          if (!cut[3 * t + (k + 2) % 3]) ends.push_back(uint64_t{tris[t][(k + 2) % 3]} << 32 | i);
-        }
-        std::sort(ends.begin(), ends.end());
-        fans.reset(n);
-        for (size_t j = 1; j < ends.size(); ++j)
-          if (ends[j] >> 32 == ends[j - 1] >> 32) fans.join(uint32_t(ends[j]), uint32_t(ends[j - 1]));
-        for (uint32_t i = 0; i < n; ++i) fans.find(i);
-        root = fans.parent.data();
-      }
-      // root[i] is now the smallest triangle of i's fan: fans are numbered
-      // by their first triangle, as they appear in order.
-      uint32_t fan_count = 0;
-      for (uint32_t i = 0; i < n; ++i) {
-        fan[begin + i] = root[i] == i ? fan_count++ : fan[begin + root[i]];
-      }
-      extra[v] = fan_count - 1;
+  const std::vector<uint8_t>& cut = orientation.cut;
+  const std::vector<uint32_t>& partner = orientation.partner;
+  std::vector<uint32_t> triangles_at(nv, 0);
+  for (const Triangle& t : tris)
+    for (uint32_t v : t) ++triangles_at[v];
+  // The corner at v of the triangle across the edge of corner `edge` (a
+  // corner of v's triangle), or kNone where the edge is cut or has no other.
+  auto across = [&](uint32_t edge, uint32_t v) {
+    const uint32_t other = partner[edge];
+    if (other == kNone || cut[edge]) return kNone;
+    const uint32_t u = other / 3;
+    return 3 * u + (tris[u][0] == v ? 0 : tris[u][1] == v ? 1 : 2);
+  };
+  // Calls visit(corner) for every corner of c's fan but c: first on through
+  // the edges leaving v, then, on an open fan, back from c.
+  auto for_fan = [&](uint32_t c, uint32_t v, const auto& visit) {
+    for (uint32_t x = c;;) {
+      x = across(x, v);
+      if (x == c) return;
+      if (x == kNone) break;
+      visit(x);
     }
+    for (uint32_t x = c;;) {
+      x = across(3 * (x / 3) + (x + 2) % 3, v);
+      if (x == kNone) break;
+      visit(x);
+    }
+  };
+  // (vertex << 32 | first corner) of every fan of a vertex of several.
+  std::vector<uint64_t> fans;
+  std::mutex fans_mutex;
+  parallel_for(3 * nt, [&](size_t first, size_t last) {
+    // Corners of this range already walked, as part of an earlier one's fan.
+    std::vector<uint8_t> seen(last - first, 0);
+    std::vector<uint64_t> found;
+    for (size_t c = first; c < last; ++c) {
+      if (seen[c - first]) continue;
+      const uint32_t v = tris[c / 3][c % 3];
+      uint32_t size = 1, lowest = uint32_t(c);
+      for_fan(uint32_t(c), v, [&](uint32_t x) {
+        ++size, lowest = std::min(lowest, x);
+        if (x >= first && x < last) seen[x - first] = 1;
+      });
+      // Once per fan: from its first corner (the range that holds it).
+      if (size < triangles_at[v] && lowest == c) found.push_back(uint64_t{v} << 32 | c);
+    }
+    if (found.empty()) return;
+    const std::lock_guard<std::mutex> lock(fans_mutex);
+    fans.insert(fans.end(), found.begin(), found.end());
   });
-  // The copies of vertex v are numbered first_copy[v] … in vertex order.
-  std::vector<uint32_t> first_copy(nv);
-  uint32_t next = static_cast<uint32_t>(nv);
-  for (size_t v = 0; v < nv; ++v) {
-    first_copy[v] = next, next += extra[v];
-    report.nonmanifold_vertices += extra[v] > 0;
+  if (fans.empty()) return;
+  std::sort(fans.begin(), fans.end());
+  // The copies of each vertex, in vertex order: its fans but the first.
+  for (size_t i = 0; i < fans.size(); ++i) {
+    const uint32_t v = uint32_t(fans[i] >> 32), c = uint32_t(fans[i]);
+    if (i == 0 || fans[i - 1] >> 32 != v) {
+      ++report.nonmanifold_vertices;
+      continue;
+    }
+    const uint32_t copy = static_cast<uint32_t>(points.size());
+    const Vec3 p = points[v];
+    points.push_back(p);
+    // Each corner renamed once walked past: a step finds v in the next
+    // triangle, and c's last, when a closed fan comes back to it.
+    for_fan(c, v, [&](uint32_t x) { tris[x / 3][x % 3] = copy; });
+    tris[c / 3][c % 3] = copy;
   }
-  if (next == nv) return;
-  points.resize(next);
-  parallel_for(nv, [&](size_t first, size_t last) {
-    for (size_t v = first; v < last; ++v) {
-      if (!extra[v]) continue;
-      for (uint32_t c = 0; c < extra[v]; ++c) points[first_copy[v] + c] = points[v];
-      for (uint32_t i = offsets[v]; i < offsets[v + 1]; ++i)
-        if (fan[i]) tris[corners[i] / 3][corners[i] % 3] = first_copy[v] + fan[i] - 1;
-    }
-  });
 }
 
 // Boundary edges of the repaired mesh, without grouping its half-edges
@@ -616,7 +572,8 @@ RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options)
   }
   Orientation orientation = orient(tris, points, std::move(pairs), report);
   report.components = orientation.components;
-  split_fans(tris, points, orientation.cut, report);
+  split_fans(tris, points, orientation, report);
+  orientation.partner = std::vector<uint32_t>();
 
   // Compact: keep referenced vertices in first-use order of the input.
   std::vector<uint32_t> index(points.size(), kNone);

@@ -421,3 +421,82 @@ TEST_CASE("repair drops duplicates wherever they sit, as a set of vertex triples
   CHECK(one.mesh.triangles == two.mesh.triangles);
   CHECK(one.mesh.positions == two.mesh.positions);
 }
+
+// split_fans walks each vertex's fans over the half-edge pairing; before
+// (2ff2dda) it grouped every vertex's corners and joined triangles with a
+// common uncut edge. On random soups dense in non-manifold edges, flipped
+// triangles, non-orientable loops and vertices of several fans, the repaired
+// meshes must be those of the grouping, whose FNV-1a hash over the
+// reports, positions and triangles is recorded here; and each vertex of
+// several fans keeps the fan of its first triangle, its copies (after every
+// input vertex, in vertex order) taking the other fans in the order of their
+// first triangles.
+TEST_CASE("repair splits fans as the per-vertex grouping of 2ff2dda did", "[repair]") {
+  std::mt19937 random(11);
+  uint64_t hash = 1469598103934665603ull;
+  auto mix = [&](uint64_t x) {
+    for (int i = 0; i < 8; ++i) hash = (hash ^ ((x >> (8 * i)) & 0xff)) * 1099511628211ull;
+  };
+  size_t split = 0, rounds = 0;
+  // The last round is large enough for the walk to split over threads.
+  for (int round = 0; round <= 300; ++round) {
+    TriangleSoup s;
+    const uint32_t nv = round < 300 ? 5 + round % 30 : 4000;
+    for (uint32_t v = 0; v < nv; ++v)
+      add_vertex(s, Vec3(double(random() % 17), double(random() % 17), double(random() % 17)));
+    const uint32_t nt = (2 + round % 4) * nv;
+    for (uint32_t t = 0; t < nt; ++t)
+      add_triangle(s, uint32_t(random() % nv), uint32_t(random() % nv), uint32_t(random() % nv));
+    RepairResult one, two;
+    try {
+      one = repair_on(1, s), two = repair_on(2, s);
+    } catch (const Error&) {
+      continue;  // nothing usable (all degenerate)
+    }
+    ++rounds;
+    INFO("round " << round);
+    CHECK(one.mesh.triangles == two.mesh.triangles);
+    CHECK(one.mesh.positions == two.mesh.positions);
+    CHECK(one.report.nonmanifold_vertices == two.report.nonmanifold_vertices);
+    const Mesh& m = one.mesh;
+    for (size_t n : {one.report.nonmanifold_edges, one.report.nonmanifold_vertices, one.report.flipped_triangles,
+                     one.report.components, one.report.boundary_edges, m.vertex_count(), m.triangle_count()})
+      mix(n);
+    for (const Vec3& p : m.positions)
+      for (int i = 0; i < 3; ++i) mix(uint64_t(p[i]));
+    for (const Triangle& t : m.triangles)
+      for (uint32_t v : t) mix(v);
+    // Every vertex is one fan now (build_topology rejects any other), and
+    // the copies follow the rule above. Welded vertices lie apart, so a
+    // vertex's copies are the later vertices at its position.
+    CHECK_NOTHROW(build_topology(m));
+    std::vector<uint32_t> original(m.vertex_count()), first_triangle(m.vertex_count(), kNone);
+    for (uint32_t v = 0; v < m.vertex_count(); ++v) {
+      original[v] = v;
+      for (uint32_t u = 0; u < v; ++u)
+        if (m.positions[u] == m.positions[v]) {
+          original[v] = u;
+          break;
+        }
+    }
+    for (uint32_t t = 0; t < m.triangle_count(); ++t)
+      for (uint32_t v : m.triangles[t]) first_triangle[v] = std::min(first_triangle[v], t);
+    uint32_t copies = 0, last_original = 0, last_first = 0;
+    for (uint32_t v = 0; v < m.vertex_count(); ++v) {
+      if (original[v] == v) {
+        CHECK(copies == 0);  // copies come after every input vertex
+        continue;
+      }
+      ++copies;
+      const uint32_t o = original[v];
+      CHECK(first_triangle[o] < first_triangle[v]);
+      CHECK(o >= last_original);
+      if (o == last_original) CHECK(first_triangle[v] > last_first);
+      last_original = o, last_first = first_triangle[v];
+    }
+    split += copies > 0;
+  }
+  CHECK(rounds > 250);
+  CHECK(split > 100);  // the soups exercise the split
+  CHECK(hash == 0xe651af74da85eb42ull);
+}
