@@ -1,12 +1,12 @@
 #include "crestline/curvature/shape_operator.h"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <array>
 #include <cmath>
 
 #include "crestline/mesh/cotan.h"
 #include "crestline/numerics/parallel.h"
+#include "crestline/numerics/symmetric_eigen3.h"
 
 namespace crestline {
 
@@ -102,15 +102,14 @@ Curvature compute_curvature(const Mesh& mesh, const Topology& topology) {
   // One eigen-decomposition per vertex, each writing only its own vertex:
   // the same results on any number of threads.
   parallel_for(nv, [&](size_t begin, size_t end) {
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
     Eigen::Matrix3d s;
     for (size_t v = begin; v < end; ++v) {
       const Lower& l = shape[v];
       s(0, 0) = l[0], s(1, 0) = l[1], s(2, 0) = l[2], s(1, 1) = l[3], s(2, 1) = l[4], s(2, 2) = l[5];
       s(0, 1) = l[1], s(0, 2) = l[2], s(1, 2) = l[4];
-      eigen.compute(s);
-      const Eigen::Vector3d lambda = eigen.eigenvalues();  // ascending
-      const Eigen::Matrix3d vectors = eigen.eigenvectors();
+      const SymmetricEigen3 eigen = symmetric_eigen3(s);
+      const Eigen::Vector3d& lambda = eigen.values;  // ascending
+      const Eigen::Matrix3d& vectors = eigen.vectors;
       // The paper keeps the two eigenvalues of largest magnitude; the third
       // belongs (up to noise) to the normal. On a flat patch all three vanish
       // and "largest" is noise, so we drop the eigenvector closest to the

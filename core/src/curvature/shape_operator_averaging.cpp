@@ -1,6 +1,6 @@
 #include "crestline/curvature/shape_operator_averaging.h"
 
-#include <Eigen/Eigenvalues>
+#include "crestline/numerics/symmetric_eigen3.h"
 
 namespace crestline {
 
@@ -28,14 +28,13 @@ Curvature average_shape_operator(const Mesh& mesh, const Topology& topology, con
     area.swap(next_area);
   }
   // As in compute_curvature: drop the eigenvector closest to the normal.
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
   for (size_t v = 0; v < nv; ++v) {
     if (!(area[v] > 0)) continue;
     const Vec3& n = curvature.vertex_normals[v];
     const Eigen::Matrix3d tangent = Eigen::Matrix3d::Identity() - n * n.transpose();
-    eigen.compute(tangent * shape[v] * tangent / area[v]);
-    const Eigen::Vector3d lambda = eigen.eigenvalues();
-    const Eigen::Matrix3d vectors = eigen.eigenvectors();
+    const SymmetricEigen3 eigen = symmetric_eigen3(tangent * shape[v] * tangent / area[v]);
+    const Eigen::Vector3d& lambda = eigen.values;
+    const Eigen::Matrix3d& vectors = eigen.vectors;
     int drop = 0;
     double best = -1;
     for (int i = 0; i < 3; ++i) {
