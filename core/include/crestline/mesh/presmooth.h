@@ -22,8 +22,9 @@ struct PresmoothOptions {
 /// mean edge length. Clean meshes measure 0.002–0.04 (CAD, analytic,
 /// scans like the feline), normal noise of σ = 0.1 edge about 0.075.
 /// Vertices on a clean crease or corner (sharp edges and flat ones, none
-/// between) count as 0, so coarse CAD tessellations, where nearly every
-/// vertex is one, read as clean (presmooth.cpp).
+/// between, or between-edges turning by the same total as along the crease,
+/// as on a coarse cylinder's rim) count as 0, so coarse CAD tessellations,
+/// where nearly every vertex is one, read as clean (presmooth.cpp).
 double surface_noise_level(const Mesh& mesh, const Topology& topology);
 /// The same per component (vertex_component numbers them 0 … components−1),
 /// each in units of its own mean edge length.
