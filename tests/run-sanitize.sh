@@ -6,7 +6,12 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${CRESTLINE_ASAN_BUILD:-build-asan}
-cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCRESTLINE_SANITIZE=ON >/dev/null
+# -O1 -g1 (line tables, no variables) instead of RelWithDebInfo's -O2 -g: the
+# reports keep their symbolised stacks, and compiling halves (Catch2's main
+# 102 -> 47 s); the compile was 13 of this suite's 16.6 minutes in CI.
+cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" \
+  -DCRESTLINE_SANITIZE=ON >/dev/null
 # Everything, not just crestline_tests: CTest also runs the CLI and quality tests.
 cmake --build "$build" -j "$(nproc)"
 export ASAN_OPTIONS=halt_on_error=1:abort_on_error=1:detect_leaks=1:detect_stack_use_after_return=1:strict_string_checks=1
