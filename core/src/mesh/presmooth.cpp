@@ -29,12 +29,9 @@ constexpr double kFlatTurn = 1 * 3.14159265358979 / 180;
 // 5 % moved 409 (the same maximum) and the noisy icosphere test's level.
 constexpr double kEqualTurn = 0.02;
 
-static std::vector<uint8_t> clean_crease_vertices(const Mesh& mesh, const Topology& topology) {
-  std::vector<Vec3> n(mesh.triangles.size());
-  for (size_t t = 0; t < n.size(); ++t) {
-    const Triangle& tri = mesh.triangles[t];
-    n[t] = (mesh.positions[tri[1]] - mesh.positions[tri[0]]).cross(mesh.positions[tri[2]] - mesh.positions[tri[0]]);
-  }
+// n: each triangle's unnormalised normal (twice its area).
+static std::vector<uint8_t> clean_crease_vertices(const Mesh& mesh, const Topology& topology,
+                                                  const std::vector<Vec3>& n) {
   const double cos_sharp = std::cos(kCleanCreaseTurn), cos_flat = std::cos(kFlatTurn);
   const size_t nv = mesh.positions.size();
   std::vector<uint8_t> sharp(nv, 0), flat(nv, 0), between(nv, 0);  // counts up to 2
@@ -97,13 +94,16 @@ std::vector<double> surface_noise_levels(const Mesh& mesh, const Topology& topol
     neighbour_sum[e[1]] += mesh.positions[e[0]];
     ++count[e[0]], ++count[e[1]];
   }
-  for (const Triangle& t : mesh.triangles) {
-    const Vec3 n = (mesh.positions[t[1]] - mesh.positions[t[0]]).cross(mesh.positions[t[2]] - mesh.positions[t[0]]);
-    for (uint32_t v : t) normal[v] += n;
+  std::vector<Vec3> face_normal(mesh.triangles.size());
+  for (size_t f = 0; f < face_normal.size(); ++f) {
+    const Triangle& t = mesh.triangles[f];
+    face_normal[f] = (mesh.positions[t[1]] - mesh.positions[t[0]]).cross(mesh.positions[t[2]] - mesh.positions[t[0]]);
+    for (uint32_t v : t) normal[v] += face_normal[f];
   }
   // Vertices on clean creases count as jump 0 and stay out of their
   // neighbours' means.
-  const std::vector<uint8_t> on_crease = clean_crease_vertices(mesh, topology);
+  const std::vector<uint8_t> on_crease = clean_crease_vertices(mesh, topology, face_normal);
+  face_normal = {};
   std::vector<double> offset(nv, 0.0);
   std::vector<uint8_t> valid(nv, 0);
   for (size_t v = 0; v < nv; ++v) {
