@@ -74,8 +74,21 @@
 // 3.5–3.8 off-block entries, against 5.4–5.8 entries now, and a gather is
 // 11 instructions an entry, about a third of an iteration's: an iteration
 // would cost ≈ 1.5× (estimated), so ≈ −40 % on the dragon, −25 % at 1.1M
-// and nothing on the bunny, before memory traffic (not built: Eisenstat's
-// trick then runs in the variables scaled by each block's Cholesky factor).
+// and nothing on the bunny, before memory traffic. Built in this solver
+// on 294cb6c and not kept: Eisenstat's trick in the variables scaled by
+// each block's Cholesky factor C (Ĉ⁻¹ Â Ĉ⁻ᵀ has a unit block diagonal, so
+// the recurrences here carry over; two triangular solves a block and
+// sweep), θ = 0.2, cap 32, a block's rows consecutive, chunks of whole
+// blocks. CLI defaults (3 steps), 1 thread, callgrind: iterations bunny
+// 35 → 23, 1.1M 60 → 28, dragon 159 → 64, but an iteration costs 2.2–2.3×
+// the point one (a row's fixed work, not its gathers, is most of an
+// iteration, and the block solves add as much again) and the set-up grows
+// by 0.8–1.2 times the old one: smoothing bunny 269 M → 393 M
+// instructions, 1.1M 6.09 G → 6.91 G, dragon 10.12 G → 9.80 G. Blocks kept
+// to trees of their couplings (no fill: one factor entry a column, no
+// index loops) need 24, 39 and 119 iterations at 1.5× (bunny) to 1.9×
+// (dragon, small blocks) an iteration: bunny 308 M, dragon 14.25 G. An
+// iteration's cost, not the count, is what a block method must cut first.
 #include <cstddef>
 #include <cstdint>
 #include <functional>
