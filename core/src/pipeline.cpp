@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <numeric>
 #include <utility>
 
@@ -55,12 +56,26 @@ Pipeline::Pipeline(Mesh mesh) : input_(std::move(mesh)) {
 }
 
 const Topology& Pipeline::topology() const {
-  if (!topology_valid_) topology_ = build_topology(input_), topology_valid_ = true;
+  if (!topology_valid_) topology_ = build_topology(input()), topology_valid_ = true;
   return topology_;
 }
 
+std::vector<Triangle> Pipeline::input_triangles() const {
+  if (!input_.triangles.empty() || !cut_active_) return input_.triangles;
+  // The cut mesh has the same triangles, some corners moved to a copy of their vertex.
+  std::vector<Triangle> triangles = cut_.mesh.triangles;
+  for (Triangle& t : triangles)
+    for (uint32_t& v : t) v = cut_.source(v);
+  return triangles;
+}
+
+const Mesh& Pipeline::input() const {
+  if (input_.triangles.empty() && cut_active_) input_.triangles = input_triangles();
+  return input_;
+}
+
 const Mesh& Pipeline::local_input() {
-  if (!local_input_valid_) local_input_ = to_local(input_, frames_), local_input_valid_ = true;
+  if (!local_input_valid_) local_input_ = to_local(input(), frames_), local_input_valid_ = true;
   return local_input_;
 }
 
@@ -93,7 +108,15 @@ void Pipeline::set_options(const PipelineOptions& o) {
 }
 
 void Pipeline::measure_creases() {
+  if (crease_angles_valid_ && crease_angles_compact_) {
+    CreaseAngles& a = crease_angles_;
+    a.angle.assign(crease_edge_count_, 0.0);
+    a.support.assign(crease_edge_count_, 0.0);
+    for (const CreaseEdge& c : crease_edges_) a.angle[c.edge] = c.angle, a.support[c.edge] = c.support;
+    crease_edges_ = std::vector<CreaseEdge>(), crease_angles_compact_ = false;
+  }
   if (crease_angles_valid_) return;
+  crease_edges_ = std::vector<CreaseEdge>(), crease_angles_compact_ = false;
   // Measured on the input mesh (pre-smoothing rounds creases) in the working
   // frame (angles do not depend on it, but the normals of a model at 1e-100
   // would underflow), the automatic filter decided by the largest
@@ -103,6 +126,28 @@ void Pipeline::measure_creases() {
   if (measure.normal_filter_steps < 0) measure.normal_filter_steps = automatic_normal_filter_steps(noise);
   crease_angles_ = measure_crease_angles(local_input(), topology(), measure);
   crease_angles_valid_ = true;
+}
+
+void Pipeline::compact_crease_angles() {
+  // Kept through the smooth stages when no cut serves, for a new crease angle
+  // to select from; but most edges turn by less than 20°, stored as 0, so
+  // only the others are (24 bytes per triangle less on a scan), and
+  // measure_creases() rebuilds the arrays, the same bits.
+  CreaseAngles& a = crease_angles_;
+  if (!crease_angles_valid_ || crease_angles_compact_ || a.angle.size() != a.support.size()) return;
+  auto kept = [&a](size_t e) {
+    auto nonzero = [](double x) { return x != 0 || std::signbit(x); };
+    return nonzero(a.angle[e]) || nonzero(a.support[e]);
+  };
+  size_t count = 0;
+  for (size_t e = 0; e < a.angle.size(); ++e) count += kept(e);
+  if (count * sizeof(CreaseEdge) >= a.angle.size() * 2 * sizeof(double)) return;  // no smaller
+  crease_edges_.reserve(count);
+  for (size_t e = 0; e < a.angle.size(); ++e)
+    if (kept(e)) crease_edges_.push_back({static_cast<uint32_t>(e), a.angle[e], a.support[e]});
+  crease_edge_count_ = a.angle.size();
+  a.angle = std::vector<double>(), a.support = std::vector<double>();
+  crease_angles_compact_ = true;
 }
 
 Pipeline::BoundarySelection Pipeline::select_boundaries() {
@@ -135,6 +180,7 @@ Pipeline::BoundarySelection Pipeline::select_boundaries() {
 void Pipeline::cut_along_boundaries(std::vector<uint32_t> edges) {
   boundary_edges_ = std::move(edges);
   mark_dirty(Stage::Presmooth);
+  input();  // its triangles back from the cut before the cut goes
   cut_ = CutMesh(), cut_active_ = false, cut_topology_ = Topology(), cut_components_.clear();
   // The cut takes over the input's mesh in the working frame and its
   // adjacency (no copy of either: at 1.1M triangles 24 and 50 bytes per
@@ -210,6 +256,11 @@ void Pipeline::run(const ProgressCallback& progress) {
   if (cut_active_) {
     topology_ = Topology(), topology_valid_ = false;
     crease_angles_ = CreaseAngles(), crease_angles_valid_ = false;
+    // The input's triangles too: the cut mesh has them (input() rebuilds
+    // them, the same; 12 bytes per triangle).
+    input_.triangles = std::vector<Triangle>();
+  } else {
+    compact_crease_angles();
   }
   release_local_input();
   // The line graphs are rebuilt whenever tracing re-runs: released now, not
@@ -222,6 +273,13 @@ void Pipeline::run(const ProgressCallback& progress) {
   if (static_cast<int>(first_dirty_) <= static_cast<int>(Stage::Regularity)) regularity_ = Regularity();
   if (static_cast<int>(first_dirty_) <= static_cast<int>(Stage::Extremality)) raw_extremality_ = Extremality();
   if (static_cast<int>(first_dirty_) <= static_cast<int>(Stage::Curvature)) curvature_ = Curvature();
+  // And the lines (three copies, ≈ 15 bytes per triangle at 1.1M), which a
+  // re-smoothing would otherwise hold through its solves; the filter's
+  // indices go with the lines they index.
+  if (static_cast<int>(first_dirty_) <= static_cast<int>(Stage::Polylines))
+    joined_ = std::vector<Polyline>(), line_component_ = std::vector<uint32_t>();
+  if (static_cast<int>(first_dirty_) <= static_cast<int>(Stage::Fairing))
+    faired_local_ = std::vector<Polyline>(), faired_ = std::vector<Polyline>(), filtered_ = FilterResult();
   auto step = [&](Stage stage, auto&& work) {
     if (static_cast<int>(stage) < static_cast<int>(first_dirty_)) return;
     if (progress && !progress(stage, 0.0)) throw Cancelled();
@@ -256,7 +314,7 @@ void Pipeline::run(const ProgressCallback& progress) {
     // Each side of a crease smooths its copy of a crease vertex along the
     // crease; they meet again at the mean.
     if (cut_active_) merge_copies(cut_, working_surface_.positions);
-    surface_.triangles = input_.triangles;
+    surface_.triangles = input_triangles();
     surface_.positions.resize(input_.positions.size());
     for (size_t v = 0; v < surface_.positions.size(); ++v)
       surface_.positions[v] = frames_.to_user(working_surface_.positions[v], frames_.vertex_component[v]);
@@ -272,8 +330,9 @@ void Pipeline::run(const ProgressCallback& progress) {
     raw_extremality_ = compute_extremality(surface, curvature_);
     // No later stage reads the normals or star areas, and no option re-runs
     // this stage without the curvature one: released (16 bytes per triangle).
-    curvature_.vertex_normals = {};
-    curvature_.star_area = {};
+    // Assigning a new vector frees; `= {}` would only clear (it keeps the capacity).
+    curvature_.vertex_normals = std::vector<Vec3>();
+    curvature_.star_area = std::vector<double>();
   });
   step(Stage::Regularity, [&] { regularity_ = classify_triangles(surface, curvature_); });
   step(Stage::Smoothing, [&] {
@@ -298,9 +357,9 @@ void Pipeline::run(const ProgressCallback& progress) {
   // triangles: released (≈ 7 bytes per triangle).
   step(Stage::Singular, [&] {
     singular_ = connect_singular_triangles(surface, topology, regularity_, std::move(traced_));
-    singular_.lines.ridges.edge_node = {};
-    singular_.lines.valleys.edge_node = {};
-    singular_.lines.excluded = {};
+    singular_.lines.ridges.edge_node = std::vector<uint32_t>();
+    singular_.lines.valleys.edge_node = std::vector<uint32_t>();
+    singular_.lines.excluded = std::vector<uint8_t>();
   });
   step(Stage::Polylines, [&] {
     PolylinesInput input;
@@ -371,7 +430,7 @@ std::vector<Polyline> Pipeline::all_kinds() const {
 PipelineStats Pipeline::stats() const {
   PipelineStats s;
   s.vertices = input_.positions.size();
-  s.triangles = input_.triangles.size();
+  s.triangles = cut_active_ ? cut_.mesh.triangles.size() : input_.triangles.size();
   s.singular_max = regularity_.singular_max;
   s.singular_min = regularity_.singular_min;
   for (uint32_t i : filtered_.kept) {

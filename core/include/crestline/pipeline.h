@@ -108,9 +108,11 @@ class Pipeline {
   /// Recomputes the stages marked dirty.
   void run(const ProgressCallback& progress = {});
 
-  const Mesh& input_mesh() const { return input_; }
+  /// While a crease cut serves the smooth stages a run releases its triangles
+  /// (the cut mesh has them); rebuilt here (the same) when asked for.
+  const Mesh& input_mesh() const { return input(); }
   /// The mesh after optional pre-smoothing, in the input's coordinates.
-  const Mesh& surface() const { return presmoothed_ ? surface_ : input_; }
+  const Mesh& surface() const { return presmoothed_ ? surface_ : input(); }
   /// The same in the working frame: all curvature lives on it, and segments()
   /// lie on its edges. Its vertices are the input's, followed by one copy
   /// per extra side of each vertex on a boundary crease (working_cut()); the
@@ -149,7 +151,8 @@ class Pipeline {
   /// The sharp creases of the input mesh (type LineType::Crease).
   const std::vector<Polyline>& creases() const { return creases_.lines; }
   const CreaseResult& crease_result() const { return creases_; }
-  /// Empty after a run while a crease cut serves (measured again when needed).
+  /// Its angle and support are empty after a run (measured again while a
+  /// crease cut serves, else kept compact; either way the same when needed).
   const CreaseAngles& crease_angles() const { return crease_angles_; }
   /// lines() followed by creases(): what the writers draw.
   std::vector<Polyline> all_kinds() const;
@@ -157,9 +160,12 @@ class Pipeline {
 
  private:
   void mark_dirty(Stage from);
+  const Mesh& input() const;
+  std::vector<Triangle> input_triangles() const;
   const Mesh& local_input();
   void release_local_input();
   void measure_creases();
+  void compact_crease_angles();
   struct BoundarySelection {
     std::optional<std::vector<uint32_t>> changed;  // the boundary creases, when they changed
     // The selection when it is also the creases' (the automatic angle,
@@ -179,7 +185,7 @@ class Pipeline {
 
   PipelineOptions options_;
   Stage first_dirty_ = Stage::Presmooth;
-  Mesh input_;
+  mutable Mesh input_;  // its triangles released while a cut serves (input())
   ComponentFrames frames_;
   Mesh local_input_;  // input_ in the working frame; released while a cut serves (local_input())
   bool local_input_valid_ = false;
@@ -211,6 +217,14 @@ class Pipeline {
   Topology cut_topology_;
   std::vector<uint32_t> cut_components_;  // component of each cut vertex
   CreaseAngles crease_angles_;
+  // crease_angles_'s angle and support where either is not 0 (compact_crease_angles).
+  struct CreaseEdge {
+    uint32_t edge;
+    double angle, support;
+  };
+  std::vector<CreaseEdge> crease_edges_;
+  size_t crease_edge_count_ = 0;
+  bool crease_angles_compact_ = false;
   CreaseResult creases_;
   double seconds_[static_cast<int>(Stage::Count)] = {};
   double topology_seconds_ = 0;

@@ -95,6 +95,8 @@ TEST_CASE("with a crease cut, crease and boundary changes give the lines and cre
   // on demand, the same.
   CHECK(p.crease_angles().angle.empty());
   testing::check_same_topology(p.topology(), build_topology(mesh));
+  // So are the input's triangles (the cut mesh has them): rebuilt the same.
+  CHECK(p.input_mesh().triangles == mesh.triangles);
   PipelineOptions o = p.options();
   o.creases.angle = 80;  // no crease
   p.set_options(o);
@@ -104,6 +106,17 @@ TEST_CASE("with a crease cut, crease and boundary changes give the lines and cre
   p.set_options(o);
   p.run();
   CHECK(p.working_cut().copy_of.empty());
+  // Without a cut the crease angles are kept compact after a run, and a new
+  // crease angle selects from them what a fresh run selects.
+  CHECK(p.crease_angles().angle.empty());
+  o.creases.angle = 30;
+  p.set_options(o);
+  p.run();
+  Pipeline uncut(mesh);
+  uncut.set_options(o);
+  uncut.run();
+  REQUIRE(uncut.stats().creases > 0);
+  same(p, uncut);
   o = PipelineOptions();
   p.set_options(o);
   p.run();
