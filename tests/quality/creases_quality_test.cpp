@@ -3,7 +3,6 @@
 // crestline_crease_report prints every case.
 #include <algorithm>
 #include <catch2/catch.hpp>
-#include <map>
 
 #include "analytic_meshes.h"
 #include "cad_surfaces.h"
@@ -52,15 +51,19 @@ TEST_CASE("creases of the CAD-like surfaces: targets at σ = 0 and 0.1", "[quali
       }
 }
 
-// At σ = 0.25 the targets hold in some cases only; asserted over the 27
-// cases of crestline_crease_report --seeds 3 (seeds 1–3, three mesh kinds),
-// one case alone varies too much. Regression guards at the values measured
+// At σ = 0.25 the targets hold in most cases; asserted over the 27 cases of
+// crestline_crease_report --seeds 3 (seeds 1–3, three mesh kinds), one case
+// alone varies too much. Regression guards at the values measured
 // (creases.cpp): 4 cases met every target before redundant chains were
 // dropped, 7 after, 12 once bridge walks took their direction over their
-// last 3 edges, 13 now that they step over strong edges outside their cone;
-// coverage mean 0.902 → 0.901 → 0.954 → 0.969, min 0.684 → 0.684 → 0.789 →
-// 0.846 (the 45° chamfer); precision ≥ 0.983 → 0.987 (since); lines per true
-// edge mean 1.39 → 1.21 → 1.08 → 1.06, max 2.25 → 2.00 → 1.33 → 1.33.
+// last 3 edges, 13 once they stepped over strong edges outside their cone,
+// 24 now (spurs dropped before shortcuts, half-bridges, the end direction
+// in the surface, bridging again after the spur rounds); coverage mean 0.902
+// → 0.901 → 0.954 → 0.969 → 0.995, min 0.684 → 0.684 → 0.789 → 0.846 →
+// 0.967 (the 45° chamfer); precision min 0.983 → 0.987 → 0.963 (the walks
+// now also join false pieces on a fillet of the box, seed 3); lines per true
+// edge mean 1.39 → 1.21 → 1.08 → 1.06 → 1.01, max 2.25 → 2.00 → 1.33 → 1.33
+// → 1.17.
 TEST_CASE("creases at σ = 0.25: what is found is right", "[quality][creases]") {
   int cases = 0, met = 0;
   double coverage_sum = 0, coverage_min = 1, fragments_sum = 0, fragments_max = 0;
@@ -74,9 +77,9 @@ TEST_CASE("creases at σ = 0.25: what is found is right", "[quality][creases]") 
             score_creases(c.surface, find_creases(c.mesh, build_topology(c.mesh), {}, c.h).lines, c.h);
         INFO(name << " (" << triangulation_name(t) << "), seed " << seed << ": coverage " << s.coverage
                   << ", precision " << s.precision << ", fragments " << s.fragments);
-        CHECK(s.precision >= 0.985);
+        CHECK(s.precision >= 0.96);
         CHECK(s.wrong_sign == 0);
-        if (name == "filleted-box") CHECK(s.coverage >= 0.8);  // its creases are 90°
+        if (name == "filleted-box") CHECK(s.coverage >= 0.99);  // its creases are 90°
         ++cases;
         met += crease_target_failures(s).empty();
         coverage_sum += s.coverage, coverage_min = std::min(coverage_min, s.coverage);
@@ -85,11 +88,11 @@ TEST_CASE("creases at σ = 0.25: what is found is right", "[quality][creases]") 
   INFO(met << " of " << cases << " met; coverage mean " << coverage_sum / cases << ", min " << coverage_min
            << "; fragments mean " << fragments_sum / cases << ", max " << fragments_max);
   CHECK(cases == 27);
-  CHECK(met >= 13);
-  CHECK(coverage_sum / cases >= 0.965);
-  CHECK(coverage_min >= 0.84);
-  CHECK(fragments_sum / cases <= 1.065);
-  CHECK(fragments_max <= 1.34);
+  CHECK(met >= 24);
+  CHECK(coverage_sum / cases >= 0.994);
+  CHECK(coverage_min >= 0.965);
+  CHECK(fragments_sum / cases <= 1.015);
+  CHECK(fragments_max <= 1.18);
 }
 
 // Every mesh kind up to σ = 0.25 (at 0.25 the anisotropic meshes had 9 false
@@ -112,14 +115,11 @@ TEST_CASE("the smooth surfaces of the ridge/valley harness have no creases", "[q
 // none at σ = 0 and 0.1 (0–8.5 at σ = 0.1 before gaps in the 45° chamfer's
 // creases were bridged). At σ = 0.25 (noise level 0.211–0.222) boundaries
 // are on since kBoundaryNoiseLimit is 0.225 (0.15 before, so these meshes
-// kept their 125–369 h beside the edges); what remains lies where the
-// creases have gaps (chamfer coverage 0.85 here, crestline_crease_report).
+// kept their 125–369 h beside the edges), and none either since the creases'
+// gaps close (creases.cpp: half-bridges, bridging after the spur rounds);
+// before, 41.4 h of the cylinder's and 5.9 h of the prism's lines ran in
+// those gaps (chamfer coverage 0.85).
 TEST_CASE("smooth lines keep off the sharp edges with crease boundaries", "[quality][creases]") {
-  // At σ = 0.25, per surface: the most within 1 and 2 h, measured 0.0 / 0.5
-  // h of 28 (box), 41.4 / 44.0 of 163 (cylinder), 5.9 / 5.9 of 5.9 (prism:
-  // one ridge, all of it along a sharp edge where its crease has a gap).
-  const std::map<std::string, std::pair<double, double>> noisy_limits = {
-      {"filleted-box", {0.5, 1.0}}, {"chamfered-cylinder", {42.0, 44.5}}, {"notched-prism", {6.0, 6.0}}};
   for (const std::string& name : cad_surface_names())
     for (double noise : {0.0, 0.1, 0.25}) {
       const CadCase c = make_cad_case(name, Triangulation::Irregular, noise, 101);
@@ -129,29 +129,18 @@ TEST_CASE("smooth lines keep off the sharp edges with crease boundaries", "[qual
       const SmoothNearCreases without = smooth_lines_near(sharp, run_cad_pipeline(c, off).lines(), c.h);
       PipelineOptions on;
       on.creases.boundaries = true;
-      const Pipeline with_boundaries = run_cad_pipeline(c, on);
-      const std::vector<Polyline> lines_with = with_boundaries.lines();
-      const std::vector<Polyline>& creases_with = with_boundaries.creases();
+      const std::vector<Polyline> lines_with = run_cad_pipeline(c, on).lines();
       const SmoothNearCreases with = smooth_lines_near(sharp, lines_with, c.h);
       // Issue 16 asks for no smooth line within 2 edges of a crease. Measured
       // within 2 h: the fillets' ridges end 1–2 h from the box's sharp edges
       // (0.9 h of 29), weak lines on the cylinder's wall end near its creases
-      // (2.5 and 5.1 h of 165 and 162), none on the prism: at most 3.1 % of
+      // (2.5 and 5.1 h of 165 and 162; 4.4 of 155 at σ = 0.25), none on the prism: at most 3.1 % of
       // the smooth lines, ends only (without boundaries 10–100 % within 1 h).
       const SmoothNearCreases with2 = smooth_lines_near(sharp, lines_with, c.h, 2.0);
       INFO(name << ", noise " << noise << ": within 1 h of a sharp edge " << without.near_length << " h of "
                 << without.length << " without boundaries, " << with.near_length << " h of " << with.length
                 << " with them, " << with2.near_length << " h within 2 h");
-      if (noise == 0.25) {
-        CHECK(without.near_length > 100);
-        CHECK(with.near_length <= noisy_limits.at(name).first);
-        CHECK(with2.near_length <= noisy_limits.at(name).second);
-        // And it lies in the creases' gaps, more than 2 h from every crease
-        // found (measured 40.9 of 41.4 h, 5.4 of 5.9).
-        const SmoothNearCreases in_gaps = smooth_lines_near(sharp, lines_with, c.h, 1.0, creases_with);
-        CHECK(in_gaps.near_length >= 0.9 * with.near_length);
-        continue;
-      }
+      if (noise == 0.25) CHECK(without.near_length > 100);
       CHECK(without.near_length > 5);
       CHECK(with.near_length < 0.5);
       CHECK(with2.near_length <= 0.035 * with.length + 0.5);
