@@ -75,4 +75,11 @@ Mesh noisy_mesh(const Surface& surface, double noise, unsigned noise_seed, doubl
 /// no spurious valleys on convex shapes. Empty if met (or a control surface), else what failed.
 std::string target_failures(const Score& score);
 
+/// Whether case `index` of a matrix whose innermost loop has `inner` values
+/// (the noise levels) runs: always, unless CRESTLINE_QUALITY_SUBSET is set
+/// (tests/run-sanitize.sh sets it, as ASan makes the whole matrices most of
+/// its quality run); then one inner value per row, rotating, so every
+/// surface, meshing and noise level still runs once or more.
+bool quality_case_runs(std::size_t index, std::size_t inner);
+
 }  // namespace crestline::quality
