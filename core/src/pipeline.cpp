@@ -61,8 +61,10 @@ const Topology& Pipeline::topology() const {
 }
 
 std::vector<Triangle> Pipeline::input_triangles() const {
-  if (!input_.triangles.empty() || !cut_active_) return input_.triangles;
-  // The cut mesh has the same triangles, some corners moved to a copy of their vertex.
+  if (!input_.triangles.empty()) return input_.triangles;
+  // The working frame's copy has the same triangles.
+  if (!cut_active_) return local_input_.triangles;
+  // So has the cut mesh, some corners moved to a copy of their vertex.
   std::vector<Triangle> triangles = cut_.mesh.triangles;
   for (Triangle& t : triangles)
     for (uint32_t& v : t) v = cut_.source(v);
@@ -70,7 +72,7 @@ std::vector<Triangle> Pipeline::input_triangles() const {
 }
 
 const Mesh& Pipeline::input() const {
-  if (input_.triangles.empty() && cut_active_) input_.triangles = input_triangles();
+  if (input_.triangles.empty()) input_.triangles = input_triangles();
   return input_;
 }
 
@@ -256,13 +258,14 @@ void Pipeline::run(const ProgressCallback& progress) {
   if (cut_active_) {
     topology_ = Topology(), topology_valid_ = false;
     crease_angles_ = CreaseAngles(), crease_angles_valid_ = false;
-    // The input's triangles too: the cut mesh has them (input() rebuilds
-    // them, the same; 12 bytes per triangle).
-    input_.triangles = std::vector<Triangle>();
   } else {
     compact_crease_angles();
   }
   release_local_input();
+  // The input's triangles too: the mesh the smooth stages run on (the
+  // working frame's copy or the cut) has them; input() rebuilds them, the
+  // same (12 bytes per triangle).
+  input_.triangles = std::vector<Triangle>();
   // The line graphs are rebuilt whenever tracing re-runs: released now, not
   // held through the smoothing solves, the peak of a re-run.
   if (static_cast<int>(first_dirty_) <= static_cast<int>(Stage::Tracing)) singular_ = SingularResult();
@@ -430,7 +433,7 @@ std::vector<Polyline> Pipeline::all_kinds() const {
 PipelineStats Pipeline::stats() const {
   PipelineStats s;
   s.vertices = input_.positions.size();
-  s.triangles = cut_active_ ? cut_.mesh.triangles.size() : input_.triangles.size();
+  s.triangles = smooth_input().triangles.size();
   s.singular_max = regularity_.singular_max;
   s.singular_min = regularity_.singular_min;
   for (uint32_t i : filtered_.kept) {

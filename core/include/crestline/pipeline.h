@@ -108,8 +108,8 @@ class Pipeline {
   /// Recomputes the stages marked dirty.
   void run(const ProgressCallback& progress = {});
 
-  /// While a crease cut serves the smooth stages a run releases its triangles
-  /// (the cut mesh has them); rebuilt here (the same) when asked for.
+  /// A run releases its triangles (the working frame's copy or the crease
+  /// cut has them); rebuilt here (the same) when asked for.
   const Mesh& input_mesh() const { return input(); }
   /// The mesh after optional pre-smoothing, in the input's coordinates.
   const Mesh& surface() const { return presmoothed_ ? surface_ : input(); }
@@ -185,7 +185,7 @@ class Pipeline {
 
   PipelineOptions options_;
   Stage first_dirty_ = Stage::Presmooth;
-  mutable Mesh input_;  // its triangles released while a cut serves (input())
+  mutable Mesh input_;  // its triangles released by a run (input())
   ComponentFrames frames_;
   Mesh local_input_;  // input_ in the working frame; released while a cut serves (local_input())
   bool local_input_valid_ = false;
