@@ -5,11 +5,12 @@
 #include <limits>
 
 #include "crestline/mesh/presmooth.h"
+#include "crestline/numerics/constants.h"
 
 namespace crestline {
 namespace {
 
-constexpr double kDegree = 3.14159265358979323846 / 180.0;
+constexpr double kDegree = kPi / 180.0;
 
 // The normal filter: a guided bilateral filter [Zhang et al. 2015, without
 // the spatial kernel]. Each face normal becomes the area-weighted mean of the
@@ -177,7 +178,7 @@ bool small_fan(const Topology& topology, uint32_t v) {
 // write the same bytes. atan(t) = π/6 + atan((√3 t − 1)/(t + √3)) brings t ≤ 1
 // below tan(π/12), where 17 terms of the series leave less than 1e-19.
 double portable_angle(double y, double x) {
-  constexpr double kPi = 3.14159265358979323846, kSqrt3 = 1.7320508075688772;
+  constexpr double kSqrt3 = 1.7320508075688772;
   if (!(y > 0)) return x < 0 ? kPi : 0.0;
   if (x == 0) return kPi / 2;
   double t = y / std::abs(x);

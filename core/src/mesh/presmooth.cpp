@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "crestline/mesh/cotan.h"
+#include "crestline/numerics/constants.h"
 #include "crestline/numerics/sparse_solver.h"
 
 namespace crestline {
@@ -17,8 +18,8 @@ namespace crestline {
 // angle, so a noisy vertex seldom qualifies: on tests/quality, σ = 0.1 to
 // 0.5, a median of 1 vertex per mesh, at most 0.5 % (long thin cells tilt
 // little), and no level moved by more than 0.0024.
-constexpr double kCleanCreaseTurn = 40 * 3.14159265358979 / 180;
-constexpr double kFlatTurn = 1 * 3.14159265358979 / 180;
+constexpr double kCleanCreaseTurn = 40 * kPi / 180;
+constexpr double kFlatTurn = 1 * kPi / 180;
 // A coarse cylinder's rim vertex also has wall edges turning by 5-15°, what
 // noise makes too; but the wall turns by the same total at every vertex along
 // the rim (the rim polygon's exterior angle), while noise turns each ring by
@@ -217,7 +218,7 @@ static void smooth_boundary_curves(std::vector<Vec3>& x, const Mesh& mesh, const
   // than 135° (the boundary turns by more than 45° within the surface); the
   // angle sum, unlike the turn of the boundary polygon, ignores noise along
   // the normal.
-  constexpr double kCornerAngleSum = 0.75 * 3.14159265358979;
+  constexpr double kCornerAngleSum = 0.75 * kPi;
   std::vector<double> angle_sum(nv, 0.0);
   for (const Triangle& tri : mesh.triangles)
     for (int k = 0; k < 3; ++k) {
