@@ -127,6 +127,12 @@ void Pipeline::measure_creases() {
   const double noise = noise_levels_.empty() ? 0.0 : noise_levels_[frames_.largest()];
   if (measure.normal_filter_steps < 0) measure.normal_filter_steps = automatic_normal_filter_steps(noise);
   crease_angles_ = measure_crease_angles(local_input(), topology(), measure);
+  // Where the filter does not run the stage measures no noise, but the
+  // automatic angle asks whether the mesh is piecewise planar.
+  if (!crease_angles_.noise_measured && !noise_levels_.empty()) {
+    crease_angles_.noise_level = noise;
+    crease_angles_.noise_measured = true;
+  }
   crease_angles_valid_ = true;
 }
 

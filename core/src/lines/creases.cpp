@@ -114,6 +114,12 @@ constexpr int kBridgePasses = 4;
 // 2.5, bunny 4.1, feline 5.4, armadillo 8.3), whose folds of 35–70° are
 // scanning detail, not machined edges: 12× gives them 35°, 49°, 65°, 100°.
 constexpr double kMedianFactor = 12.0;
+// Not on piecewise-planar meshes (low-poly models, coarse CAD tessellations:
+// surface_noise_level at most this, rounding aside), whose edges are flat
+// or creases: a box's median edge turns by 90°, and 12× that left every box
+// under shared/meshes (glb/Box, robust/obj/*box*, the hundred cubes) without
+// creases, as it did the Platonic solids and the OrientationTest's blocks.
+constexpr double kPlanarNoiseLevel = 1e-6;
 // Edges whose dihedral is below this (degrees) are never creases: their
 // support is not computed.
 constexpr double kCandidateAngle = 20.0;
@@ -804,7 +810,8 @@ int automatic_normal_filter_steps(double noise_level) {
 
 CreaseAngles measure_crease_angles(const Mesh& mesh, const Topology& topology, const CreaseMeasureOptions& options) {
   CreaseAngles out;
-  if (options.normal_filter_steps != 0) out.noise_level = surface_noise_level(mesh, topology);
+  out.noise_measured = options.normal_filter_steps != 0;
+  if (out.noise_measured) out.noise_level = surface_noise_level(mesh, topology);
   out.normal_filter_steps =
       options.normal_filter_steps >= 0 ? options.normal_filter_steps : automatic_normal_filter_steps(out.noise_level);
   const FaceNormals faces = face_normals(mesh);
@@ -858,6 +865,7 @@ CreaseAngles measure_crease_angles(const Mesh& mesh, const Topology& topology, c
 }
 
 double automatic_crease_angle(const CreaseAngles& angles) {
+  if (angles.noise_measured && angles.noise_level <= kPlanarNoiseLevel) return kDefaultCreaseAngle;
   return std::min(180.0, std::max(kDefaultCreaseAngle, kMedianFactor * angles.median));
 }
 
@@ -881,6 +889,9 @@ CreaseResult select_creases(const Mesh& mesh, const Topology& topology, const Cr
   std::vector<double> bridged;
   const bool very_noisy = angles.normal_filter_steps > 0 && angles.noise_level > kVeryNoisyCreaseLevel;
   const bool noisy = angles.normal_filter_steps > 0 && angles.noise_level <= kBridgeNoiseLimit;
+  // On piecewise-planar meshes a short piece between junctions is a real
+  // edge: a box's edge is one mesh edge from corner to corner.
+  const bool planar = angles.noise_measured && angles.noise_level <= kPlanarNoiseLevel;
   if (noisy) {
     bridged = angles.angle;
     bridged.resize(topology.edges.size(), 0.0);
@@ -953,7 +964,7 @@ CreaseResult select_creases(const Mesh& mesh, const Topology& topology, const Cr
     std::vector<const Chain*> shortcuts;
     for (const Chain& c : chains) {
       double loop_length = 0;
-      if (c.closed && degree(c.vertices.front()) >= 3 &&
+      if (!planar && c.closed && degree(c.vertices.front()) >= 3 &&
           (chain_strength(mesh, topology, angle, c, loop_length), loop_length < 3 * kCornerChainEdges * h)) {
         for (uint32_t e : c.edges) on[e] = 0;  // a corner triangle, round and back to its junction
         dropped = true;
@@ -964,7 +975,7 @@ CreaseResult select_creases(const Mesh& mesh, const Topology& topology, const Cr
       const double strength = chain_strength(mesh, topology, angle, c, length) / h;
       // Between junctions or turns: a shortcut across a corner.
       const bool between_junctions = degree(c.vertices.front()) >= 2 && degree(c.vertices.back()) >= 2;
-      if (between_junctions && length < kCornerChainEdges * h) shortcuts.push_back(&c);
+      if (!planar && between_junctions && length < kCornerChainEdges * h) shortcuts.push_back(&c);
       if (free_end && strength < kSpurStrength && length < kSpurEdges * h) {
         for (uint32_t e : c.edges) on[e] = 0;
         dropped = true;  // each round drops edges, so this ends

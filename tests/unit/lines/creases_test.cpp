@@ -86,6 +86,39 @@ TEST_CASE("a cube's twelve edges are twelve convex creases of 90°, split at its
   CHECK(creases.edges.size() == 72);
 }
 
+TEST_CASE("low-poly solids get every edge as a crease: a piecewise-planar mesh keeps the default angle",
+          "[creases][pipeline]") {
+  // Half of a 12-triangle box's edges turn by 90°: 12× the median dihedral
+  // capped the automatic angle at 180°, and each edge, one mesh edge from
+  // corner to corner, was dropped as a shortcut across a corner.
+  Pipeline box(repair_mesh(cube(1)).mesh);
+  box.run();
+  CHECK(box.stats().noise_level == 0);
+  CHECK(box.stats().crease_angle == kDefaultCreaseAngle);
+  CHECK(box.stats().creases == 12);
+  CHECK(box.stats().crease_length == Approx(24.0));
+  for (const Polyline& l : box.creases()) CHECK(l.points.size() == 2);
+  // Nor do its corners make ridges any more.
+  CHECK(box.stats().ridges == 0);
+  CHECK(box.stats().valleys == 0);
+
+  // The icosahedron's edges turn by 41.8°.
+  Pipeline icosahedron(repair_mesh(testing::icosphere(0)).mesh);
+  icosahedron.run();
+  CHECK(icosahedron.stats().noise_level < 1e-6);
+  CHECK(icosahedron.stats().crease_angle == kDefaultCreaseAngle);
+  CHECK(icosahedron.stats().creases == 30);
+  CHECK(icosahedron.stats().crease_length == Approx(30 * 4 / std::sqrt(10 + 2 * std::sqrt(5.0))).epsilon(1e-9));
+
+  // Subdivided once and projected it is a coarse sphere, no longer planar:
+  // its edges turn by ~20° everywhere and the median rule keeps them.
+  Pipeline sphere(repair_mesh(testing::icosphere(1)).mesh);
+  sphere.run();
+  CHECK(sphere.stats().noise_level > 1e-3);
+  CHECK(sphere.stats().crease_angle > 90);
+  CHECK(sphere.stats().creases == 0);
+}
+
 TEST_CASE("re-thresholding the crease angle is a selection over the measured angles", "[creases]") {
   const Run r = measure(repair_mesh(cube(4)).mesh);
   const double h = mean_edge_length(r.mesh);

@@ -98,6 +98,8 @@ struct CreaseAngles {
   /// surface_noise_level of the mesh (not measured, 0, when the filter steps
   /// were given as 0): bridging (creases.cpp) only up to kBridgeNoiseLimit.
   double noise_level = 0;
+  /// Whether noise_level was measured (here, or filled in by the caller).
+  bool noise_measured = false;
 };
 
 /// The automatic crease angle (degrees): kDefaultCreaseAngle, raised to a
