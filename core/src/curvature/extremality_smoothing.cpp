@@ -71,7 +71,10 @@ bool smooth_fields_paired(const Topology& topology, const CotanWeights& cotan, s
   std::vector<double> x(2 * nv), b(2 * nv);
   for (size_t v = 0; v < nv; ++v) x[2 * v] = in.e_max[v], x[2 * v + 1] = in.e_min[v];
   for (int step = 0; step < steps; ++step) {
-    for (size_t i = 0; i < 2 * nv; ++i) b[i] = cotan.vertex_mass[i / 2] * x[i];
+    for (size_t v = 0; v < nv; ++v) {
+      const double m = cotan.vertex_mass[v];
+      b[2 * v] = m * x[2 * v], b[2 * v + 1] = m * x[2 * v + 1];
+    }
     std::function<void(int)> on_iteration;
     if (progress)
       on_iteration = [&](int iteration) {

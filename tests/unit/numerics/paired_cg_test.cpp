@@ -224,3 +224,43 @@ TEST_CASE("rows without entries whose start already solves them keep it to the b
   CHECK(kept == 2 * size_t{rows - grid_rows});
   CHECK(relative_residual(a, b, x, 0) <= 1.01e-6);
 }
+
+TEST_CASE("greedy colouring gives each row the least colour its earlier neighbours lack, beyond 64 too", "[numerics]") {
+  // Rows 0–69 all joined (a vertex of valence 69 and more: colours 0–69,
+  // those from 64 on found past the 64 bits); row 70 joined to rows 64–69
+  // (colours 64–69 only: 0), row 71 to rows 0–69 but 3 (3), row 72 to rows
+  // 0–68 (all 64 bits taken, then 64–68: 69) and row 73 to rows 72 and 70,
+  // listed in that order (colours 69 and 0: 1).
+  std::vector<std::vector<uint32_t>> neighbours(74);
+  const auto join = [&](uint32_t p, uint32_t q) { neighbours[p].push_back(q), neighbours[q].push_back(p); };
+  for (uint32_t p = 0; p < 70; ++p)
+    for (uint32_t q = p + 1; q < 70; ++q) join(p, q);
+  for (uint32_t q = 64; q < 70; ++q) join(70, q);
+  for (uint32_t q = 0; q < 70; ++q)
+    if (q != 3) join(71, q);
+  for (uint32_t q = 0; q < 69; ++q) join(72, q);
+  join(73, 72), join(73, 70);
+  SignedPairMatrix a;
+  a.offsets.push_back(0);
+  for (const std::vector<uint32_t>& row : neighbours) {
+    for (const uint32_t q : row) a.columns.push_back(q | 2u << 30), a.weights.push_back(-1.0);
+    a.offsets.push_back(static_cast<uint32_t>(a.columns.size()));
+    a.diagonal.push_back(1.0 + static_cast<double>(row.size()));
+  }
+  const std::vector<uint32_t> colour = detail::greedy_colours(a);
+  REQUIRE(colour.size() == 74);
+  for (uint32_t p = 0; p < 70; ++p) CHECK(colour[p] == p);
+  CHECK(colour[70] == 0);
+  CHECK(colour[71] == 3);
+  CHECK(colour[72] == 69);
+  CHECK(colour[73] == 1);
+  const SignedPairSolver solver(a);
+  CHECK(solver.colours() == 70);
+  const std::vector<double> b = random_pairs(a.rows(), 19);
+  std::vector<double> scratch = b, x(2 * a.rows(), 0.0);
+  REQUIRE(solver.solve(scratch, x, 1e-6, 500));
+  for (int k = 0; k < 2; ++k) {
+    INFO("field " << k);
+    CHECK(relative_residual(a, b, x, k) <= 1.01e-6);
+  }
+}

@@ -109,6 +109,12 @@ struct SignedPairMatrix {
   size_t rows() const { return diagonal.size(); }
 };
 
+namespace detail {
+/// Greedy colouring in row order: each row takes the least colour that none
+/// of its earlier neighbours (columns below its row) has.
+std::vector<uint32_t> greedy_colours(const SignedPairMatrix& a);
+}  // namespace detail
+
 /// Conjugate gradients on both systems, preconditioned by multicolour
 /// symmetric Gauss–Seidel (paired_cg.cpp).
 class SignedPairSolver {
