@@ -88,3 +88,14 @@ TEST_CASE("smooth real meshes have no creases at the automatic angle", "[real][c
   CHECK(mannequin.creases()[0].closed);
   CHECK(mannequin.creases()[0].convex);
 }
+
+TEST_CASE("an STL bar of long slivers keeps its sharp edges: spurs measured in median edges", "[real][creases]") {
+  SKIP_WITHOUT_MESHES();
+  // 150 units long, 6.4 thick; its long slivers make the mean edge 10.9 and
+  // the median 3.2, and 12 mean edges (131 units) dropped all but 2 of its
+  // sharp edges (279 units) as spurs.
+  const Pipeline p = testing::run_pipeline(io::read_mesh(testing::mesh_path("robust/obj/badstl-pcbvicebar.obj")));
+  INFO(p.creases().size() << " creases, " << p.stats().crease_length << " units");
+  CHECK(p.creases().size() == 4);
+  CHECK(p.stats().crease_length == Approx(400.0).epsilon(1e-6));
+}

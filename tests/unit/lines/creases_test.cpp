@@ -69,6 +69,8 @@ TEST_CASE("a cube's twelve edges are twelve convex creases of 90°, split at its
   }
   CHECK(sharp == 12 * 6);  // 6 mesh edges along each cube edge
   CHECK(r.angles.median == Approx(0).margin(1e-9));
+  // Two of a face's three edges run along the axes (2/6 long), one diagonally.
+  CHECK(r.angles.median_edge_length == Approx(2.0 / 6));
 
   const double h = mean_edge_length(r.mesh);
   const CreaseResult creases = select_creases(r.mesh, r.topology, r.angles, {}, h);

@@ -95,6 +95,8 @@ struct CreaseAngles {
   /// The median |angle| over (every fourth) interior edge, degrees: how much
   /// a smooth edge of this mesh turns.
   double median = 0;
+  /// The median length of the same edges (mesh units).
+  double median_edge_length = 0;
   /// surface_noise_level of the mesh (not measured, 0, when the filter steps
   /// were given as 0): bridging (creases.cpp) only up to kBridgeNoiseLimit.
   double noise_level = 0;
