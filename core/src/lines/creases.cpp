@@ -900,9 +900,8 @@ CreaseResult select_creases(const Mesh& mesh, const Topology& topology, const Cr
   };
   for (size_t e = 0; e < ne; ++e) on[e] = passes(e, threshold);
   const double h = mean_edge_length > 0 ? mean_edge_length : 1.0;
-  const double spur_h = angles.median_edge_length > 0 && angles.median_edge_length * kSliverMeanRatio < h
-                            ? angles.median_edge_length
-                            : h;
+  const double spur_h =
+      angles.median_edge_length > 0 && angles.median_edge_length * kSliverMeanRatio < h ? angles.median_edge_length : h;
   continue_free_ends(
       mesh, topology, angles.angle, [&](uint32_t e) { return passes(e, kHysteresisShare * threshold); }, on);
   // The angles the chains read: bridged edges take their support's.
