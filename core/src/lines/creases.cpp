@@ -12,6 +12,14 @@ namespace {
 
 constexpr double kDegree = kPi / 180.0;
 
+// The element at size / 2 in order (the upper median); reorders `values`,
+// which must not be empty.
+double upper_median(std::vector<double>& values) {
+  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
 // The normal filter: a guided bilateral filter [Zhang et al. 2015, without
 // the spatial kernel]. Each face normal becomes the area-weighted mean of the
 // normals of the faces around its three corners, each weighted by
@@ -128,6 +136,9 @@ constexpr double kMedianFactor = 12.0;
 // under shared/meshes (glb/Box, robust/obj/*box*, the hundred cubes) without
 // creases, as it did the Platonic solids and the OrientationTest's blocks.
 constexpr double kPlanarNoiseLevel = 1e-6;
+bool piecewise_planar(const CreaseAngles& angles) {
+  return angles.noise_measured && angles.noise_level <= kPlanarNoiseLevel;
+}
 // Edges whose dihedral is below this (degrees) are never creases: their
 // support is not computed.
 constexpr double kCandidateAngle = 20.0;
@@ -865,24 +876,18 @@ CreaseAngles measure_crease_angles(const Mesh& mesh, const Topology& topology, c
         side_support(mesh, topology, faces, e, n0 + n1, rings, scratch, kSuppressionShift * d.norm(), shifted));
     if (s >= std::max(std::abs(shifted[0]), std::abs(shifted[1]))) out.support[e] = s;
   }
-  if (!sample.empty()) {
-    std::nth_element(sample.begin(), sample.begin() + sample.size() / 2, sample.end());
-    out.median = std::acos(std::clamp(1.0 - sample[sample.size() / 2], -1.0, 1.0)) / kDegree;
-  }
+  if (!sample.empty()) out.median = std::acos(std::clamp(1.0 - upper_median(sample), -1.0, 1.0)) / kDegree;
   // The same edges' median length, for the spur rule's scale.
   sample.clear();
   for (size_t e = 0; e < ne; e += 4)
     if (!topology.is_boundary_edge(static_cast<uint32_t>(e)))
       sample.push_back((mesh.positions[topology.edges[e][1]] - mesh.positions[topology.edges[e][0]]).norm());
-  if (!sample.empty()) {
-    std::nth_element(sample.begin(), sample.begin() + sample.size() / 2, sample.end());
-    out.median_edge_length = sample[sample.size() / 2];
-  }
+  if (!sample.empty()) out.median_edge_length = upper_median(sample);
   return out;
 }
 
 double automatic_crease_angle(const CreaseAngles& angles) {
-  if (angles.noise_measured && angles.noise_level <= kPlanarNoiseLevel) return kDefaultCreaseAngle;
+  if (piecewise_planar(angles)) return kDefaultCreaseAngle;
   return std::min(180.0, std::max(kDefaultCreaseAngle, kMedianFactor * angles.median));
 }
 
@@ -910,7 +915,7 @@ CreaseResult select_creases(const Mesh& mesh, const Topology& topology, const Cr
   const bool noisy = angles.normal_filter_steps > 0 && angles.noise_level <= kBridgeNoiseLimit;
   // On piecewise-planar meshes a short piece between junctions is a real
   // edge: a box's edge is one mesh edge from corner to corner.
-  const bool planar = angles.noise_measured && angles.noise_level <= kPlanarNoiseLevel;
+  const bool planar = piecewise_planar(angles);
   if (noisy) {
     bridged = angles.angle;
     bridged.resize(topology.edges.size(), 0.0);

@@ -104,7 +104,7 @@ std::vector<double> surface_noise_levels(const Mesh& mesh, const Topology& topol
   // Vertices on clean creases count as jump 0 and stay out of their
   // neighbours' means.
   const std::vector<uint8_t> on_crease = clean_crease_vertices(mesh, topology, face_normal);
-  face_normal = {};
+  face_normal = std::vector<Vec3>();  // freed (`= {}` would only clear it)
   std::vector<double> offset(nv, 0.0);
   std::vector<uint8_t> valid(nv, 0);
   for (size_t v = 0; v < nv; ++v) {
