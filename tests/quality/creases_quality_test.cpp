@@ -57,13 +57,15 @@ TEST_CASE("creases of the CAD-like surfaces: targets at σ = 0 and 0.1", "[quali
 // (creases.cpp): 4 cases met every target before redundant chains were
 // dropped, 7 after, 12 once bridge walks took their direction over their
 // last 3 edges, 13 once they stepped over strong edges outside their cone,
-// 24 now (spurs dropped before shortcuts, half-bridges, the end direction
-// in the surface, bridging again after the spur rounds); coverage mean 0.902
-// → 0.901 → 0.954 → 0.969 → 0.995, min 0.684 → 0.684 → 0.789 → 0.846 →
-// 0.967 (the 45° chamfer); precision min 0.983 → 0.987 → 0.963 (the walks
-// now also join false pieces on a fillet of the box, seed 3); lines per true
-// edge mean 1.39 → 1.21 → 1.08 → 1.06 → 1.01, max 2.25 → 2.00 → 1.33 → 1.33
-// → 1.17.
+// 24 (spurs dropped before shortcuts, half-bridges, the end direction
+// in the surface, bridging again after the spur rounds), 26 now (long weak
+// runs whose mean holds: the chamfer's last gaps on the checker meshes);
+// coverage mean 0.902 → 0.901 → 0.954 → 0.969 → 0.995 → 0.997, min 0.684 →
+// 0.684 → 0.789 → 0.846 → 0.967 (the 45° chamfer) → 0.979 (a notch edge
+// beside the re-entrant corner, the one miss left); precision min 0.983 →
+// 0.987 → 0.963 (the walks now also join false pieces on a fillet of the
+// box, seed 3); lines per true edge mean 1.39 → 1.21 → 1.08 → 1.06 → 1.01,
+// max 2.25 → 2.00 → 1.33 → 1.33 → 1.17.
 TEST_CASE("creases at σ = 0.25: what is found is right", "[quality][creases]") {
   int cases = 0, met = 0;
   double coverage_sum = 0, coverage_min = 1, fragments_sum = 0, fragments_max = 0;
@@ -88,9 +90,9 @@ TEST_CASE("creases at σ = 0.25: what is found is right", "[quality][creases]") 
   INFO(met << " of " << cases << " met; coverage mean " << coverage_sum / cases << ", min " << coverage_min
            << "; fragments mean " << fragments_sum / cases << ", max " << fragments_max);
   CHECK(cases == 27);
-  CHECK(met >= 24);
-  CHECK(coverage_sum / cases >= 0.994);
-  CHECK(coverage_min >= 0.965);
+  CHECK(met >= 26);
+  CHECK(coverage_sum / cases >= 0.997);
+  CHECK(coverage_min >= 0.978);
   CHECK(fragments_sum / cases <= 1.015);
   CHECK(fragments_max <= 1.18);
 }
@@ -147,4 +149,34 @@ TEST_CASE("smooth lines keep off the sharp edges with crease boundaries", "[qual
       CHECK(with.near_length < 0.5);
       CHECK(with2.near_length <= 0.035 * with.length + 0.5);
     }
+}
+
+// The same over the noisiest cases, with the Pipeline's own creases (in its
+// working frame, so they differ a little from find_creases'): ridges and
+// valleys within 1 h of a sharp edge, with crease boundaries, at σ = 0.25,
+// seeds 1–3, the cylinder and the prism on the three mesh kinds (the box had
+// none). They lie where the creases have gaps (crestline_crease_report's
+// last columns). Measured (creases.cpp): the cylinder 37.7 h in all (8.0,
+// 5.5 and 24.2 h in three cases, the chamfer's gaps) before weak runs whose
+// mean holds closed those gaps (kLongWeakSpan), none since; the prism 34.3 h
+// both, 19.4 h at most (seed 2, uniform mesh: a notch edge lost whole, its
+// doubled trace cut by the shortcut rule into pieces the spur rule drops).
+TEST_CASE("smooth lines keep off the sharp edges at σ = 0.25 over seeds 1–3", "[quality][creases]") {
+  double total = 0;
+  for (const std::string& name : {std::string("chamfered-cylinder"), std::string("notched-prism")})
+    for (unsigned seed = 1; seed <= 3; ++seed)
+      for (Triangulation t : {Triangulation::Uniform, Triangulation::Alternating, Triangulation::Irregular}) {
+        CadParams params;
+        params.seed = seed;
+        const CadCase c = make_cad_case(name, t, 0.25, 100 + seed, params);
+        const SmoothNearCreases near =
+            smooth_lines_near(sharp_edges_as_lines(c.surface), run_cad_pipeline(c, {}).lines(), c.h);
+        INFO(name << " (" << triangulation_name(t) << "), seed " << seed << ": " << near.near_length << " h of "
+                  << near.length << " within 1 h of a sharp edge");
+        if (name == "chamfered-cylinder") CHECK(near.near_length < 0.5);
+        CHECK(near.near_length < 20);
+        total += near.near_length;
+      }
+  INFO("in all " << total << " h");
+  CHECK(total < 35);
 }

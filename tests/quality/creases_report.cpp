@@ -2,11 +2,14 @@
 // at every mesh kind and noise level, and how a single-edge dihedral test
 // flickers under noise. Prints Markdown tables.
 //
-//   crestline_crease_report [--angle DEG] [--filter-steps N] [--edge E] [--seeds N] [--smooth-only] [--detail]
+//   crestline_crease_report [--angle DEG] [--filter-steps N] [--edge E] [--seeds N] [--noise S]
+//                           [--smooth-only] [--detail]
 // --detail prints, below each σ = 0.25 case that misses a target, what each
 // true edge got (print_detail). --filter-steps replaces the automatic
-// choice of normal filter steps; --smooth-only leaves out the last table (ridges and valleys beside the
-// sharp edges, which runs the whole pipeline; every seed, like the first).
+// choice of normal filter steps; --noise runs only that noise level (0, 0.1
+// or 0.25) in the CAD-like tables; --smooth-only leaves out the last table
+// (ridges and valleys beside the sharp edges, which runs the whole pipeline;
+// every seed, like the first).
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -85,6 +88,7 @@ int main(int argc, char** argv) {
   CadParams base;
   int seeds = 1;
   bool smooth_only = false, detail = false;
+  double only_noise = -1;
   for (int i = 1; i < argc; ++i) {
     const bool more = i + 1 < argc;
     if (!std::strcmp(argv[i], "--angle") && more)
@@ -93,6 +97,8 @@ int main(int argc, char** argv) {
       options.normal_filter_steps = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--edge") && more)
       base.edge = std::atof(argv[++i]);
+    else if (!std::strcmp(argv[i], "--noise") && more)
+      only_noise = std::atof(argv[++i]);
     else if (!std::strcmp(argv[i], "--smooth-only"))
       smooth_only = true;
     else if (!std::strcmp(argv[i], "--detail"))
@@ -100,10 +106,9 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--seeds") && more)
       seeds = std::atoi(argv[++i]);
     else {
-      std::fprintf(
-          stderr,
-          "usage: crestline_crease_report [--angle DEG] [--filter-steps N] [--edge E] [--seeds N] [--smooth-only] "
-          "[--detail]\n");
+      std::fprintf(stderr,
+                   "usage: crestline_crease_report [--angle DEG] [--filter-steps N] [--edge E] [--seeds N] [--noise S] "
+                   "[--smooth-only] [--detail]\n");
       return 2;
     }
   }
@@ -118,6 +123,7 @@ int main(int argc, char** argv) {
     for (const std::string& name : cad_surface_names())
       for (Triangulation t : {Triangulation::Uniform, Triangulation::Alternating, Triangulation::Irregular})
         for (double noise : {0.0, 0.1, 0.25}) {
+          if (only_noise >= 0 && noise != only_noise) continue;
           const CadCase c = make_cad_case(name, t, noise, 100 + seed, [&] {
             CadParams p = base;
             p.seed = static_cast<unsigned>(seed);
@@ -184,23 +190,26 @@ int main(int argc, char** argv) {
 
   // Ridges and valleys beside the sharp edges, without and with crease
   // boundaries (seeds as above), and each mesh's noise level (the boundaries'
-  // gate, kBoundaryNoiseLimit); the last column is what lies in the gaps of
-  // the creases found, where no boundary stops the lines.
+  // gate, kBoundaryNoiseLimit); the second last column is what lies in the
+  // gaps of the creases found, where no boundary stops the lines, the last
+  // the coverage of the Pipeline's own creases (in its working frame).
   std::printf(
       "\n| surface | mesh | noise | seed | noise level | smooth lines (off) | length (off) | within 1 h of a sharp "
       "edge "
       "(off) | smooth lines (on) | length (on) | within 1 h (on) | within 2 h (on) | within 1 h, > 2 h from the "
-      "creases found (on) |\n"
-      "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+      "creases found (on) | the pipeline's creases: coverage |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (int seed = 1; seed <= seeds; ++seed)
     for (const std::string& name : cad_surface_names())
       for (Triangulation t : {Triangulation::Uniform, Triangulation::Alternating, Triangulation::Irregular})
         for (double noise : {0.0, 0.1, 0.25}) {
+          if (only_noise >= 0 && noise != only_noise) continue;
           CadParams p = base;
           p.seed = static_cast<unsigned>(seed);
           const CadCase c = make_cad_case(name, t, noise, 100 + seed, p);
           const std::vector<Polyline> sharp = sharp_edges_as_lines(c.surface);
           SmoothNearCreases near[2], near2, in_gaps;
+          CreaseScore own;
           for (int on = 0; on < 2; ++on) {
             PipelineOptions o;
             o.creases = options;
@@ -210,12 +219,13 @@ int main(int argc, char** argv) {
             if (!on) continue;
             near2 = smooth_lines_near(sharp, pipeline.lines(), c.h, 2.0);
             in_gaps = smooth_lines_near(sharp, pipeline.lines(), c.h, 1.0, pipeline.creases());
+            own = score_creases(c.surface, pipeline.creases(), c.h);
           }
-          std::printf("| %s | %s | %.2f | %d | %.3f | %d | %.1f | %.1f | %d | %.1f | %.1f | %.1f | %.1f |\n",
+          std::printf("| %s | %s | %.2f | %d | %.3f | %d | %.1f | %.1f | %d | %.1f | %.1f | %.1f | %.1f | %.3f |\n",
                       name.c_str(), triangulation_name(t), noise, seed,
                       surface_noise_level(c.mesh, build_topology(c.mesh)), near[0].lines, near[0].length,
                       near[0].near_length, near[1].lines, near[1].length, near[1].near_length, near2.near_length,
-                      in_gaps.near_length);
+                      in_gaps.near_length, own.coverage);
         }
   return 0;
 }
