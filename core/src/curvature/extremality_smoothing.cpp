@@ -120,6 +120,19 @@ Eigen::VectorXd smooth_field(const Topology& topology, const CotanWeights& cotan
   return e;
 }
 
+// The vertex weights with the boundary band frozen (weight 0); empty without a band.
+std::vector<double> banded_weights(const Mesh& mesh, const Topology& topology,
+                                   const ExtremalitySmoothingOptions& options) {
+  std::vector<double> banded;
+  if (options.frozen_boundary_rings <= 0) return banded;
+  const auto rings = static_cast<uint32_t>(options.frozen_boundary_rings);
+  const std::vector<uint32_t> distance = boundary_ring_distance(mesh, topology, rings);
+  banded = options.vertex_weights.empty() ? std::vector<double>(mesh.positions.size(), 1.0) : options.vertex_weights;
+  for (size_t v = 0; v < distance.size() && v < banded.size(); ++v)
+    if (distance[v] < rings) banded[v] = 0;
+  return banded;
+}
+
 }  // namespace
 
 Extremality smooth_extremality(const Mesh& mesh, const Topology& topology, const Curvature& curvature,
@@ -127,14 +140,7 @@ Extremality smooth_extremality(const Mesh& mesh, const Topology& topology, const
                                const std::function<void(double)>& progress) {
   if (options.steps <= 0 || options.time_step <= 0) return extremality;
   const size_t nv = mesh.positions.size();
-  std::vector<double> banded;  // the weights with the boundary band frozen
-  if (options.frozen_boundary_rings > 0) {
-    const auto rings = static_cast<uint32_t>(options.frozen_boundary_rings);
-    const std::vector<uint32_t> distance = boundary_ring_distance(mesh, topology, rings);
-    banded = options.vertex_weights.empty() ? std::vector<double>(nv, 1.0) : options.vertex_weights;
-    for (size_t v = 0; v < distance.size() && v < banded.size(); ++v)
-      if (distance[v] < rings) banded[v] = 0;
-  }
+  std::vector<double> banded = banded_weights(mesh, topology, options);
   const std::vector<double>& weights = options.frozen_boundary_rings > 0 ? banded : options.vertex_weights;
   if (!weights.empty() && weights.size() != nv)
     throw Error(ErrorKind::InvalidInput, "the smoothing weights have " + std::to_string(weights.size()) +
@@ -157,6 +163,9 @@ Extremality smooth_extremality(const Mesh& mesh, const Topology& topology, const
     return cotan_weight;
   };
   std::vector<double> edge_strength = strengths(std::move(cotan.edge_weight));
+  // Not needed during the solves, where the peak memory is (8 bytes a
+  // vertex); the fallback below makes it again.
+  std::vector<double>().swap(banded);
 
   // Both fields in lockstep wherever it converges: each matrix entry is read
   // once for both, the rows are split over the threads, and the arithmetic
@@ -165,7 +174,10 @@ Extremality smooth_extremality(const Mesh& mesh, const Topology& topology, const
   if (nv <= SignedPairMatrix::kColumnMask &&
       smooth_fields_paired(topology, cotan, edge_strength, curvature, extremality, options.steps, progress, out))
     return out;
-  if (edge_strength.empty()) edge_strength = strengths(cotan_weights(mesh.positions, mesh, topology).edge_weight);
+  if (edge_strength.empty()) {
+    banded = banded_weights(mesh, topology, options);
+    edge_strength = strengths(cotan_weights(mesh.positions, mesh, topology).edge_weight);
+  }
   // The two fields are independent systems: one thread each where there are two.
   const std::vector<Vec3>* directions[2] = {&curvature.dir_max, &curvature.dir_min};
   const std::vector<double>* values[2] = {&extremality.e_max, &extremality.e_min};

@@ -49,14 +49,19 @@ CotanWeights cotan_weights(const std::vector<Vec3>& positions, const Mesh& mesh,
     parallel_for(end - begin, [&](size_t first, size_t last) {
       for (size_t i = first; i < last; ++i) {
         const Triangle& f = mesh.triangles[begin + i];
-        const double twice_area = (positions[f[1]] - positions[f[0]]).cross(positions[f[2]] - positions[f[0]]).norm();
-        terms[i].mass = twice_area / 6.0;
-        terms[i].has_area = twice_area > 0;
-        for (int k = 0; k < 3; ++k) {
-          // The angle at corner k+2 is opposite edge k (corners k, k+1).
-          const Vec3& o = positions[f[(k + 2) % 3]];
-          terms[i].cot[k] = 0.5 * ((positions[f[k]] - o).dot(positions[f[(k + 1) % 3]] - o) / twice_area);
-        }
+        // The sides once: e[k] runs from corner k to corner k+1. The angle
+        // at corner k+2 is opposite side k and its cosine's numerator is
+        // (p_k − p_{k+2})·(p_{k+1} − p_{k+2}) = −e[k+2]·e[k+1]; IEEE
+        // negation is exact, so these are the bits of that form (and of
+        // |(p1 − p0) × (p2 − p0)| = |e[0] × e[2]|), with 9 subtractions
+        // instead of 24.
+        const Vec3 &p0 = positions[f[0]], &p1 = positions[f[1]], &p2 = positions[f[2]];
+        const Vec3 e[3] = {p1 - p0, p2 - p1, p0 - p2};
+        const double twice_area = e[0].cross(e[2]).norm();
+        Terms& term = terms[i];
+        term.mass = twice_area / 6.0;
+        term.has_area = twice_area > 0;
+        for (int k = 0; k < 3; ++k) term.cot[k] = -(0.5 * (e[(k + 2) % 3].dot(e[(k + 1) % 3]) / twice_area));
       }
     });
     for (size_t t = begin; t < end; ++t) {
