@@ -9,17 +9,42 @@ namespace {
 // iterations, and most are short.
 constexpr size_t kLinesPerThread = 64;
 
-// Discrete curve Laplacian ½(x_{i−1} + x_{i+1}) − x_i; zero at fixed ends.
-// The ends apart, so that the interior needs no wrap-around index (n ≥ 3).
-void laplacian(const std::vector<Vec3>& x, bool closed, std::vector<Vec3>& out) {
+// One step of the explicit bi-Laplacian flow x ← x − ¼ Δ²x (stable for
+// λ < ½ with this Laplacian; unlike Δ it does not shrink curves towards their
+// chords), in place, with the Hausdorff clamp. Δx = ½(x_{i−1} + x_{i+1}) − x_i
+// is zero at fixed ends. It is computed one point ahead of the update, from
+// points not yet moved, in a window of three: the same sums, bit for bit, as
+// a pass filling an array Δx and a second one filling Δ²x, without their
+// memory traffic. A closed line's Δx at its last point and at its first is
+// taken before the first point moves. Needs n ≥ 3 (open) or n ≥ 4 (closed).
+void fair_step(std::vector<Vec3>& x, const std::vector<Vec3>& original, bool closed, double bound) {
   const size_t n = x.size();
-  out.resize(n);
-  for (size_t i = 1; i + 1 < n; ++i) out[i] = 0.5 * (x[i - 1] + x[i + 1]) - x[i];
+  auto laplacian = [&x](size_t i, size_t prev, size_t next) -> Vec3 { return 0.5 * (x[prev] + x[next]) - x[i]; };
+  auto move = [&](size_t i, const Vec3& bilaplacian) {
+    Vec3 p = x[i] - 0.25 * bilaplacian;
+    // Each vertex stays within `bound` of where it was, so every point of
+    // the faired polyline is within `bound` of the matching point of the
+    // original (same edge parameter) and vice versa: Hausdorff ≤ bound.
+    const Vec3 moved = p - original[i];
+    const double d = moved.norm();
+    if (d > bound) p = original[i] + moved * (bound / d);
+    x[i] = p;
+  };
   if (closed) {
-    out[0] = 0.5 * (x[n - 1] + x[1]) - x[0];
-    out[n - 1] = 0.5 * (x[n - 2] + x[0]) - x[n - 1];
+    const Vec3 last = laplacian(n - 1, n - 2, 0), first = laplacian(0, n - 1, 1);
+    Vec3 prev = last, here = first;
+    for (size_t i = 0; i < n; ++i) {
+      const Vec3 next = i + 2 < n ? laplacian(i + 1, i, i + 2) : i + 2 == n ? last : first;
+      move(i, 0.5 * (prev + next) - here);
+      prev = here, here = next;
+    }
   } else {
-    out[0] = out[n - 1] = Vec3::Zero();
+    Vec3 prev = Vec3::Zero(), here = laplacian(1, 0, 2);
+    for (size_t i = 1; i + 1 < n; ++i) {
+      const Vec3 next = i + 2 < n ? laplacian(i + 1, i, i + 2) : Vec3::Zero();
+      move(i, 0.5 * (prev + next) - here);
+      prev = here, here = next;
+    }
   }
 }
 
@@ -34,29 +59,12 @@ std::vector<Polyline> fair_polylines(const std::vector<Polyline>& lines, double 
   parallel_for(
       out.size(),
       [&](size_t begin, size_t end) {
-        std::vector<Vec3> lap, bilap;
         for (size_t l = begin; l < end; ++l) {
           Polyline& line = out[l];
           const size_t n = line.points.size();
           if (n < (line.closed ? 4u : 3u)) continue;
           const std::vector<Vec3> original = line.points;
-          for (int it = 0; it < options.iterations; ++it) {
-            // Explicit bi-Laplacian flow x ← x − λ Δ²x (stable for λ < ½ with this
-            // Laplacian); unlike Δ it does not shrink curves towards their chords.
-            laplacian(line.points, line.closed, lap);
-            laplacian(lap, line.closed, bilap);
-            for (size_t i = 0; i < n; ++i) {
-              if (!line.closed && (i == 0 || i + 1 == n)) continue;
-              Vec3 p = line.points[i] - 0.25 * bilap[i];
-              // Each vertex stays within `bound` of where it was, so every point of
-              // the faired polyline is within `bound` of the matching point of the
-              // original (same edge parameter) and vice versa: Hausdorff ≤ bound.
-              const Vec3 moved = p - original[i];
-              const double d = moved.norm();
-              if (d > bound) p = original[i] + moved * (bound / d);
-              line.points[i] = p;
-            }
-          }
+          for (int it = 0; it < options.iterations; ++it) fair_step(line.points, original, line.closed, bound);
           // The strength stays that of the traced line (it measures the surface,
           // not the drawing); only the length follows the faired points.
           const double strength = line.strength;
