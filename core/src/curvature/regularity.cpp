@@ -6,14 +6,6 @@
 
 namespace crestline {
 
-bool consistent_signs(const Vec3& d0, const Vec3& d1, const Vec3& d2, std::array<double, 3>& signs) {
-  const double a = d0.dot(d1), b = d0.dot(d2);
-  signs = {1.0, a >= 0 ? 1.0 : -1.0, b >= 0 ? 1.0 : -1.0};
-  // Orienting d1 and d2 towards d0 is the only candidate (up to a global
-  // flip); the triangle is regular when it makes them agree with each other.
-  return a != 0 && b != 0 && signs[1] * signs[2] * d1.dot(d2) > 0;
-}
-
 Regularity classify_triangles(const Mesh& mesh, const Curvature& curvature) {
   Regularity r;
   const size_t nt = mesh.triangles.size();
