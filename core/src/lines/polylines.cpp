@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "crestline/mesh/topology.h"
+#include "crestline/numerics/parallel.h"
 
 namespace crestline {
 namespace {
@@ -310,24 +311,41 @@ std::vector<FeatureGraph> split_by_component(const FeatureGraph& graph, const Me
 
 PolylinesResult build_polylines(const FeatureGraph& ridges, const FeatureGraph& valleys, const Mesh& mesh,
                                 const Topology& topology, const PolylinesInput& input) {
-  PolylinesResult out;
-  for (const FeatureGraph* traced : {&ridges, &valleys}) {
-    FeatureGraph placed;
-    if (input.place_on) {
-      placed = *traced;
-      place_nodes_on(placed, *input.place_on, topology.edges);
-      traced = &placed;
-    }
-    std::vector<FeatureGraph> parts;
-    std::vector<uint32_t> part_component{0};
-    if (input.vertex_component && input.components > 1)
-      parts = split_by_component(*traced, mesh, topology, *input.vertex_component, input.components, part_component);
-    for (size_t i = 0; i < part_component.size(); ++i) {
-      std::vector<Polyline> lines = join_polylines(parts.empty() ? *traced : parts[i]);
-      out.component.insert(out.component.end(), lines.size(), part_component[i]);
-      out.lines.insert(out.lines.end(), std::make_move_iterator(lines.begin()), std::make_move_iterator(lines.end()));
-    }
-  }
+  // Joining a graph is serial (0.32 G instructions for both at 1.1M
+  // triangles), so ridges and valleys are joined on two threads when there
+  // are two, each into its own result, concatenated in that order after.
+  const FeatureGraph* traced[2] = {&ridges, &valleys};
+  PolylinesResult of_type[2];
+  parallel_for(
+      2,
+      [&](size_t begin, size_t end) {
+        for (size_t k = begin; k < end; ++k) {
+          const FeatureGraph* graph = traced[k];
+          FeatureGraph placed;
+          if (input.place_on) {
+            placed = *graph;
+            place_nodes_on(placed, *input.place_on, topology.edges);
+            graph = &placed;
+          }
+          std::vector<FeatureGraph> parts;
+          std::vector<uint32_t> part_component{0};
+          if (input.vertex_component && input.components > 1)
+            parts =
+                split_by_component(*graph, mesh, topology, *input.vertex_component, input.components, part_component);
+          PolylinesResult& out = of_type[k];
+          for (size_t i = 0; i < part_component.size(); ++i) {
+            std::vector<Polyline> lines = join_polylines(parts.empty() ? *graph : parts[i]);
+            out.component.insert(out.component.end(), lines.size(), part_component[i]);
+            out.lines.insert(out.lines.end(), std::make_move_iterator(lines.begin()),
+                             std::make_move_iterator(lines.end()));
+          }
+        }
+      },
+      1);
+  PolylinesResult out = std::move(of_type[0]);
+  out.component.insert(out.component.end(), of_type[1].component.begin(), of_type[1].component.end());
+  out.lines.insert(out.lines.end(), std::make_move_iterator(of_type[1].lines.begin()),
+                   std::make_move_iterator(of_type[1].lines.end()));
   return out;
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "crestline/lines/filter.h"
+#include "crestline/numerics/parallel.h"
 
 using namespace crestline;
 
@@ -143,4 +144,31 @@ TEST_CASE("small aligned gaps are bridged, loops with a gap close, misaligned en
   p.points = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0), Vec3(0, 0.5, 0), Vec3(1, 0.5, 0), Vec3(2, 0.5, 0)};
   p.segments = {{0, 1}, {1, 2}, {3, 4}, {4, 5}};
   CHECK(join_polylines(p).size() == 2);
+}
+
+TEST_CASE("build_polylines: ridges then valleys, the same on one thread and two", "[polylines][threads]") {
+  FeatureGraph ridges = graph_with_points(6, 1.0), valleys = graph_with_points(4, 2.0);
+  ridges.type = LineType::Ridge, valleys.type = LineType::Valley;
+  for (int i = 3; i < 6; ++i) ridges.points[i] = Vec3(i, 5, 0);
+  ridges.segments = {{0, 1}, {1, 2}, {3, 4}, {4, 5}};  // two chains, too far apart to bridge
+  valleys.points[2] = Vec3(0, 5, 0), valleys.points[3] = Vec3(1, 5, 0);
+  valleys.segments = {{0, 1}, {2, 3}};
+  const int before = max_threads();
+  auto run = [&](int threads) {
+    set_max_threads(threads);
+    return build_polylines(ridges, valleys, Mesh{}, Topology{}, PolylinesInput{});
+  };
+  const PolylinesResult one = run(1), two = run(2);
+  set_max_threads(before);
+  REQUIRE(one.lines.size() == 4);
+  REQUIRE(two.lines.size() == 4);
+  CHECK(one.component == std::vector<uint32_t>(4, 0));
+  CHECK(two.component == one.component);
+  for (size_t i = 0; i < 4; ++i) {
+    CHECK(one.lines[i].type == (i < 2 ? LineType::Ridge : LineType::Valley));
+    CHECK(two.lines[i].type == one.lines[i].type);
+    CHECK(two.lines[i].points == one.lines[i].points);
+    CHECK(two.lines[i].strength == one.lines[i].strength);
+  }
+  CHECK(one.lines[2].strength == Approx(2.0));
 }
