@@ -188,8 +188,14 @@ std::vector<Polyline> bridge_gaps(std::vector<Polyline> lines, const std::vector
   for (size_t i = 0; i < ends.size(); ++i)
     for (size_t j = i + 1; j < ends.size() && ends[j].point.x() - ends[i].point.x() <= max_gap; ++j) {
       const End &a = ends[i], &b = ends[j];
-      if (a.id / 2 == b.id / 2 && lines[a.id / 2].points.size() < 4) continue;  // too short to close
       const Vec3 g = b.point - a.point;
+      // Most pairs of the sweep are far apart across it. |g| ≥ |g_y|, |g_z|
+      // in floating point too (squares and sums of non-negative terms round
+      // monotonically), so this drops only pairs that len > max_gap drops,
+      // before the norm (join_polylines 315 → 217 M instructions at 1.1M
+      // triangles).
+      if (std::abs(g.y()) > max_gap || std::abs(g.z()) > max_gap) continue;
+      if (a.id / 2 == b.id / 2 && lines[a.id / 2].points.size() < 4) continue;  // too short to close
       const double len = g.norm();
       if (len > max_gap) continue;
       auto aligned = [&](int k) {

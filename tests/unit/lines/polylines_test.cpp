@@ -172,3 +172,19 @@ TEST_CASE("build_polylines: ridges then valleys, the same on one thread and two"
   }
   CHECK(one.lines[2].strength == Approx(2.0));
 }
+
+TEST_CASE("gaps across the end sweep's axis: bridged within the bound in y and z, not beyond", "[polylines]") {
+  // Ends are swept in x, and pairs far apart in y or z are dropped before
+  // their distance: lines along y and z, all at x = 0, test that shortcut.
+  for (int axis = 1; axis < 3; ++axis)
+    for (const double gap : {3.9, 4.1}) {  // the bound: 4 mean segment lengths, here 4
+      FeatureGraph g = graph_with_points(6, 1.0);
+      for (int i = 0; i < 6; ++i) {
+        g.points[i] = Vec3::Zero();
+        g.points[i][axis] = i < 3 ? i : 2 + gap + (i - 3);
+      }
+      g.segments = {{0, 1}, {1, 2}, {3, 4}, {4, 5}};
+      INFO("axis " << axis << ", gap " << gap);
+      CHECK(join_polylines(g).size() == (gap < 4 ? 1u : 2u));
+    }
+}
