@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -41,20 +42,43 @@ void append_number(std::string& out, double value) {
   char buffer[32];
   char* end = buffer;
 #ifdef __cpp_lib_to_chars
-  // The shortest digits that read back, d of them, decide it in one
-  // formatting (instead of up to three, each parsed back): %.15g reads back
-  // exactly when d ≤ 15, and otherwise %.{d}g is the first that does — the
-  // correctly rounded d digits read back when any d digits do, because the
-  // decimals that read back as a double lie in an interval centred on it.
-  // Not so at a power of two (the next double down is half as far): the
-  // loop below.
+  // The shortest digits that read back, d of them, decide it: %.15g reads
+  // back exactly when d ≤ 15, and otherwise %.{d}g is the first that does —
+  // the correctly rounded d digits read back when any d digits do, because
+  // the decimals that read back as a double lie in an interval centred on
+  // it. Not so at a power of two (the next double down is half as far) nor
+  // at zero or below the normal range (fewer digits read back there): the
+  // loop below. The printed digits are the shortest digits themselves (with
+  // d ≤ 15 because any decimal of at most DBL_DIG = 15 digits survives
+  // decimal → double → 15 digits; with d = 16 or 17 both are the d digits
+  // nearest the value, exact ties to even), so they are laid out as
+  // %.{max(15, d)}g would lay them out instead of formatting again.
   int exponent = 0;
-  if (std::abs(std::frexp(value, &exponent)) != 0.5) {
-    char digits[32];
-    const char* digits_end = std::to_chars(digits, digits + sizeof digits, value, std::chars_format::scientific).ptr;
-    int d = 0;
-    for (const char* c = digits; c < digits_end && *c != 'e'; ++c) d += *c >= '0' && *c <= '9';
-    end = format_general(buffer, buffer + sizeof buffer - 1, value, std::max(15, d));
+  if (std::abs(std::frexp(value, &exponent)) != 0.5 && !(std::abs(value) < std::numeric_limits<double>::min())) {
+    char shortest[32];  // [-]d[.ddd]e±XX
+    const char* shortest_end =
+        std::to_chars(shortest, shortest + sizeof shortest, value, std::chars_format::scientific).ptr;
+    const char* first = shortest + (value < 0);
+    const char* e = first + 1;
+    while (*e != 'e') ++e;
+    int x = 0;  // the decimal exponent
+    for (const char* c = e + 2; c < shortest_end; ++c) x = 10 * x + (*c - '0');
+    if (e[1] == '-') x = -x;
+    char digits[17];  // without the point
+    digits[0] = *first;
+    const int d = e == first + 1 ? 1 : int(std::copy(first + 2, e, digits + 1) - digits);
+    if (x < -4 || x >= std::max(15, d)) {  // %g's exponent form: the shortest text as it is
+      out.append(shortest, size_t(shortest_end - shortest));
+      return;
+    }
+    if (value < 0) *end++ = '-';
+    if (x >= 0) {
+      for (int i = 0; i <= x; ++i) *end++ = i < d ? digits[i] : '0';
+      if (d > x + 1) *end++ = '.', end = std::copy(digits + x + 1, digits + d, end);
+    } else {
+      *end++ = '0', *end++ = '.';
+      end = std::copy(digits, digits + d, std::fill_n(end, -x - 1, '0'));
+    }
     out.append(buffer, end);
     return;
   }

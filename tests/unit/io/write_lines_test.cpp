@@ -283,6 +283,21 @@ TEST_CASE("OBJ numbers are the shortest of %.15g, %.16g, %.17g that reads back, 
   for (int i = 0; i < 2000; ++i) values.push_back(std::round(unit(random) * 1e6) / 1000);
   for (int i = 0; i < 200; ++i) values.push_back((int64_t(random() % 2000000) - 1000000) + 0.5);
   for (int e = -1074; e <= 1023; e += 7) values.push_back(std::ldexp(1.0, e));
+  // Natively the writer lays the shortest digits out as %g would: around
+  // %g's switch between fixed and exponent form (10^-5 and 10^15 to 10^17)
+  // with 1 to 17 digits, and odd multiples of powers of two, among them
+  // exact ties between two 16-digit decimals (8 + 1/65536 = 8.0000152587890625).
+  for (int e = -7; e <= 19; ++e)
+    for (int i = 0; i < 100; ++i) {
+      values.push_back(unit(random) * std::pow(10.0, e));
+      values.push_back(std::round(unit(random) * std::pow(10.0, int(random() % 18))) * std::pow(10.0, e - 17));
+    }
+  for (int i = 0; i < 2000; ++i)
+    values.push_back(std::ldexp(double((random() >> (11 + random() % 48)) | 1), -int(random() % 80)));
+  values.push_back(8 + 1.0 / 65536);
+  values.push_back(-0.0);
+  values.push_back(123456789012345678.0);
+  values.push_back(1e15), values.push_back(1e16), values.push_back(1e-5), values.push_back(-1.0000000000000002e-4);
   values.push_back(std::numeric_limits<double>::denorm_min());
   values.push_back(std::numeric_limits<double>::max());
   while (values.size() % 3) values.push_back(0.0);
