@@ -196,9 +196,43 @@ class ObjParser {
   // `vn` and `vt`: not used, but their numbers are checked as in `v`.
   const char* attribute(const char* p) { return numbers(p, false, nullptr); }
 
+  // The common face, read with fewer tests per byte: three positive indices
+  // of vertices already read, without sign or leading zero, each optionally
+  // followed by /t/n, then the line's end or a comment. Returns the end as
+  // face() does, or nullptr for anything else (nothing changed then), which
+  // face() reads, checks and reports in full: at most 10 digits are read, so
+  // the value cannot overflow, and a value within the vertices read so far
+  // is a valid index up to kMaxIndex.
+  const char* plain_triangle(const char* p) {
+    if (soup_.triangle_count() >= options_.max_triangles) return nullptr;
+    const char* const at = p;
+    const uint64_t known = std::min<uint64_t>(soup_.vertex_count(), kMaxIndex);
+    uint32_t index[3];
+    for (uint32_t& i : index) {
+      if (p == end_ || !is_blank(*p)) return nullptr;
+      while (p < end_ && is_blank(*p)) ++p;
+      if (p == end_ || unsigned(*p - '1') > 8) return nullptr;
+      const char* const last = p + std::min<ptrdiff_t>(10, end_ - p);
+      uint64_t value = 0;
+      for (unsigned digit; p < last && (digit = unsigned(*p) - '0') < 10; ++p) value = value * 10 + digit;
+      if (value > known) return nullptr;
+      if (p < end_ && *p == '/') p = word_end(p);  // texture and normal indices
+      i = uint32_t(value - 1);
+    }
+    // A comment only after a blank: "3#" is a malformed index.
+    if (p < end_ && !is_blank(*p) && !is_line_end(*p)) return nullptr;
+    while (p < end_ && is_blank(*p)) ++p;
+    if (p < end_ && !is_line_end(*p) && *p != '#') return nullptr;
+    const uint32_t largest = std::max({index[0], index[1], index[2]});
+    if (int64_t(largest) > largest_index_) largest_index_ = largest, largest_index_at_ = at;
+    soup_.indices.insert(soup_.indices.end(), index, index + 3);
+    return p;
+  }
+
   // `f i[/t[/n]] ...`: every vertex index a whole number up to kMaxIndex,
   // 1-based or counting back from the last vertex read so far.
   const char* face(const char* p) {
+    if (const char* end = plain_triangle(p)) return end;
     corners_.clear();
     const char* at = p;
     for (;;) {

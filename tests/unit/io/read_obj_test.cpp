@@ -3,6 +3,7 @@
 // and messages that name the line of the face at fault.
 #include <catch2/catch.hpp>
 #include <cstdlib>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -139,4 +140,65 @@ TEST_CASE("OBJ: a face's index errors name its line; vertices are bounded", "[io
     CHECK(e.kind() == ErrorKind::TooLarge);
     CHECK(std::string(e.what()) == "t.obj: the file has more than 6 vertices.");
   }
+}
+
+TEST_CASE("OBJ: plain triangles read as the general face parse reads them", "[io][obj][hardening]") {
+  // read_obj takes `f a b c` (positive indices without sign or leading zero,
+  // of vertices already read) by a shorter path. The same text with a
+  // leading zero on every index takes the general one: both must give the
+  // same soup, or both refuse the file the same way.
+  std::mt19937 random(5);
+  auto pick = [&](std::initializer_list<const char*> words) {
+    return std::string(words.begin()[random() % words.size()]);
+  };
+  size_t plain = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    std::string text = trial % 2 ? square + square : square, zeros = text;
+    const int lines = 1 + int(random() % 6);
+    for (int l = 0; l < lines; ++l) {
+      if (random() % 3 == 0) {
+        const std::string v = "v " + std::to_string(random() % 7) + " " + std::to_string(l) + " 1\n";
+        text += v, zeros += v;
+        continue;
+      }
+      std::string face = "f", face_zeros = "f";
+      const int corners = 2 + int(random() % 3);
+      for (int c = 0; c < corners; ++c) {
+        const std::string gap = pick({" ", "\t", "  ", " \t"});
+        const std::string index = std::to_string(1 + random() % 9);
+        const std::string suffix = random() % 3 ? "" : pick({"/1", "/1/2", "//3", "/x#", "a", "#", "#c", "9"});
+        face += gap + index + suffix, face_zeros += gap + "0" + index + suffix;
+      }
+      std::string end = pick({"\n", "\r\n", "\r", " \n", " # c\n", "\t#\n", "", "x\n", "\n", "\n"});
+      if (end.empty() && l + 1 < lines) end = "\n";  // the file's end only on its last line
+      text += face + end, zeros += face_zeros + end;
+    }
+    INFO(text);
+    std::string error, error_zeros;
+    TriangleSoup soup, soup_zeros;
+    try {
+      soup = read_text(text);
+    } catch (const Error& e) {
+      error = std::to_string(int(e.kind()));
+    }
+    try {
+      soup_zeros = read_text(zeros);
+    } catch (const Error& e) {
+      error_zeros = std::to_string(int(e.kind()));
+    }
+    CHECK(error == error_zeros);
+    CHECK(soup.indices == soup_zeros.indices);
+    CHECK(soup.positions == soup_zeros.positions);
+    CHECK(soup.notes == soup_zeros.notes);
+    plain += error.empty();
+  }
+  CHECK(plain > 200);  // enough files read, not only refused
+  // The messages too, where the index text itself is not quoted.
+  CHECK(refusal(square + "f 1 2 3\nf 2 3 9\n") ==
+        "t.obj: the face on line 6 refers to vertex 9 but the file has 4 vertices.");
+  CHECK(refusal(square + "f 1 2 3#\n") ==
+        "t.obj: the face on line 5 has the vertex index '3#', which is not a whole "
+        "number.");
+  CHECK(read_text(square + "f 1 2 3 # c").indices == std::vector<uint32_t>{0, 1, 2});
+  CHECK(read_text(square + "f 4/1 2/2/2 3//3\t#\n").indices == std::vector<uint32_t>{3, 1, 2});
 }
