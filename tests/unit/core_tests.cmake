@@ -7,6 +7,7 @@ target_sources(crestline_tests PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/curvature/extremality_smoothing_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/numerics/paired_cg_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/numerics/parallel_test.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/numerics/uninitialised_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/numerics/symmetric_eigen3_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/lines/trace_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/lines/polylines_test.cpp

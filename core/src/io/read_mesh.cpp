@@ -16,6 +16,7 @@
 #include <limits>
 #include <new>
 
+#include "crestline/numerics/uninitialised.h"
 #include "readers.h"
 
 namespace crestline::io {
@@ -64,7 +65,13 @@ struct FileDescriptor {
 
 }  // namespace
 
-std::vector<uint8_t> read_file(const std::string& path, const std::string& display_name, uint64_t max_bytes) {
+namespace {
+
+// Not zero-filled before the read (crestline/numerics/uninitialised.h).
+using FileBytes = UninitialisedVector<uint8_t>;
+
+template <typename Bytes>
+Bytes read_bytes(const std::string& path, const std::string& display_name, uint64_t max_bytes) {
   // O_NONBLOCK: opening a named pipe would otherwise wait for a writer.
   const FileDescriptor file{::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC)};
   if (file.fd < 0) {
@@ -83,7 +90,7 @@ std::vector<uint8_t> read_file(const std::string& path, const std::string& displ
     throw Error(ErrorKind::TooLarge,
                 display_name + ": the file is too large to read (" + std::to_string(size) + " bytes).");
   }
-  std::vector<uint8_t> bytes;
+  Bytes bytes;
   try {
     bytes.resize(size_t(size));
   } catch (const std::bad_alloc&) {
@@ -102,6 +109,12 @@ std::vector<uint8_t> read_file(const std::string& path, const std::string& displ
   }
   bytes.resize(done);
   return bytes;
+}
+
+}  // namespace
+
+std::vector<uint8_t> read_file(const std::string& path, const std::string& display_name, uint64_t max_bytes) {
+  return read_bytes<std::vector<uint8_t>>(path, display_name, max_bytes);
 }
 
 namespace {
@@ -319,7 +332,7 @@ TriangleSoup dispatch(const detail::Input& in, const ReadOptions& options) {
 TriangleSoup read_mesh(const std::string& path, const ReadOptions& options) {
   detail::Input in;
   in.name = detail::basename_of(path);
-  const std::vector<uint8_t> bytes = detail::read_file(path, in.name);
+  const detail::FileBytes bytes = detail::read_bytes<detail::FileBytes>(path, in.name, UINT64_MAX);
   in.data = bytes.data();
   in.size = bytes.size();
   in.directory = detail::directory_of(path);

@@ -8,6 +8,7 @@
 
 #include "crestline/mesh/mesh.h"
 #include "crestline/numerics/parallel.h"
+#include "crestline/numerics/uninitialised.h"
 
 namespace crestline::detail {
 
@@ -17,9 +18,9 @@ namespace crestline::detail {
 /// bucket b's values in the order emitted. Large inputs are counted and
 /// placed in up to 8 consecutive parts on as many threads, each part after
 /// the ones before it in every bucket: the same result for any thread count.
-template <typename T, typename Visit>
-void group_by_bucket(size_t count, size_t buckets, const Visit& visit, std::vector<uint32_t>& start,
-                     std::vector<T>& entries) {
+template <typename Visit, typename Entries>
+void group_by_bucket(size_t count, size_t buckets, const Visit& visit, std::vector<uint32_t>& start, Entries& entries) {
+  using T = typename Entries::value_type;
   start.assign(buckets + 1, 0);
   const size_t parts = count < (size_t{1} << 15) ? 1 : std::min<size_t>(size_t(max_threads()), 8);
   if (parts == 1) {
@@ -73,8 +74,9 @@ void group_by_bucket(size_t count, size_t buckets, const Visit& visit, std::vect
 struct HalfEdgeOrder {
   /// entries[start[v] .. start[v + 1]) are the half-edges whose smaller end is v.
   std::vector<uint32_t> start;
-  /// larger end << 32 | corner, ascending within each vertex.
-  std::vector<uint64_t> entries;
+  /// larger end << 32 | corner, ascending within each vertex (every entry
+  /// written by the grouping, so not zero-filled first).
+  UninitialisedVector<uint64_t> entries;
 
   static uint32_t far_end(uint64_t entry) { return static_cast<uint32_t>(entry >> 32); }
   static uint32_t corner(uint64_t entry) { return static_cast<uint32_t>(entry); }
