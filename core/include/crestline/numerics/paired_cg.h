@@ -104,6 +104,11 @@
 // iterations instead of 60, on the dragon 170 instead of 159, plus a
 // residual pass a solve (r̃ kept in double: 62 and 165, misses −42 % on
 // the bunny): an estimated +15–20 % instructions for the misses saved.
+// Wall clock decides against it (CLI `--stats` smoothing seconds, 1 thread,
+// three alternated rounds on an idle machine, load 0.9–1.0): 1.1M 1.39–1.58
+// s as landed against 1.69–2.42 with the check and restarts, the dragon
+// 2.99–3.30 against 3.18–3.58. The streams are prefetched; the conversions
+// cost more than the misses saved. Instructions guide this solve here.
 #include <cstddef>
 #include <cstdint>
 #include <functional>
