@@ -190,6 +190,7 @@ MeshResult measure(const MeshSpec& spec, const Args& args) {
     r.peak_rss = std::max(r.peak_rss, peak_rss());
 
     r.vertices = stats.vertices, r.triangles = stats.triangles;
+    r.smoothing_iterations = stats.smoothing_iterations;
     r.ridges = stats.ridges, r.valleys = stats.valleys;
     r.ridge_length = stats.ridge_length, r.valley_length = stats.valley_length;
   }

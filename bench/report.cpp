@@ -41,7 +41,7 @@ void print_table(const std::vector<MeshResult>& results) {
   std::vector<std::string> header = {"mesh", "triangles", "read", "repair", "topology"};
   for (int s = 0; s < kStages; ++s) header.push_back(stage_name(static_cast<Stage>(s)));
   header.push_back("write");
-  for (const char* h : {"total", "cpu", "re-thr", "re-smooth", "peak MB", "B/tri"}) header.push_back(h);
+  for (const char* h : {"total", "cpu", "re-thr", "re-smooth", "peak MB", "B/tri", "iterations"}) header.push_back(h);
 
   std::vector<std::vector<std::string>> rows;
   for (const MeshResult& r : results) {
@@ -60,6 +60,7 @@ void print_table(const std::vector<MeshResult>& results) {
     row.push_back(buffer);
     std::snprintf(buffer, sizeof buffer, "%.0f", bytes_per_triangle(r));
     row.push_back(buffer);
+    row.push_back(std::to_string(r.smoothing_iterations));
     rows.push_back(row);
   }
   std::vector<size_t> width(header.size());
@@ -111,8 +112,8 @@ std::string to_json(const std::vector<MeshResult>& results, const BenchSettings&
         << ", \"resmooth\": " << json_number(r.resmooth) << "},\n     \"input_rss_bytes\": " << r.input_rss
         << ", \"peak_rss_bytes\": " << r.peak_rss
         << ", \"peak_bytes_per_triangle_above_input\": " << json_number(bytes_per_triangle(r))
-        << ",\n     \"lines\": {\"ridges\": " << r.ridges << ", \"valleys\": " << r.valleys
-        << ", \"ridge_length\": " << json_number(r.ridge_length)
+        << ", \"smoothing_iterations\": " << r.smoothing_iterations << ",\n     \"lines\": {\"ridges\": " << r.ridges
+        << ", \"valleys\": " << r.valleys << ", \"ridge_length\": " << json_number(r.ridge_length)
         << ", \"valley_length\": " << json_number(r.valley_length) << "}}";
   }
   out << "\n  ]\n}\n";

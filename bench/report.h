@@ -26,6 +26,7 @@ struct MeshResult {
   double cpu = 0;        // CPU seconds (user + system, all threads) of `total`: less sensitive to a busy machine
   size_t input_rss = 0;  // bytes resident with the reader's soup in memory
   size_t peak_rss = 0;   // highest resident bytes from repair to the last re-run
+  size_t smoothing_iterations = 0;  // the smoothing's solver iterations, all steps (the same every run)
   size_t ridges = 0, valleys = 0;
   double ridge_length = 0, valley_length = 0;
 };

@@ -278,7 +278,7 @@ void Pipeline::run(const ProgressCallback& progress) {
   // So are the per-vertex fields a stage is about to recompute: not held
   // beside their new values (at 1.1M triangles the old curvature is 48 bytes
   // per triangle, each extremality 8).
-  if (static_cast<int>(first_dirty_) <= static_cast<int>(Stage::Smoothing)) extremality_ = Extremality();
+  if (static_cast<int>(first_dirty_) <= static_cast<int>(Stage::Smoothing)) extremality_ = SmoothedExtremality();
   if (static_cast<int>(first_dirty_) <= static_cast<int>(Stage::Regularity)) regularity_ = Regularity();
   if (static_cast<int>(first_dirty_) <= static_cast<int>(Stage::Extremality)) raw_extremality_ = Extremality();
   if (static_cast<int>(first_dirty_) <= static_cast<int>(Stage::Curvature)) curvature_ = Curvature();
@@ -454,6 +454,7 @@ PipelineStats Pipeline::stats() const {
   s.crease_angle = creases_.angle;
   s.threshold = filtered_.threshold;
   s.mean_edge_length = mean_edge_;
+  s.smoothing_iterations = extremality_.solver_iterations;
   const uint32_t largest = frames_.largest();
   s.noise_level = noise_levels_[largest];
   s.presmooth_steps = presmooth_steps_.empty() ? 0 : presmooth_steps_[largest];

@@ -89,6 +89,7 @@ struct PipelineStats {
   double noise_level = 0;                               // surface_noise_level of the input
   int presmooth_steps = 0;                              // used (the automatic choice resolved)
   double mean_edge_length = 0;                          // over the whole input, in its units
+  size_t smoothing_iterations = 0;                      // the smoothing's solver iterations, all steps
   double seconds[static_cast<int>(Stage::Count)] = {};  // last run time per stage
   // Around the stages: the Pipeline constructor times topology; the caller
   // fills in reading, repair and writing (0 where it did none).
@@ -199,7 +200,7 @@ class Pipeline {
   bool presmoothed_ = false;
   Curvature curvature_;
   Extremality raw_extremality_;
-  Extremality extremality_;
+  SmoothedExtremality extremality_;
   Regularity regularity_;
   TraceResult traced_;
   SingularResult singular_;

@@ -59,11 +59,12 @@ SignedPairMatrix signed_pair_matrix(const Topology& topology, const CotanWeights
   return a;
 }
 
-// Both fields in lockstep; false if CG does not converge. Releases
-// edge_strength once the matrix holds it (the solve's peak memory).
+// Both fields in lockstep; false if CG does not converge (out's
+// solver_iterations then holds what was spent). Releases edge_strength once
+// the matrix holds it (the solve's peak memory).
 bool smooth_fields_paired(const Topology& topology, const CotanWeights& cotan, std::vector<double>& edge_strength,
                           const Curvature& curvature, const Extremality& in, int steps,
-                          const std::function<void(double)>& progress, Extremality& out) {
+                          const std::function<void(double)>& progress, SmoothedExtremality& out) {
   const size_t nv = cotan.vertex_mass.size();
   SignedPairMatrix matrix = signed_pair_matrix(topology, cotan, edge_strength, curvature);
   std::vector<double>().swap(edge_strength);  // before the solver copies the matrix
@@ -75,11 +76,11 @@ bool smooth_fields_paired(const Topology& topology, const CotanWeights& cotan, s
       const double m = cotan.vertex_mass[v];
       b[2 * v] = m * x[2 * v], b[2 * v + 1] = m * x[2 * v + 1];
     }
-    std::function<void(int)> on_iteration;
-    if (progress)
-      on_iteration = [&](int iteration) {
-        progress((step + double(iteration) / (iteration + kTypicalIterations)) / steps);
-      };
+    const size_t before = out.solver_iterations;
+    const auto on_iteration = [&](int iteration) {
+      out.solver_iterations = before + static_cast<size_t>(iteration);
+      if (progress) progress((step + double(iteration) / (iteration + kTypicalIterations)) / steps);
+    };
     if (!solver.solve(b, x, kTolerance, step == 0 ? kPairedBudget : SpdSolver().max_iterations, on_iteration))
       return false;
   }
@@ -135,10 +136,10 @@ std::vector<double> banded_weights(const Mesh& mesh, const Topology& topology,
 
 }  // namespace
 
-Extremality smooth_extremality(const Mesh& mesh, const Topology& topology, const Curvature& curvature,
-                               const Extremality& extremality, const ExtremalitySmoothingOptions& options,
-                               const std::function<void(double)>& progress) {
-  if (options.steps <= 0 || options.time_step <= 0) return extremality;
+SmoothedExtremality smooth_extremality(const Mesh& mesh, const Topology& topology, const Curvature& curvature,
+                                       const Extremality& extremality, const ExtremalitySmoothingOptions& options,
+                                       const std::function<void(double)>& progress) {
+  if (options.steps <= 0 || options.time_step <= 0) return {extremality};
   const size_t nv = mesh.positions.size();
   std::vector<double> banded = banded_weights(mesh, topology, options);
   const std::vector<double>& weights = options.frozen_boundary_rings > 0 ? banded : options.vertex_weights;
@@ -170,7 +171,7 @@ Extremality smooth_extremality(const Mesh& mesh, const Topology& topology, const
   // Both fields in lockstep wherever it converges: each matrix entry is read
   // once for both, the rows are split over the threads, and the arithmetic
   // is the same as the single-threaded WASM build's.
-  Extremality out;
+  SmoothedExtremality out;
   if (nv <= SignedPairMatrix::kColumnMask &&
       smooth_fields_paired(topology, cotan, edge_strength, curvature, extremality, options.steps, progress, out))
     return out;

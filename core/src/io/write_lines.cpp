@@ -186,7 +186,8 @@ std::string stats_json(const PipelineStats& stats) {
                                                    {"valleys", stats.valleys},
                                                    {"creases", stats.creases},
                                                    {"components", stats.components},
-                                                   {"presmooth_steps", static_cast<size_t>(stats.presmooth_steps)}};
+                                                   {"presmooth_steps", static_cast<size_t>(stats.presmooth_steps)},
+                                                   {"smoothing_iterations", stats.smoothing_iterations}};
   const std::pair<const char*, double> measures[] = {
       {"ridge_length", stats.ridge_length},   {"valley_length", stats.valley_length},
       {"crease_length", stats.crease_length}, {"crease_angle", stats.crease_angle},

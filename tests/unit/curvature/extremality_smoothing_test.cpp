@@ -135,6 +135,24 @@ TEST_CASE("extremality smoothing reduces roughness step by step", "[smoothing]")
   }
 }
 
+TEST_CASE("extremality smoothing reports its solver iterations", "[smoothing]") {
+  const Fixture f = noisy_bump();
+  size_t iterations[4] = {};
+  for (int steps = 0; steps <= 3; ++steps) {
+    ExtremalitySmoothingOptions options;
+    options.steps = steps;
+    iterations[steps] = smooth_extremality(f.mesh, f.topology, f.curvature, f.extremality, options).solver_iterations;
+  }
+  CHECK(iterations[0] == 0);
+  // Each step costs a few to a few tens of iterations, and the sums add up
+  // step by step: the same solves from the same start.
+  CHECK(iterations[1] >= 3);
+  CHECK(iterations[1] <= 30);
+  CHECK(iterations[2] > iterations[1]);
+  CHECK(iterations[3] > iterations[2]);
+  CHECK(iterations[3] <= 3 * 30);
+}
+
 TEST_CASE("inhomogeneous smoothing: weight 0 freezes, larger weights smooth more", "[smoothing]") {
   const Fixture f = noisy_bump();
   ExtremalitySmoothingOptions options;

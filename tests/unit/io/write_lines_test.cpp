@@ -162,7 +162,7 @@ TEST_CASE("stats JSON is one object on one line", "[io][writers]") {
   CHECK(text.find('\n') == std::string::npos);
   const auto json = nlohmann::json::parse(text);
   for (const char* key : {"vertices", "triangles", "singular_max", "singular_min", "ridges", "valleys", "ridge_length",
-                          "valley_length", "seconds"})
+                          "valley_length", "smoothing_iterations", "seconds"})
     CHECK(json.contains(key));
 }
 

@@ -2,6 +2,7 @@
 // Paper §5.1: smoothing extremalities with the sign-corrected cotan Laplacian
 // Δe(p) = Σ_q w_pq (σ_pq e(q) − e(p)), σ_pq = sign⟨κ⃗(p), κ⃗(q)⟩, integrated
 // implicitly: (M − t L_σ) e' = M e with the lumped mass matrix M.
+#include <cstddef>
 #include <functional>
 #include <vector>
 
@@ -25,12 +26,21 @@ struct ExtremalitySmoothingOptions {
   int frozen_boundary_rings = 0;
 };
 
+/// The smoothed fields, and what solving for them took.
+struct SmoothedExtremality : Extremality {
+  /// Conjugate-gradient iterations over all steps, both fields in lockstep
+  /// counting once (numerics/paired_cg.h); where the paired solve gives up,
+  /// the iterations it spent (the fallback's own are not counted). The same
+  /// for any thread count.
+  size_t solver_iterations = 0;
+};
+
 /// Independent of the initial sign choice of the directions: flipping
 /// dir(p) and e(p) at any vertices before smoothing flips exactly those
 /// values after it. progress, if set, is called with the fraction done
 /// (0–1) after every solver iteration; it may throw to cancel.
-Extremality smooth_extremality(const Mesh& mesh, const Topology& topology, const Curvature& curvature,
-                               const Extremality& extremality, const ExtremalitySmoothingOptions& options,
-                               const std::function<void(double fraction)>& progress = {});
+SmoothedExtremality smooth_extremality(const Mesh& mesh, const Topology& topology, const Curvature& curvature,
+                                       const Extremality& extremality, const ExtremalitySmoothingOptions& options,
+                                       const std::function<void(double fraction)>& progress = {});
 
 }  // namespace crestline
