@@ -19,7 +19,7 @@ import { join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { CHROMIUM, launch } from '../tests/browser/browser.mjs';
 import { serve } from '../tests/browser/server.mjs';
-import { table } from './table.mjs';
+import { median, table } from './table.mjs';
 
 const ROOT = fileURLToPath(new URL('../', import.meta.url));
 const MESHES = resolve(ROOT, '../shared/meshes');
@@ -40,12 +40,6 @@ function parseArgs(argv) {
   return args;
 }
 
-const median = (values) => {
-  const s = values.filter(Number.isFinite).sort((a, b) => a - b);
-  const n = s.length;
-  if (!n) return NaN;
-  return n % 2 ? s[(n - 1) / 2] : 0.5 * (s[n / 2 - 1] + s[n / 2]);
-};
 const load = () => loadavg()[0].toFixed(1);
 
 /**

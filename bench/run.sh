@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The benchmark in one command: native (build-bench/) then the WASM build in
 # node on the same meshes, then the page in headless Chromium (bench/browser.mjs:
-# the dragon dropped on the built app, web/dist). Results:
-# build-bench/bench/{native,wasm,browser}.json.
+# the dragon dropped on the built app, web/dist), and the CLI's whole process
+# from file to lines (bench/process.mjs). Results:
+# build-bench/bench/{native,process,wasm,browser}.json.
 #   bash bench/run.sh            all meshes, 5 runs native, 3 in WASM, 1 thread;
 #                                then every mesh again on 2 threads, and on
 #                                every core where there are more;
@@ -27,7 +28,7 @@ if [[ $smoke == 1 ]]; then wasm_runs=1; fi
 if [[ ! -f $build/build.ninja && ! -f $build/Makefile ]]; then
   cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 fi
-cmake --build "$build" --target crestline_bench >/dev/null
+cmake --build "$build" --target crestline_bench crestline >/dev/null
 
 soups=$(mktemp -d)
 trap 'rm -rf "$soups"' EXIT
@@ -40,6 +41,23 @@ if [[ $smoke == 0 ]]; then
     echo
     "$out/crestline_bench" "${args[@]}" --threads "$cores" --json "$out/native-allthreads.json"
   fi
+fi
+
+# The whole process as a user runs it: the CLI from the file to the written
+# lines (bench/process.mjs), on the bunny and the dragon as shipped and on the
+# 1.1M subdivision written out as an OBJ (58 MB, as issue 14 measures it).
+meshes=../shared/meshes
+if [[ -d $meshes ]]; then
+  echo
+  if [[ $smoke == 1 ]]; then
+    node bench/process.mjs --cli "$build/cli/crestline" --mesh bunny=$meshes/classic/stanford-bunny.obj --runs 1 --json "$out/process.json"
+  else
+    "$out/crestline_bench" --export-obj "$soups" --only bunny-sub2 --runs 1 >/dev/null
+    node bench/process.mjs --cli "$build/cli/crestline" --threads 1,2 --runs 3 --json "$out/process.json" \
+      --mesh bunny=$meshes/classic/stanford-bunny.obj --mesh dragon=$meshes/large/dragon.glb --mesh bunny-sub2="$soups/bunny-sub2.obj"
+  fi
+else
+  echo "bench: $meshes is absent; skipped the whole-process rows." >&2
 fi
 
 dist=${CRESTLINE_BENCH_WASM_DIST:-wasm/dist}

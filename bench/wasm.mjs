@@ -7,7 +7,7 @@ import { readFileSync, writeFileSync } from 'node:fs';
 import { createRequire } from 'node:module';
 import { resolve } from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
-import { table } from './table.mjs';
+import { median, table } from './table.mjs';
 
 const STAGES = ['presmooth', 'curvature', 'extremality', 'regularity', 'smoothing', 'tracing', 'singular', 'polylines', 'fairing', 'filter'];
 
@@ -46,12 +46,6 @@ function readSoup(path) {
     indices: new Uint32Array(buffer, 24 * vertices, 3 * triangles),
   };
 }
-
-const median = (values) => {
-  const s = [...values].sort((a, b) => a - b);
-  const n = s.length;
-  return n % 2 ? s[(n - 1) / 2] : 0.5 * (s[n / 2 - 1] + s[n / 2]);
-};
 
 function check(result) {
   if (result && result.error) throw new Error(result.error);
