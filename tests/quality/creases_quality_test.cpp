@@ -58,11 +58,12 @@ TEST_CASE("creases of the CAD-like surfaces: targets at σ = 0 and 0.1", "[quali
 // dropped, 7 after, 12 once bridge walks took their direction over their
 // last 3 edges, 13 once they stepped over strong edges outside their cone,
 // 24 (spurs dropped before shortcuts, half-bridges, the end direction
-// in the surface, bridging again after the spur rounds), 26 now (long weak
-// runs whose mean holds: the chamfer's last gaps on the checker meshes);
-// coverage mean 0.902 → 0.901 → 0.954 → 0.969 → 0.995 → 0.997, min 0.684 →
-// 0.684 → 0.789 → 0.846 → 0.967 (the 45° chamfer) → 0.979 (a notch edge
-// beside the re-entrant corner, the one miss left); precision min 0.983 →
+// in the surface, bridging again after the spur rounds), 26 (long weak
+// runs whose mean holds: the chamfer's last gaps on the checker meshes), 27
+// now (sign blips flipped: a notch edge beside the re-entrant corner);
+// coverage mean 0.902 → 0.901 → 0.954 → 0.969 → 0.995 → 0.997 → 0.999, min
+// 0.684 → 0.684 → 0.789 → 0.846 → 0.967 (the 45° chamfer) → 0.979 → 0.992;
+// precision min 0.983 →
 // 0.987 → 0.963 (the walks now also join false pieces on a fillet of the
 // box, seed 3); lines per true edge mean 1.39 → 1.21 → 1.08 → 1.06 → 1.01,
 // max 2.25 → 2.00 → 1.33 → 1.33 → 1.17.
@@ -90,9 +91,9 @@ TEST_CASE("creases at σ = 0.25: what is found is right", "[quality][creases]") 
   INFO(met << " of " << cases << " met; coverage mean " << coverage_sum / cases << ", min " << coverage_min
            << "; fragments mean " << fragments_sum / cases << ", max " << fragments_max);
   CHECK(cases == 27);
-  CHECK(met >= 26);
-  CHECK(coverage_sum / cases >= 0.997);
-  CHECK(coverage_min >= 0.978);
+  CHECK(met == 27);
+  CHECK(coverage_sum / cases >= 0.999);
+  CHECK(coverage_min >= 0.99);
   CHECK(fragments_sum / cases <= 1.015);
   CHECK(fragments_max <= 1.18);
 }
@@ -160,7 +161,10 @@ TEST_CASE("smooth lines keep off the sharp edges with crease boundaries", "[qual
 // 5.5 and 24.2 h in three cases, the chamfer's gaps) before weak runs whose
 // mean holds closed those gaps (kLongWeakSpan), none since; the prism 34.3 h
 // both, 19.4 h at most (seed 2, uniform mesh: a notch edge lost whole, its
-// doubled trace cut by the shortcut rule into pieces the spur rule drops).
+// doubled trace cut by the shortcut rule into pieces the spur rule drops),
+// 1.5 h since sign blips flip and shortcuts keep both ends on very noisy
+// surfaces (creases.cpp; the 1.5 h, seed 2, uniform mesh, is the end of a
+// ridge that runs 1.2–2 h above the bottom edge of the notch's opposite wall).
 TEST_CASE("smooth lines keep off the sharp edges at σ = 0.25 over seeds 1–3", "[quality][creases]") {
   double total = 0;
   for (const std::string& name : {std::string("chamfered-cylinder"), std::string("notched-prism")})
@@ -174,9 +178,9 @@ TEST_CASE("smooth lines keep off the sharp edges at σ = 0.25 over seeds 1–3",
         INFO(name << " (" << triangulation_name(t) << "), seed " << seed << ": " << near.near_length << " h of "
                   << near.length << " within 1 h of a sharp edge");
         if (name == "chamfered-cylinder") CHECK(near.near_length < 0.5);
-        CHECK(near.near_length < 20);
+        CHECK(near.near_length < 2);
         total += near.near_length;
       }
   INFO("in all " << total << " h");
-  CHECK(total < 35);
+  CHECK(total < 2);
 }

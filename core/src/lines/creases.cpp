@@ -970,6 +970,30 @@ CreaseResult select_creases(const Mesh& mesh, const Topology& topology, const Cr
     const SelectedGraph graph = selected_graph(topology, on, candidates);
     auto degree = [&](uint32_t v) { return graph.degree(graph.vertex(v)); };
     dropped = false;
+    // Sign blips, on the noisy surfaces bridging runs on: a piece shorter
+    // than kCornerChainEdges whose ends both continue, through vertices of
+    // two crease edges, along a crease of the other sign is noise (a concave
+    // edge from the rim down to a wall vertex on a convex crease) and takes
+    // its neighbours' sign. Left alone it split the crease, went as a
+    // shortcut, and the shorter side then went as a spur (the notched prism
+    // at σ = 0.25: 10 h of a notch edge lost beside the re-entrant corner).
+    if (noisy) {
+      auto opposite_at = [&](uint32_t v, uint32_t own) {
+        const uint32_t i = graph.vertex(v);
+        if (graph.degree(i) != 2) return false;
+        const uint32_t e0 = graph.incident[graph.offsets[i]], e1 = graph.incident[graph.offsets[i] + 1];
+        return (angle[e0 == own ? e1 : e0] > 0) != (angle[own] > 0);
+      };
+      for (const Chain& c : chains) {
+        double length = 0;
+        if (c.closed || (chain_strength(mesh, topology, angle, c, length), length >= kCornerChainEdges * h)) continue;
+        if (!opposite_at(c.vertices.front(), c.edges.front()) || !opposite_at(c.vertices.back(), c.edges.back()))
+          continue;
+        for (uint32_t e : c.edges) bridged[e] = -bridged[e];
+        dropped = true;  // each flip removes two sign changes, so this ends
+      }
+      if (dropped) continue;
+    }
     // Bubbles, on the noisy surfaces bridging runs on: two chains between the
     // same two junctions, close to each other (a noisy crease passing on both
     // sides of a triangle or two, a bridge beside it), split the line into
@@ -1037,7 +1061,33 @@ CreaseResult select_creases(const Mesh& mesh, const Topology& topology, const Cr
         dropped = true;  // each round drops edges, so this ends
       }
     }
-    if (!dropped || !noisy)
+    if ((!dropped || !noisy) && noisy && very_noisy) {
+      // Very noisy surfaces: shortest first, and only while both ends keep
+      // two crease edges, so that no shortcut leaves a free end. There a
+      // notch edge was traced twice side by side, the traces joined by rungs
+      // of 1 h; the rule took the rungs and the traces' pieces between them
+      // at once, and the spur rule then every piece (the notched prism,
+      // uniform walls, seed 2, in the Pipeline's frame: coverage 0.950, 19 h
+      // of ridge in the gap). Kept, the rungs' going leaves the two traces
+      // whole, and the later rounds keep one of them (bubbles, redundant
+      // chains).
+      std::vector<std::pair<double, const Chain*>> order;
+      for (const Chain* c : shortcuts) {
+        double length = 0;
+        chain_strength(mesh, topology, angle, *c, length);
+        order.emplace_back(length, c);
+      }
+      std::stable_sort(order.begin(), order.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+      std::vector<uint32_t> removed(graph.vertices.size(), 0);
+      auto left = [&](uint32_t v) { return degree(v) - removed[graph.vertex(v)]; };
+      for (const auto& [length, c] : order) {
+        const uint32_t a = c->vertices.front(), b = c->vertices.back();
+        if (a == b ? left(a) < 4 : left(a) < 3 || left(b) < 3) continue;
+        ++removed[graph.vertex(a)], ++removed[graph.vertex(b)];
+        for (uint32_t e : c->edges) on[e] = 0;
+        dropped = true;
+      }
+    } else if (!dropped || !noisy)
       for (const Chain* c : shortcuts) {
         for (uint32_t e : c->edges) on[e] = 0;
         dropped = true;

@@ -34,7 +34,8 @@ struct CreaseMeasureOptions {
 
 /// The crease stage's rules for very noisy surfaces (creases.cpp: support
 /// over 3 rings with non-maximum suppression across the edge, bridge walks
-/// that widen their cone, redundant chains dropped) run above this noise
+/// that widen their cone, redundant chains dropped, shortcuts dropped only
+/// where both their ends keep two crease edges) run above this noise
 /// level (surface_noise_level): normal noise σ = 0.1 mean edges measures
 /// ~0.075 (0.088–0.101 on tests/quality's surfaces), 0.25 ~0.21 (0.198–0.224),
 /// 0.5 0.31–0.37. Before these rules the smooth harness got false creases at
