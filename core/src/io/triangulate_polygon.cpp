@@ -202,6 +202,13 @@ class EarClipper {
 // grows a fan whose ears span the polygon, and each then meets every corner.
 constexpr size_t kSmallPolygon = 80;
 
+// Ear tests a large polygon may spend, per corner, before the rest is
+// fanned. Simple outlines need about one a corner (the O(n log n) test:
+// ≤ 2); one that winds round the same few points many times (a fuzzed face
+// of 5,003 corners on a square's 4) finds an ear only every half turn, and
+// the turns made it quadratic: 4·10^4 corners took 8 s.
+constexpr size_t kEarTestsPerCorner = 16;
+
 void add_polygon(TriangleSoup& soup, const uint32_t* poly, size_t n) {
   if (n < 3) return;
   if (n == 3) {
@@ -233,12 +240,15 @@ void add_polygon(TriangleSoup& soup, const uint32_t* poly, size_t n) {
   size_t remaining = n;
   uint32_t i = 0;
   size_t misses = 0;
+  // Small polygons keep the first clipper's results: at most n² tests.
+  size_t tests_left = n > kSmallPolygon ? kEarTestsPerCorner * n : n * n;
   while (remaining > 3) {
-    if (misses > remaining) {
-      // A whole turn without an ear: the rest is self-intersecting or
-      // degenerate (repeated corners). Fan it, in linear time; clipping one
-      // forced corner per turn costs a whole turn of ear tests per corner
-      // (a 2,000-corner face found by the fuzzer took 1.6 s, not 3 ms).
+    if (misses > remaining || tests_left-- == 0) {
+      // A whole turn without an ear, or the budget spent: the rest is
+      // self-intersecting or degenerate (repeated corners). Fan it, in
+      // linear time; clipping one forced corner per turn costs a whole turn
+      // of ear tests per corner (a 2,000-corner face found by the fuzzer
+      // took 1.6 s, not 3 ms).
       for (uint32_t j = ring.next(i); ring.next(j) != i; j = ring.next(j)) {
         soup.indices.insert(soup.indices.end(), {poly[i], poly[j], poly[ring.next(j)]});
       }

@@ -4,6 +4,8 @@
 // nodes and points they examine (no timings: the project checks speed with
 // benchmarks), and still cut every simple polygon into n - 2 triangles that
 // cover exactly its area with its orientation.
+#include <algorithm>
+#include <array>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <string>
@@ -107,4 +109,28 @@ TEST_CASE("large polygons are triangulated in O(n log n)", "[hardening][limits][
 TEST_CASE("small concave polygons keep n - 2 positive triangles covering their area", "[hardening][io]") {
   for (size_t n : {4, 5, 6, 7, 10, 31, 64, 81, 200})
     for (const double inner : {1.0, 0.9, 0.5, 0.1}) read_and_check(2 * n, inner);
+}
+
+TEST_CASE("a face winding many times round the same points costs linear ear tests", "[hardening][limits][complexity]") {
+  // Found by the OBJ fuzzer: a face of 5,003 corners going round a square's
+  // 4 points, and once through a fifth point off the square's plane that
+  // projects near its centre. Ears are rare on such an outline, and the
+  // clipper went a whole turn per ear: quadratic (4·10^4 corners took 8 s).
+  TriangleSoup soup;
+  soup.positions = {0,         -0.627972, 0.613591, 0,         0.600884, 0.613591, 0, -0.627972,
+                    -0.615265, 0,         0.600884, -0.615265, 7.2,      0,        0};
+  for (const size_t turns : {1'250, 10'000}) {
+    const size_t n = 4 * turns + 1;
+    std::vector<uint32_t> outline(n);
+    for (size_t i = 0; i + 1 < n; ++i) outline[i] = std::array<uint32_t, 4>{0, 1, 3, 2}[i % 4];
+    outline[n / 2] = 4;
+    soup.indices.clear();
+    io::detail::polygon_work() = {};
+    io::detail::add_polygon(soup, outline.data(), n);
+    const io::detail::PolygonWork work = io::detail::polygon_work();
+    INFO(n << " corners: " << work.ear_tests << " ear tests");
+    CHECK(soup.indices.size() == 3 * (n - 2));
+    CHECK(work.ear_tests <= 16 * n);
+    CHECK(std::all_of(soup.indices.begin(), soup.indices.end(), [](uint32_t index) { return index < 5; }));
+  }
 }
