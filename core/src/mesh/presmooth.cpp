@@ -1,11 +1,15 @@
 #include "crestline/mesh/presmooth.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "crestline/mesh/cotan.h"
 #include "crestline/numerics/constants.h"
+#include "crestline/numerics/parallel.h"
 #include "crestline/numerics/sparse_solver.h"
+#include "crestline/numerics/uninitialised.h"
+#include "half_edges.h"
 
 namespace crestline {
 
@@ -30,54 +34,102 @@ constexpr double kFlatTurn = 1 * kPi / 180;
 // 5 % moved 409 (the same maximum) and the noisy icosphere test's level.
 constexpr double kEqualTurn = 0.02;
 
-// n: each triangle's unnormalised normal (twice its area).
+// A vertex's edges in ascending order, from its triangles' (a few).
+static void edges_at(const Mesh& mesh, const Topology& topology, uint32_t v, std::vector<uint32_t>& out) {
+  out.clear();
+  for (uint32_t i = topology.vertex_offsets[v]; i < topology.vertex_offsets[v + 1]; ++i) {
+    const uint32_t t = topology.vertex_triangles[i];
+    for (int k = 0; k < 3; ++k)
+      if (mesh.triangles[t][k] == v)
+        out.push_back(topology.triangle_edges[t][k]), out.push_back(topology.triangle_edges[t][(k + 2) % 3]);
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+}
+
+// n: each triangle's unnormalised normal (twice its area), n_norm its norm.
 static std::vector<uint8_t> clean_crease_vertices(const Mesh& mesh, const Topology& topology,
-                                                  const std::vector<Vec3>& n) {
+                                                  const std::vector<Vec3>& n,
+                                                  const UninitialisedVector<double>& n_norm) {
   const double cos_sharp = std::cos(kCleanCreaseTurn), cos_flat = std::cos(kFlatTurn);
-  const size_t nv = mesh.positions.size();
-  std::vector<uint8_t> sharp(nv, 0), flat(nv, 0), between(nv, 0);  // counts up to 2
-  std::vector<double> cosine(topology.edges.size(), 1.0);
-  for (size_t e = 0; e < topology.edges.size(); ++e) {
+  const size_t nv = mesh.positions.size(), ne = topology.edges.size();
+  // The angle between an edge's normals as its cosine; 0 where a normal
+  // vanishes (degenerate), 1 on the boundary.
+  auto cosine = [&](uint32_t e, bool& degenerate) {
     const auto& tt = topology.edge_triangles[e];
-    if (tt[1] == kNone) continue;
-    const double norms = n[tt[0]].norm() * n[tt[1]].norm();
-    const double c = norms > 0 ? n[tt[0]].dot(n[tt[1]]) / norms : 0.0;
-    cosine[e] = c;
-    for (uint32_t v : topology.edges[e]) {
-      if (!(norms > 0))
-        between[v] = 2;  // never clean
-      else if (c < cos_flat && c > cos_sharp)
-        between[v] += between[v] < 1;
-      else if (c <= cos_sharp)
-        sharp[v] += sharp[v] < 2;
-      else
-        flat[v] += flat[v] < 2;
+    degenerate = false;
+    if (tt[1] == kNone) return 1.0;
+    const double norms = n_norm[tt[0]] * n_norm[tt[1]];
+    degenerate = !(norms > 0);
+    return norms > 0 ? n[tt[0]].dot(n[tt[1]]) / norms : 0.0;
+  };
+  // Only a vertex with a sharp edge can be on a clean crease or on a wall
+  // (below): few on a smooth mesh, so only the edges' sharpness is found on
+  // all of them (on every thread), and the rest only at those vertices.
+  UninitialisedVector<uint8_t> sharp_edge(ne);
+  parallel_for(ne, [&](size_t begin, size_t end) {
+    for (size_t e = begin; e < end; ++e) {
+      bool degenerate;
+      const double c = cosine(uint32_t(e), degenerate);
+      sharp_edge[e] = topology.edge_triangles[e][1] != kNone && !degenerate && c <= cos_sharp;
     }
-  }
-  // The total turn over the in-between edges, at the vertices with a sharp
-  // edge as well (few on a smooth mesh, so few arc cosines).
-  auto on_wall = [&](uint32_t v) { return sharp[v] > 0 && between[v] == 1; };
+  });
+  std::vector<uint8_t> candidate(nv, 0);
+  for (size_t e = 0; e < ne; ++e)
+    if (sharp_edge[e]) candidate[topology.edges[e][0]] = candidate[topology.edges[e][1]] = 1;
+  sharp_edge = UninitialisedVector<uint8_t>();
+  std::vector<uint32_t> candidates;
+  for (uint32_t v = 0; v < nv; ++v)
+    if (candidate[v]) candidates.push_back(v);
+  // At each: at least two sharp edges, at least two flat ones and none in
+  // between (counts up to 2; a degenerate edge means never clean), or on a
+  // wall (a sharp edge and one in between): the total turn over the
+  // in-between edges, added in edge order.
+  enum : uint8_t { kOnWall = 1, kClean = 2, kCleanIfEqual = 4 };
+  std::vector<uint8_t> state(nv, 0);
   std::vector<double> turn(nv, 0.0);
-  for (size_t e = 0; e < topology.edges.size(); ++e) {
-    const double c = cosine[e];
-    if (topology.edge_triangles[e][1] == kNone || !(c < cos_flat && c > cos_sharp)) continue;
-    const uint32_t a = topology.edges[e][0], b = topology.edges[e][1];
-    if (!on_wall(a) && !on_wall(b)) continue;
-    const double angle = std::acos(c);
-    if (on_wall(a)) turn[a] += angle;
-    if (on_wall(b)) turn[b] += angle;
+  std::vector<uint32_t> edges;
+  for (uint32_t v : candidates) {
+    edges_at(mesh, topology, v, edges);
+    int sharp = 0, flat = 0, between = 0;
+    double sum = 0.0;
+    for (uint32_t e : edges) {
+      bool degenerate;
+      const double c = cosine(e, degenerate);
+      if (topology.edge_triangles[e][1] == kNone) continue;
+      if (degenerate) {
+        between = 2;
+      } else if (c < cos_flat && c > cos_sharp) {
+        between += between < 1;
+        sum += std::acos(c);
+      } else if (c <= cos_sharp) {
+        sharp += sharp < 2;
+      } else {
+        flat += flat < 2;
+      }
+    }
+    const bool on_wall = sharp > 0 && between == 1;
+    state[v] = uint8_t((on_wall ? kOnWall : 0) | (sharp == 2 && flat == 2 && !between ? kClean : 0) |
+                       (sharp == 2 && flat >= 1 && between == 1 ? kCleanIfEqual : 0));
+    if (on_wall) turn[v] = sum;
   }
-  // Neighbours along sharp edges whose total turn equals the vertex's.
-  std::vector<uint8_t> equal(nv, 0);  // counts up to 2
-  for (size_t e = 0; e < topology.edges.size(); ++e) {
-    const uint32_t a = topology.edges[e][0], b = topology.edges[e][1];
-    if (topology.edge_triangles[e][1] == kNone || !(cosine[e] <= cos_sharp) || !on_wall(a) || !on_wall(b)) continue;
-    if (std::abs(turn[a] - turn[b]) <= kEqualTurn * std::max(turn[a], turn[b]))
-      equal[a] += equal[a] < 2, equal[b] += equal[b] < 2;
-  }
+  // Clean where it qualified outright, or where two neighbours along sharp
+  // edges turn by the same total.
   std::vector<uint8_t> out(nv, 0);
-  for (size_t v = 0; v < nv; ++v)
-    out[v] = sharp[v] == 2 && ((flat[v] == 2 && !between[v]) || (flat[v] >= 1 && between[v] == 1 && equal[v] == 2));
+  for (uint32_t v : candidates) {
+    if (state[v] & kClean) out[v] = 1;
+    if (!(state[v] & kCleanIfEqual)) continue;
+    edges_at(mesh, topology, v, edges);
+    int equal = 0;
+    for (uint32_t e : edges) {
+      bool degenerate;
+      const uint32_t w = topology.edges[e][0] ^ topology.edges[e][1] ^ v;
+      if (topology.edge_triangles[e][1] == kNone || !(cosine(e, degenerate) <= cos_sharp) || !(state[w] & kOnWall))
+        continue;
+      equal += equal < 2 && std::abs(turn[v] - turn[w]) <= kEqualTurn * std::max(turn[v], turn[w]);
+    }
+    out[v] = equal == 2;
+  }
   return out;
 }
 
@@ -86,54 +138,81 @@ std::vector<double> surface_noise_levels(const Mesh& mesh, const Topology& topol
   // Signed offset of each vertex from its neighbours' centroid along its
   // normal: curvature makes it vary smoothly, noise makes it jump. The jump,
   // offset minus its neighbours' mean offset, measures the noise alone.
-  const size_t nv = mesh.positions.size();
+  // Every per-vertex sum is gathered over the vertex's triangles or its
+  // neighbours in ascending order (the order of a scatter over the
+  // triangles or the edges), on every thread: the same bits for any count.
+  const size_t nv = mesh.positions.size(), nt = mesh.triangles.size(), ne = topology.edges.size();
+  const std::vector<Vec3>& x = mesh.positions;
   const std::vector<uint8_t>& boundary = topology.boundary_vertex;
-  std::vector<Vec3> neighbour_sum(nv, Vec3::Zero()), normal(nv, Vec3::Zero());
-  std::vector<uint32_t> count(nv, 0);
-  for (const auto& e : topology.edges) {
-    neighbour_sum[e[0]] += mesh.positions[e[1]];
-    neighbour_sum[e[1]] += mesh.positions[e[0]];
-    ++count[e[0]], ++count[e[1]];
-  }
-  std::vector<Vec3> face_normal(mesh.triangles.size());
-  for (size_t f = 0; f < face_normal.size(); ++f) {
-    const Triangle& t = mesh.triangles[f];
-    face_normal[f] = (mesh.positions[t[1]] - mesh.positions[t[0]]).cross(mesh.positions[t[2]] - mesh.positions[t[0]]);
-    for (uint32_t v : t) normal[v] += face_normal[f];
-  }
+  std::vector<uint32_t> neighbour_start;
+  UninitialisedVector<uint32_t> neighbours;
+  detail::group_by_bucket(
+      ne, nv,
+      [&](size_t e, const auto& emit) {
+        emit(topology.edges[e][0], topology.edges[e][1]);
+        emit(topology.edges[e][1], topology.edges[e][0]);
+      },
+      neighbour_start, neighbours);
+  std::vector<Vec3> face_normal(nt);
+  UninitialisedVector<double> face_norm(nt);
+  parallel_for(nt, [&](size_t begin, size_t end) {
+    for (size_t f = begin; f < end; ++f) {
+      const Triangle& t = mesh.triangles[f];
+      face_normal[f] = (x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]);
+      face_norm[f] = face_normal[f].norm();
+    }
+  });
   // Vertices on clean creases count as jump 0 and stay out of their
   // neighbours' means.
-  const std::vector<uint8_t> on_crease = clean_crease_vertices(mesh, topology, face_normal);
-  face_normal = std::vector<Vec3>();  // freed (`= {}` would only clear it)
+  const std::vector<uint8_t> on_crease = clean_crease_vertices(mesh, topology, face_normal, face_norm);
+  face_norm = UninitialisedVector<double>();
   std::vector<double> offset(nv, 0.0);
   std::vector<uint8_t> valid(nv, 0);
-  for (size_t v = 0; v < nv; ++v) {
-    if (boundary[v] || on_crease[v] || count[v] == 0 || !(normal[v].norm() > 0)) continue;
-    offset[v] = normal[v].normalized().dot(mesh.positions[v] - neighbour_sum[v] / count[v]);
-    valid[v] = 1;
-  }
-  std::vector<double> offset_sum(nv, 0.0);
-  std::vector<uint32_t> valid_count(nv, 0);
-  for (const auto& e : topology.edges)
-    if (valid[e[0]] && valid[e[1]]) {
-      offset_sum[e[0]] += offset[e[1]], ++valid_count[e[0]];
-      offset_sum[e[1]] += offset[e[0]], ++valid_count[e[1]];
+  parallel_for(nv, [&](size_t begin, size_t end) {
+    for (size_t v = begin; v < end; ++v) {
+      const uint32_t first = neighbour_start[v], last = neighbour_start[v + 1];
+      if (boundary[v] || on_crease[v] || first == last) continue;
+      Vec3 normal = Vec3::Zero(), neighbour_sum = Vec3::Zero();
+      for (uint32_t i = topology.vertex_offsets[v]; i < topology.vertex_offsets[v + 1]; ++i)
+        normal += face_normal[topology.vertex_triangles[i]];
+      if (!(normal.norm() > 0)) continue;
+      for (uint32_t i = first; i < last; ++i) neighbour_sum += x[neighbours[i]];
+      offset[v] = normal.normalized().dot(x[v] - neighbour_sum / (last - first));
+      valid[v] = 1;
     }
+  });
+  face_normal = std::vector<Vec3>();  // freed (`= {}` would only clear it)
+  // Each vertex's jump, where it has one.
+  UninitialisedVector<double> jump(nv);
+  UninitialisedVector<uint8_t> has_jump(nv);
+  parallel_for(nv, [&](size_t begin, size_t end) {
+    for (size_t v = begin; v < end; ++v) {
+      jump[v] = 0.0, has_jump[v] = on_crease[v] && !boundary[v];
+      if (!valid[v]) continue;
+      double offset_sum = 0.0;
+      uint32_t valid_count = 0;
+      for (uint32_t i = neighbour_start[v]; i < neighbour_start[v + 1]; ++i)
+        if (valid[neighbours[i]]) offset_sum += offset[neighbours[i]], ++valid_count;
+      if (valid_count > 0) jump[v] = std::abs(offset[v] - offset_sum / valid_count), has_jump[v] = 1;
+    }
+  });
   // Each component's jumps, in units of its own mean edge length (as
-  // mean_edge_length measures it: over the triangles' sides).
+  // mean_edge_length measures it: over the triangles' sides, added in
+  // triangle order; each edge measured once, on every thread).
+  UninitialisedVector<double> length(ne);
+  parallel_for(ne, [&](size_t begin, size_t end) {
+    for (size_t e = begin; e < end; ++e) length[e] = (x[topology.edges[e][1]] - x[topology.edges[e][0]]).norm();
+  });
   std::vector<double> edge_sum(components, 0.0);
   std::vector<size_t> edge_count(components, 0);
-  for (const Triangle& t : mesh.triangles) {
-    const uint32_t c = vertex_component[t[0]];
-    for (int k = 0; k < 3; ++k) edge_sum[c] += (mesh.positions[t[(k + 1) % 3]] - mesh.positions[t[k]]).norm();
+  for (size_t f = 0; f < nt; ++f) {
+    const uint32_t c = vertex_component[mesh.triangles[f][0]];
+    for (uint32_t e : topology.triangle_edges[f]) edge_sum[c] += length[e];
     edge_count[c] += 3;
   }
   std::vector<std::vector<double>> jumps(components);
   for (size_t v = 0; v < nv; ++v)
-    if (valid[v] && valid_count[v] > 0)
-      jumps[vertex_component[v]].push_back(std::abs(offset[v] - offset_sum[v] / valid_count[v]));
-    else if (on_crease[v] && !boundary[v])
-      jumps[vertex_component[v]].push_back(0.0);
+    if (has_jump[v]) jumps[vertex_component[v]].push_back(jump[v]);
   std::vector<double> level(components, 0.0);
   for (size_t c = 0; c < components; ++c) {
     const double h = edge_count[c] ? edge_sum[c] / edge_count[c] : 0;
