@@ -39,20 +39,25 @@ struct Field {
 
 // The zero of e on edge `edge`, from its lower-index end with the other end's
 // sign made consistent by σ = sign⟨κ⃗(u), κ⃗(v)⟩; shared by both triangles.
-uint32_t crossing_node(FeatureGraph& graph, const Mesh& mesh, const Topology& topology, const Field& field,
-                       uint32_t edge) {
-  uint32_t& node = graph.edge_node[edge];
-  if (node != kNone) return node;
+// Node `node` gets its place, curvature and parameter (numbered before, in
+// the order of the segments, by node_on).
+void place_crossing(FeatureGraph& graph, const Mesh& mesh, const Topology& topology, const Field& field,
+                    uint32_t node) {
+  const uint32_t edge = graph.source[node];
   const uint32_t u = topology.edges[edge][0], v = topology.edges[edge][1];
   const double sigma = direction_sign(field.dir[u], field.dir[v]);
   const double a = nonzero(field.e[u]), b = sigma * nonzero(field.e[v]);
   const double t = a / (a - b);
-  node = static_cast<uint32_t>(graph.points.size());
-  graph.points.push_back((1 - t) * mesh.positions[u] + t * mesh.positions[v]);
-  graph.curvature.push_back(std::abs((1 - t) * field.kappa_own[u] + t * field.kappa_own[v]));
-  graph.source.push_back(edge);
-  graph.edge_parameter.push_back(t);
-  graph.trisector.push_back(0);
+  graph.points[node] = (1 - t) * mesh.positions[u] + t * mesh.positions[v];
+  graph.curvature[node] = std::abs((1 - t) * field.kappa_own[u] + t * field.kappa_own[v]);
+  graph.edge_parameter[node] = t;
+  graph.trisector[node] = 0;
+}
+
+// The node on edge `edge`, numbered when first asked for.
+uint32_t node_on(FeatureGraph& graph, uint32_t edge) {
+  uint32_t& node = graph.edge_node[edge];
+  if (node == kNone) node = static_cast<uint32_t>(graph.source.size()), graph.source.push_back(edge);
   return node;
 }
 
@@ -93,12 +98,14 @@ uint8_t segment_edges(const Mesh& mesh, const Field& field, uint32_t t) {
 }
 
 // The tests run on every thread, block by block; the segments and their
-// crossing nodes are then made in triangle order on the calling thread, so
-// the graph is the same for any number of threads.
+// crossing nodes' numbers are then made in triangle order on the calling
+// thread, and the nodes placed on every thread: the graph is the same for
+// any number of threads.
 void trace_field(const Mesh& mesh, const Topology& topology, const Field& field, const std::vector<uint8_t>& excluded,
                  const std::function<void(double)>& progress, FeatureGraph& graph) {
   graph.type = field.type;
   graph.edge_node.assign(topology.edges.size(), kNone);
+  const size_t first = graph.source.size();  // the first node made here
   const uint32_t nt = static_cast<uint32_t>(mesh.triangles.size());
   std::vector<uint8_t> code(std::min<uint32_t>(nt, kProgressStride));
   for (uint32_t begin = 0; begin < nt; begin += kProgressStride) {
@@ -113,11 +120,17 @@ void trace_field(const Mesh& mesh, const Topology& topology, const Field& field,
     for (uint32_t t = begin; t < end; ++t) {
       if (!code[t - begin]) continue;
       const int edges = code[t - begin] - 1;
-      const uint32_t a = crossing_node(graph, mesh, topology, field, topology.triangle_edges[t][edges % 3]);
-      const uint32_t b = crossing_node(graph, mesh, topology, field, topology.triangle_edges[t][edges / 3]);
+      const uint32_t a = node_on(graph, topology.triangle_edges[t][edges % 3]);
+      const uint32_t b = node_on(graph, topology.triangle_edges[t][edges / 3]);
       graph.segments.push_back({a, b});
     }
   }
+  const size_t nodes = graph.source.size();
+  graph.points.resize(nodes), graph.curvature.resize(nodes);
+  graph.edge_parameter.resize(nodes), graph.trisector.resize(nodes);
+  parallel_for(nodes - first, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) place_crossing(graph, mesh, topology, field, uint32_t(first + i));
+  });
 }
 
 }  // namespace
@@ -146,9 +159,13 @@ TraceResult trace_regular_triangles(const Mesh& mesh, const Topology& topology, 
   TraceResult out;
   const uint32_t rings = options.boundary_rings > 0 ? static_cast<uint32_t>(options.boundary_rings) : 0;
   const std::vector<uint32_t> distance = boundary_ring_distance(mesh, topology, rings);
-  out.excluded.assign(mesh.triangles.size(), 0);
-  for (size_t t = 0; t < mesh.triangles.size(); ++t)
-    for (uint32_t v : mesh.triangles[t]) out.excluded[t] |= distance[v] < rings;
+  out.excluded.resize(mesh.triangles.size());
+  parallel_for(mesh.triangles.size(), [&](size_t begin, size_t end) {
+    for (size_t t = begin; t < end; ++t) {
+      const Triangle& f = mesh.triangles[t];
+      out.excluded[t] = distance[f[0]] < rings || distance[f[1]] < rings || distance[f[2]] < rings;
+    }
+  });
 
   const Field ridge{LineType::Ridge,     extremality.e_max,   curvature.dir_max,
                     curvature.kappa_max, curvature.kappa_min, regularity.regular_max};

@@ -1,7 +1,9 @@
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <vector>
 
 #include "analytic_meshes.h"
+#include "crestline/numerics/parallel.h"
 #include "run_pipeline.h"
 
 using namespace crestline;
@@ -68,4 +70,57 @@ TEST_CASE("a sphere and a plane have no feature lines", "[trace]") {
   grid.nu = grid.nv = 30;
   grid.jitter = 0.2;
   CHECK(testing::run_pipeline(testing::height_field([](double, double) { return 0.0; }, 1, 1, grid)).lines().empty());
+}
+
+TEST_CASE("traced nodes: numbered along the segments, placed on every thread, the same on 1, 2 and 3 threads",
+          "[trace][threads]") {
+  // An egg-crate field of 180k triangles: tens of thousands of crossing
+  // nodes, so their placement splits over the threads.
+  testing::GridOptions grid;
+  grid.nu = grid.nv = 300;
+  grid.jitter = 0.2;
+  grid.random_diagonals = true;
+  const Mesh mesh =
+      repair_mesh(testing::height_field(
+                      [](double x, double y) {
+                        return 0.02 * std::cos(2 * testing::kPi * 6 * x) * std::cos(2 * testing::kPi * 5 * y);
+                      },
+                      2, 2, grid))
+          .mesh;
+  const int before = max_threads();
+  std::vector<TraceResult> traced;
+  for (int threads : {1, 2, 3}) {
+    set_max_threads(threads);
+    Pipeline p(mesh);
+    p.run();
+    traced.push_back(p.segments().lines);
+    if (threads > 1) continue;
+    const Mesh& surface = p.working_surface();
+    const Topology& topology = p.working_topology();
+    for (const FeatureGraph* g : {&traced[0].ridges, &traced[0].valleys}) {
+      INFO(line_type_name(g->type));
+      REQUIRE(g->points.size() > 4 * 2048);
+      // Edge crossings first, numbered in the order the segments reach them.
+      uint32_t next = 0;
+      for (const auto& s : g->segments)
+        for (uint32_t n : s)
+          if (!g->trisector[n] && n >= next) REQUIRE(n == next++);
+      for (uint32_t n = 0; n < next; ++n) {
+        const auto& e = topology.edges[g->source[n]];
+        const double t = g->edge_parameter[n];
+        REQUIRE(g->points[n] == (1 - t) * surface.positions[e[0]] + t * surface.positions[e[1]]);
+      }
+    }
+  }
+  set_max_threads(before);
+  for (int i = 1; i < 3; ++i)
+    for (auto graph : {&TraceResult::ridges, &TraceResult::valleys}) {
+      const FeatureGraph &a = traced[0].*graph, &b = traced[i].*graph;
+      CHECK(a.points == b.points);
+      CHECK(a.curvature == b.curvature);
+      CHECK(a.source == b.source);
+      CHECK(a.edge_parameter == b.edge_parameter);
+      CHECK(a.trisector == b.trisector);
+      CHECK(a.segments == b.segments);
+    }
 }
