@@ -39,21 +39,24 @@ Curvature compute_curvature(const Mesh& mesh, const Topology& topology) {
   });
 
   // S(p) = ½ Σ_{e∋p} ⟨N_p, N_e⟩ S(e), S(e) = H_e (ē×N_e)(ē×N_e)^T.
-  // Each edge's S(e) and N_e are computed on every thread, a block of edges
-  // at a time, then added to its two vertices on the calling thread in edge
-  // order: the same sums for any number of threads. Only the lower
-  // triangles are kept, (0,0) (1,0) (2,0) (1,1) (2,1) (2,2): all that the
-  // eigen-solver reads.
+  // Each edge's S(e) and its two weights ½⟨N_p, N_e⟩ are computed on every
+  // thread, a block of edges at a time, then added to its two vertices in
+  // edge order; that addition is split over the threads by vertex (runs of
+  // 64 vertices dealt out in turn), each thread going through the block's
+  // edges in order: every vertex's sum in edge order, the same for any
+  // number of threads. Only the lower triangles are kept, (0,0) (1,0) (2,0)
+  // (1,1) (2,1) (2,2): all that the eigen-solver reads.
   using Lower = std::array<double, 6>;
   std::vector<Lower> shape(nv, Lower{});
   struct EdgeTerm {
     Lower s_e;
-    Vec3 n_e;
-    bool used;  // false on boundary and degenerate edges
+    double weight[2];  // of its two ends
+    bool used;         // false on boundary and degenerate edges
   };
   const size_t ne = topology.edges.size();
   constexpr size_t kBlock = size_t{1} << 14;
   std::vector<EdgeTerm> terms(std::min(ne, kBlock));
+  const size_t parts = ne < 4 * kBlock ? 1 : std::min<size_t>(size_t(max_threads()), 8);
   for (size_t begin = 0; begin < ne; begin += kBlock) {
     const size_t end = std::min(ne, begin + kBlock);
     parallel_for(end - begin, [&](size_t first, size_t last) {
@@ -80,19 +83,26 @@ Curvature compute_curvature(const Mesh& mesh, const Topology& topology) {
         // (H_e w_i) w_j: the products, and so the bits, Eigen formed for H_e (w w^T).
         const Vec3 hw = h_e * w;
         term.s_e = {hw[0] * w[0], hw[1] * w[0], hw[2] * w[0], hw[1] * w[1], hw[2] * w[1], hw[2] * w[2]};
-        term.n_e = n_e;
+        term.weight[0] = 0.5 * c.vertex_normals[a].dot(n_e);
+        term.weight[1] = 0.5 * c.vertex_normals[b].dot(n_e);
         term.used = true;
       }
     });
-    for (size_t e = begin; e < end; ++e) {
-      const EdgeTerm& term = terms[e - begin];
-      if (!term.used) continue;
-      const uint32_t a = topology.edges[e][0], b = topology.edges[e][1];
-      const double weight_a = 0.5 * c.vertex_normals[a].dot(term.n_e);
-      const double weight_b = 0.5 * c.vertex_normals[b].dot(term.n_e);
-      for (int k = 0; k < 6; ++k) shape[a][k] += weight_a * term.s_e[k];
-      for (int k = 0; k < 6; ++k) shape[b][k] += weight_b * term.s_e[k];
-    }
+    parallel_for(
+        parts,
+        [&](size_t first_part, size_t last_part) {
+          for (size_t part = first_part; part < last_part; ++part)
+            for (size_t e = begin; e < end; ++e) {
+              const EdgeTerm& term = terms[e - begin];
+              if (!term.used) continue;
+              for (int end_k = 0; end_k < 2; ++end_k) {
+                const uint32_t v = topology.edges[e][end_k];
+                if (parts > 1 && (v >> 6) % parts != part) continue;
+                for (int k = 0; k < 6; ++k) shape[v][k] += term.weight[end_k] * term.s_e[k];
+              }
+            }
+        },
+        1);
   }
 
   c.kappa_max.resize(nv);

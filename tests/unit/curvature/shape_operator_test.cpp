@@ -2,11 +2,13 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <vector>
 
 #include "analytic_meshes.h"
 #include "crestline/curvature/extremality.h"
 #include "crestline/curvature/regularity.h"
 #include "crestline/mesh/repair.h"
+#include "crestline/numerics/parallel.h"
 
 using namespace crestline;
 
@@ -160,4 +162,42 @@ TEST_CASE("a sphere-free smooth surface has few singular triangles", "[regularit
   const Regularity reg = classify_triangles(c.mesh, c.curvature);
   CHECK(reg.singular_max == 0);
   CHECK(reg.singular_min == 0);
+}
+
+TEST_CASE(
+    "curvature and extremality: the terms added on every thread, in edge or triangle order, the same bits on 1, 2 and "
+    "3 threads",
+    "[curvature][extremality][threads]") {
+  // A noisy sphere of 123k edges and 82k triangles: blocks of 16,384 edges
+  // and 65,536 triangles, each vertex's sum split over the threads by vertex.
+  Mesh mesh = repair_mesh(testing::icosphere(6)).mesh;
+  testing::add_normal_noise(mesh, 0.002, 11);
+  const Topology topology = build_topology(mesh);
+  const int before = max_threads();
+  std::vector<Curvature> results;
+  std::vector<Extremality> extremality;
+  for (int threads : {1, 2, 3}) {
+    set_max_threads(threads);
+    results.push_back(compute_curvature(mesh, topology));
+    extremality.push_back(compute_extremality(mesh, results.back()));
+  }
+  set_max_threads(before);
+  double sum_max = 0, sum_min = 0;
+  for (size_t v = 0; v < mesh.positions.size(); ++v)
+    sum_max += results[0].kappa_max[v], sum_min += results[0].kappa_min[v];
+  // As the serial scatters over the edges and triangles computed them before this change (printed with %a).
+  CHECK(sum_max == 0x1.6499d015208e4p+18);
+  CHECK(sum_min == -0x1.16f9d460664f2p+18);
+  CHECK(results[0].kappa_max[1000] == -0x1.18564c66a18b3p+1);
+  CHECK(results[0].dir_min[2000][1] == -0x1.5997e3e65a139p-1);
+  CHECK(extremality[0].e_max[1000] == 0x1.ef1a7ca148bb8p+6);
+  CHECK(extremality[0].e_min[3000] == 0x1.e80c6727d0f2cp+7);
+  for (int i = 1; i < 3; ++i) {
+    CHECK(results[i].kappa_max == results[0].kappa_max);
+    CHECK(results[i].kappa_min == results[0].kappa_min);
+    CHECK(results[i].dir_max == results[0].dir_max);
+    CHECK(results[i].dir_min == results[0].dir_min);
+    CHECK(extremality[i].e_max == extremality[0].e_max);
+    CHECK(extremality[i].e_min == extremality[0].e_min);
+  }
 }
