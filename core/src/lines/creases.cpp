@@ -242,6 +242,18 @@ bool small_fan(const Topology& topology, uint32_t v) {
   return topology.vertex_offsets[v + 1] - topology.vertex_offsets[v] <= kMaxFan;
 }
 
+// Appends the vertices of the triangles round each small-fan vertex of
+// `from` to `to`, then sorts `to` and drops repeats: one ring's step.
+void add_one_ring(const Mesh& mesh, const Topology& topology, const std::vector<uint32_t>& from,
+                  std::vector<uint32_t>& to) {
+  for (uint32_t u : from)
+    if (small_fan(topology, u))
+      for (uint32_t j = topology.vertex_offsets[u]; j < topology.vertex_offsets[u + 1]; ++j)
+        for (uint32_t w : mesh.triangles[topology.vertex_triangles[j]]) to.push_back(w);
+  std::sort(to.begin(), to.end());
+  to.erase(std::unique(to.begin(), to.end()), to.end());
+}
+
 // atan2(y, x) for y ≥ 0 (an angle in [0, π]) from +, −, ×, ÷ and sqrt only,
 // which IEEE rounds exactly everywhere: glibc's and Emscripten's atan2
 // differ in the last bit for some arguments, and the CLI and the page must
@@ -854,12 +866,7 @@ bool drop_redundant_chains(const Mesh& mesh, const Topology& topology, const std
     from.erase(std::unique(from.begin(), from.end()), from.end());
     for (int k = 0; k < reach; ++k) {
       next = from;
-      for (uint32_t u : from)
-        if (small_fan(topology, u))
-          for (uint32_t j = topology.vertex_offsets[u]; j < topology.vertex_offsets[u + 1]; ++j)
-            for (uint32_t w : mesh.triangles[topology.vertex_triangles[j]]) next.push_back(w);
-      std::sort(next.begin(), next.end());
-      next.erase(std::unique(next.begin(), next.end()), next.end());
+      add_one_ring(mesh, topology, from, next);
       from.swap(next);
     }
     return from;
@@ -884,12 +891,7 @@ bool drop_redundant_chains(const Mesh& mesh, const Topology& topology, const std
           if (count[u] > own[u]) return true;
         if (k == rings) return false;
         next.clear();
-        for (uint32_t u : ring)
-          if (small_fan(topology, u))
-            for (uint32_t j = topology.vertex_offsets[u]; j < topology.vertex_offsets[u + 1]; ++j)
-              for (uint32_t w : mesh.triangles[topology.vertex_triangles[j]]) next.push_back(w);
-        std::sort(next.begin(), next.end());
-        next.erase(std::unique(next.begin(), next.end()), next.end());
+        add_one_ring(mesh, topology, ring, next);
         ring.swap(next);
       }
     };
