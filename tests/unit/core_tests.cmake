@@ -1,6 +1,7 @@
 target_sources(crestline_tests PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/mesh/repair_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/mesh/topology_test.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/mesh/frame_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/mesh/presmooth_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/mesh/cotan_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/curvature/shape_operator_test.cpp

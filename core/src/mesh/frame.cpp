@@ -1,10 +1,13 @@
 #include "crestline/mesh/frame.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
-#include <numeric>
+#include <memory>
 
 #include "crestline/mesh/topology.h"
+#include "crestline/numerics/parallel.h"
+#include "crestline/numerics/uninitialised.h"
 
 namespace crestline {
 
@@ -12,40 +15,114 @@ uint32_t ComponentFrames::largest() const {
   return static_cast<uint32_t>(std::max_element(triangle_count.begin(), triangle_count.end()) - triangle_count.begin());
 }
 
+namespace {
+
+// Calls body(part, begin, end) on `parts` consecutive ranges covering
+// [0, count), each on its own thread where there are threads.
+template <typename Body>
+void for_each_part(size_t parts, size_t count, const Body& body) {
+  parallel_for(
+      parts,
+      [&](size_t first, size_t last) {
+        for (size_t p = first; p < last; ++p) body(p, count * p / parts, count * (p + 1) / parts);
+      },
+      1);
+}
+
+}  // namespace
+
 ComponentFrames component_frames(const Mesh& mesh) {
-  const size_t nv = mesh.positions.size();
-  std::vector<uint32_t> parent(nv);
-  std::iota(parent.begin(), parent.end(), 0u);
+  const size_t nv = mesh.positions.size(), nt = mesh.triangles.size();
+  const size_t threads = nt < (size_t{1} << 15) ? 1 : std::min<size_t>(size_t(max_threads()), 8);
+  // Union-find over the vertices, always linking the larger root under the
+  // smaller: a tree's root is then its component's smallest vertex whatever
+  // order the links were made in, so the triangles are joined on every thread
+  // (a link is a compare-and-swap; halving a path stores an ancestor, which
+  // any interleaving leaves valid). Not zero-filled: every entry is set first.
+  std::unique_ptr<std::atomic<uint32_t>[]> parent(new std::atomic<uint32_t>[nv]);
+  parallel_for(nv, [&](size_t begin, size_t end) {
+    for (size_t v = begin; v < end; ++v) parent[v].store(uint32_t(v), std::memory_order_relaxed);
+  });
   auto find = [&](uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
+    for (;;) {
+      const uint32_t p = parent[x].load(std::memory_order_relaxed);
+      if (p == x) return x;
+      const uint32_t g = parent[p].load(std::memory_order_relaxed);
+      if (g != p) parent[x].store(g, std::memory_order_relaxed);
+      x = g;
+    }
   };
-  for (const Triangle& t : mesh.triangles)
-    for (int k = 1; k < 3; ++k) {
-      const uint32_t a = find(t[0]), b = find(t[k]);
-      if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  parallel_for(nt, [&](size_t begin, size_t end) {
+    for (size_t t = begin; t < end; ++t)
+      for (int k = 1; k < 3; ++k)
+        for (uint32_t a = mesh.triangles[t][0], b = mesh.triangles[t][k];;) {
+          a = find(a), b = find(b);
+          if (a == b) break;
+          if (a < b) std::swap(a, b);
+          uint32_t expected = a;  // still a root unless another thread linked it since
+          if (parent[a].compare_exchange_weak(expected, b, std::memory_order_relaxed)) break;
+        }
+  });
+  // Every vertex straight under its root (later finds take one step).
+  parallel_for(nv, [&](size_t begin, size_t end) {
+    for (size_t v = begin; v < end; ++v) parent[v].store(find(uint32_t(v)), std::memory_order_relaxed);
+  });
+  auto root = [&](uint32_t v) { return parent[v].load(std::memory_order_relaxed); };
+
+  // Components are numbered in order of first appearance among the
+  // triangles, i.e. of their first triangles (a triangle's corners share a
+  // component): each root's first triangle is a minimum over every thread's
+  // triangles, the first triangles then gathered in order, part by part.
+  std::unique_ptr<std::atomic<uint32_t>[]> first(new std::atomic<uint32_t>[nv]);
+  parallel_for(nv, [&](size_t begin, size_t end) {
+    for (size_t v = begin; v < end; ++v) first[v].store(kNone, std::memory_order_relaxed);
+  });
+  parallel_for(nt, [&](size_t begin, size_t end) {
+    for (size_t t = begin; t < end; ++t) {
+      std::atomic<uint32_t>& f = first[root(mesh.triangles[t][0])];
+      uint32_t seen = f.load(std::memory_order_relaxed);
+      while (t < seen && !f.compare_exchange_weak(seen, uint32_t(t), std::memory_order_relaxed)) {
+      }
     }
+  });
+  std::vector<std::vector<uint32_t>> part_firsts(threads);
+  for_each_part(threads, nt, [&](size_t p, size_t begin, size_t end) {
+    for (size_t t = begin; t < end; ++t)
+      if (first[root(mesh.triangles[t][0])].load(std::memory_order_relaxed) == t) part_firsts[p].push_back(uint32_t(t));
+  });
   ComponentFrames f;
-  f.vertex_component.assign(nv, kNone);
-  std::vector<uint32_t> root_component(nv, kNone);
-  for (const Triangle& t : mesh.triangles)
-    for (uint32_t v : t) {
-      uint32_t& c = root_component[find(v)];
-      if (c == kNone) c = static_cast<uint32_t>(f.triangle_count.size()), f.triangle_count.push_back(0);
-      f.vertex_component[v] = c;
-    }
-  for (const Triangle& t : mesh.triangles) ++f.triangle_count[f.vertex_component[t[0]]];
+  UninitialisedVector<uint32_t> component(nv);  // of each root; set below for the roots of triangles
+  for (const std::vector<uint32_t>& firsts : part_firsts)
+    for (uint32_t t : firsts)
+      component[root(mesh.triangles[t][0])] = uint32_t(f.triangle_count.size()), f.triangle_count.push_back(0);
+  part_firsts = {};
   const size_t n = f.triangle_count.size();
+  f.vertex_component.resize(nv);
   // Unreferenced vertices (none after repair) join component 0.
-  for (uint32_t& c : f.vertex_component)
-    if (c == kNone) c = 0;
+  parallel_for(nv, [&](size_t begin, size_t end) {
+    for (size_t v = begin; v < end; ++v) {
+      const uint32_t r = root(uint32_t(v));
+      f.vertex_component[v] = first[r].load(std::memory_order_relaxed) == kNone ? 0 : component[r];
+    }
+  });
+  first.reset();
+  parent.reset();
 
   // Centre: the bounding box's, halved before adding so it cannot overflow.
-  std::vector<Vec3> lo(n, Vec3::Constant(INFINITY)), hi(n, Vec3::Constant(-INFINITY));
-  for (size_t v = 0; v < nv; ++v) {
-    const uint32_t c = f.vertex_component[v];
-    lo[c] = lo[c].cwiseMin(mesh.positions[v]), hi[c] = hi[c].cwiseMax(mesh.positions[v]);
-  }
+  // Each part's boxes, then merged in part order: a minimum keeps the first
+  // of equal values (−0 before 0) in both, so the boxes are those of one
+  // pass in vertex order. One part when the components are many and small.
+  const size_t box_parts = n * 64 <= nv ? threads : 1;
+  std::vector<Vec3> lo(box_parts * n, Vec3::Constant(INFINITY)), hi(box_parts * n, Vec3::Constant(-INFINITY));
+  for_each_part(box_parts, nv, [&](size_t p, size_t begin, size_t end) {
+    Vec3 *part_lo = lo.data() + p * n, *part_hi = hi.data() + p * n;
+    for (size_t v = begin; v < end; ++v) {
+      const uint32_t c = f.vertex_component[v];
+      part_lo[c] = part_lo[c].cwiseMin(mesh.positions[v]), part_hi[c] = part_hi[c].cwiseMax(mesh.positions[v]);
+    }
+  });
+  for (size_t p = 1; p < box_parts; ++p)
+    for (size_t c = 0; c < n; ++c) lo[c] = lo[c].cwiseMin(lo[p * n + c]), hi[c] = hi[c].cwiseMax(hi[p * n + c]);
   f.centre.resize(n);
   std::vector<double> extent(n, 0.0);
   for (size_t c = 0; c < n; ++c) {
@@ -54,11 +131,31 @@ ComponentFrames component_frames(const Mesh& mesh) {
     if (!(extent[c] > 0)) extent[c] = 1;  // a single point: nothing to scale
   }
   // Mean edge length on coordinates divided by the extent (|y| ≤ 1: squares
-  // neither overflow nor underflow), then scaled back.
+  // neither overflow nor underflow), then scaled back. The sums add in
+  // triangle order on one thread (rounding depends on the order); on
+  // several, the lengths are measured on every thread first.
+  auto edge_length = [&](const Triangle& t, int k, uint32_t c) {
+    return ((mesh.positions[t[(k + 1) % 3]] - mesh.positions[t[k]]) / extent[c]).norm();
+  };
   std::vector<double> sum(n, 0.0);
-  for (const Triangle& t : mesh.triangles) {
-    const uint32_t c = f.vertex_component[t[0]];
-    for (int k = 0; k < 3; ++k) sum[c] += ((mesh.positions[t[(k + 1) % 3]] - mesh.positions[t[k]]) / extent[c]).norm();
+  if (threads == 1) {
+    for (const Triangle& t : mesh.triangles) {
+      const uint32_t c = f.vertex_component[t[0]];
+      ++f.triangle_count[c];
+      for (int k = 0; k < 3; ++k) sum[c] += edge_length(t, k, c);
+    }
+  } else {
+    UninitialisedVector<double> length(3 * nt);
+    parallel_for(nt, [&](size_t begin, size_t end) {
+      for (size_t t = begin; t < end; ++t)
+        for (int k = 0; k < 3; ++k)
+          length[3 * t + k] = edge_length(mesh.triangles[t], k, f.vertex_component[mesh.triangles[t][0]]);
+    });
+    for (size_t t = 0; t < nt; ++t) {
+      const uint32_t c = f.vertex_component[mesh.triangles[t][0]];
+      ++f.triangle_count[c];
+      for (int k = 0; k < 3; ++k) sum[c] += length[3 * t + k];
+    }
   }
   f.scale.resize(n);
   for (size_t c = 0; c < n; ++c) {
@@ -72,10 +169,12 @@ Mesh to_local(const Mesh& mesh, const ComponentFrames& frames) {
   Mesh local;
   local.triangles = mesh.triangles;
   local.positions.resize(mesh.positions.size());
-  for (size_t v = 0; v < mesh.positions.size(); ++v) {
-    const uint32_t c = frames.vertex_component[v];
-    local.positions[v] = (mesh.positions[v] - frames.centre[c]) / frames.scale[c];
-  }
+  parallel_for(mesh.positions.size(), [&](size_t begin, size_t end) {
+    for (size_t v = begin; v < end; ++v) {
+      const uint32_t c = frames.vertex_component[v];
+      local.positions[v] = (mesh.positions[v] - frames.centre[c]) / frames.scale[c];
+    }
+  });
   return local;
 }
 

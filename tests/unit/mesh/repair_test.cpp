@@ -11,7 +11,7 @@
 #include "analytic_meshes.h"
 #include "crestline/error.h"
 #include "crestline/mesh/topology.h"
-#include "crestline/numerics/parallel.h"
+#include "on_threads.h"
 
 using namespace crestline;
 using crestline::testing::add_triangle;
@@ -42,11 +42,7 @@ double signed_volume(const Mesh& m) {
 }
 
 RepairResult repair_on(int threads, const TriangleSoup& soup) {
-  const int before = max_threads();
-  set_max_threads(threads);
-  RepairResult r = repair_mesh(soup);
-  set_max_threads(before);
-  return r;
+  return testing::on_threads(threads, [&] { return repair_mesh(soup); });
 }
 
 }  // namespace
@@ -281,10 +277,7 @@ TEST_CASE("welding picks the earliest representative within tolerance, as a brut
   }
   const int threads = GENERATE(1, 2);
   INFO("threads: " << threads);
-  const int before = max_threads();
-  set_max_threads(threads);
-  const RepairResult r = repair_mesh(s);
-  set_max_threads(before);
+  const RepairResult r = repair_on(threads, s);
   CHECK(r.report.welded_vertices == welded);
   REQUIRE(r.mesh.triangle_count() == expected.size());
   size_t mismatches = 0;

@@ -11,7 +11,7 @@
 #include "analytic_meshes.h"
 #include "crestline/error.h"
 #include "crestline/mesh/repair.h"
-#include "crestline/numerics/parallel.h"
+#include "on_threads.h"
 #include "same_topology.h"
 
 using namespace crestline;
@@ -19,11 +19,7 @@ using namespace crestline;
 namespace {
 
 Topology topology_on(int threads, const Mesh& mesh) {
-  const int before = max_threads();
-  set_max_threads(threads);
-  Topology t = build_topology(mesh);
-  set_max_threads(before);
-  return t;
+  return testing::on_threads(threads, [&] { return build_topology(mesh); });
 }
 
 }  // namespace

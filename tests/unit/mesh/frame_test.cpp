@@ -1,0 +1,156 @@
+#include "crestline/mesh/frame.h"
+
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstring>
+#include <numeric>
+#include <random>
+#include <vector>
+
+#include "analytic_meshes.h"
+#include "crestline/mesh/topology.h"
+#include "on_threads.h"
+
+using namespace crestline;
+
+namespace {
+
+ComponentFrames frames_on(int threads, const Mesh& mesh) {
+  return testing::on_threads(threads, [&] { return component_frames(mesh); });
+}
+
+// The frames as one serial pass computes them (the code before the frames
+// were computed on every thread): union-find, components numbered as they
+// first appear among the triangles, boxes and sums in vertex and triangle order.
+ComponentFrames serial_frames(const Mesh& mesh) {
+  const size_t nv = mesh.positions.size();
+  std::vector<uint32_t> parent(nv);
+  std::iota(parent.begin(), parent.end(), 0u);
+  auto find = [&](uint32_t x) {
+    while (parent[x] != x) x = parent[x];
+    return x;
+  };
+  for (const Triangle& t : mesh.triangles)
+    for (int k = 1; k < 3; ++k) parent[find(t[k])] = find(t[0]);
+  ComponentFrames f;
+  f.vertex_component.assign(nv, 0);
+  std::vector<uint32_t> root_component(nv, kNone);
+  for (const Triangle& t : mesh.triangles)
+    for (uint32_t v : t) {
+      uint32_t& c = root_component[find(v)];
+      if (c == kNone) c = uint32_t(f.triangle_count.size()), f.triangle_count.push_back(0);
+      f.vertex_component[v] = c;
+    }
+  const size_t n = f.triangle_count.size();
+  std::vector<Vec3> lo(n, Vec3::Constant(INFINITY)), hi(n, Vec3::Constant(-INFINITY));
+  for (size_t v = 0; v < nv; ++v) {
+    const uint32_t c = f.vertex_component[v];
+    lo[c] = lo[c].cwiseMin(mesh.positions[v]), hi[c] = hi[c].cwiseMax(mesh.positions[v]);
+  }
+  std::vector<double> extent(n), sum(n, 0.0);
+  for (size_t c = 0; c < n; ++c) {
+    f.centre.push_back(0.5 * lo[c] + 0.5 * hi[c]);
+    extent[c] = std::max((hi[c] - f.centre[c]).maxCoeff(), (f.centre[c] - lo[c]).maxCoeff());
+    if (!(extent[c] > 0)) extent[c] = 1;
+  }
+  for (const Triangle& t : mesh.triangles) {
+    const uint32_t c = f.vertex_component[t[0]];
+    ++f.triangle_count[c];
+    for (int k = 0; k < 3; ++k) sum[c] += ((mesh.positions[t[(k + 1) % 3]] - mesh.positions[t[k]]) / extent[c]).norm();
+  }
+  for (size_t c = 0; c < n; ++c) {
+    const double mean = sum[c] / (3.0 * f.triangle_count[c]);
+    f.scale.push_back(mean > 0 ? extent[c] * mean : extent[c]);
+  }
+  return f;
+}
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+void check_same_frames(const ComponentFrames& got, const ComponentFrames& want) {
+  CHECK(got.vertex_component == want.vertex_component);
+  CHECK(got.triangle_count == want.triangle_count);
+  REQUIRE(got.count() == want.count());
+  size_t differ = 0;
+  for (size_t c = 0; c < want.count(); ++c) {
+    differ += !same_bits(got.scale[c], want.scale[c]);
+    for (int i = 0; i < 3; ++i) differ += !same_bits(got.centre[c][i], want.centre[c][i]);
+  }
+  CHECK(differ == 0);
+}
+
+// Appends a soup's vertices and triangles to a mesh, moved by `offset`.
+void append(Mesh& mesh, const TriangleSoup& soup, const Vec3& offset) {
+  const uint32_t base = uint32_t(mesh.positions.size());
+  for (size_t i = 0; i < soup.vertex_count(); ++i)
+    mesh.positions.push_back(Vec3(soup.positions[3 * i], soup.positions[3 * i + 1], soup.positions[3 * i + 2]) +
+                             offset);
+  for (size_t t = 0; t < soup.triangle_count(); ++t)
+    mesh.triangles.push_back(
+        {base + soup.indices[3 * t], base + soup.indices[3 * t + 1], base + soup.indices[3 * t + 2]});
+}
+
+// The mesh with its vertices and triangles in a random order (the
+// components interleave in both), corners rotated at random.
+Mesh shuffled(const Mesh& mesh, unsigned seed) {
+  std::mt19937 random(seed);
+  std::vector<uint32_t> order(mesh.positions.size()), rename(mesh.positions.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::shuffle(order.begin(), order.end(), random);
+  Mesh out;
+  for (uint32_t i = 0; i < order.size(); ++i) rename[order[i]] = i, out.positions.push_back(mesh.positions[order[i]]);
+  for (const Triangle& t : mesh.triangles) {
+    const int r = int(random() % 3);
+    out.triangles.push_back({rename[t[r]], rename[t[(r + 1) % 3]], rename[t[(r + 2) % 3]]});
+  }
+  std::shuffle(out.triangles.begin(), out.triangles.end(), random);
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("component frames are those of one serial pass, on 1, 2 and 3 threads", "[frame][threads]") {
+  // A torus, a sphere and a hundred small tetrahedra, in random vertex and
+  // triangle order, 2^15 triangles and more so that every step splits over
+  // threads; and a soup of single triangles (more components than the
+  // boxes are kept per thread for). One flat component has its smallest x
+  // at both −0 and +0, at either end of the vertex order: the box keeps the
+  // first, as a serial pass does.
+  testing::GridOptions grid;
+  grid.nu = 180, grid.nv = 100;
+  Mesh several;
+  append(several, testing::torus(3, 1, grid), Vec3(10, 0, 0));
+  append(several, testing::icosphere(4, 2), Vec3(-1e3, 5, 2));
+  const TriangleSoup tetrahedron = testing::icosphere(0, 0.1);
+  for (int i = 0; i < 100; ++i) append(several, tetrahedron, Vec3(i, -i, 0.5 * i));
+  Mesh mesh = shuffled(several, 3);
+  const uint32_t nv = uint32_t(mesh.positions.size());
+  mesh.positions.insert(mesh.positions.begin(), Vec3(-0.0, 1, 1));
+  for (Triangle& t : mesh.triangles)
+    for (uint32_t& v : t) ++v;
+  mesh.positions.push_back(Vec3(0.0, 2, 1)), mesh.positions.push_back(Vec3(0.0, 2, 2));
+  mesh.triangles.push_back({nv + 1, 0, nv + 2});
+  REQUIRE(mesh.triangles.size() > size_t{1} << 15);
+
+  Mesh singles;
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  for (uint32_t t = 0; t < 40000; ++t) {
+    for (int k = 0; k < 3; ++k) singles.positions.push_back(Vec3(unit(random), unit(random), unit(random)));
+    singles.triangles.push_back({3 * t, 3 * t + 1, 3 * t + 2});
+  }
+  singles = shuffled(singles, 4);
+
+  for (const Mesh* m : {&mesh, &singles}) {
+    const ComponentFrames want = serial_frames(*m);
+    CHECK(want.count() == (m == &mesh ? 103u : 40000u));
+    for (int threads : {1, 2, 3}) {
+      INFO("threads: " << threads << ", components: " << want.count());
+      check_same_frames(frames_on(threads, *m), want);
+    }
+  }
+  // The flat component's centre is at x = −0 (its first smallest x).
+  const ComponentFrames f = frames_on(2, mesh);
+  CHECK(std::signbit(f.centre[f.vertex_component[0]].x()));
+}
