@@ -1,0 +1,210 @@
+// The coarse level of the paired solver's two-level preconditioner
+// (numerics/paired_cg.h): aggregates of the rows that the Gauss–Seidel
+// sweeps smooth slowly, and the operators Q = L P and Ac = Pᵀ Â P the solve
+// uses. All of it serial and in a fixed order: the same for any number of
+// threads.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "crestline/numerics/paired_cg.h"
+
+namespace crestline {
+namespace {
+
+// Neighbours joined into one aggregate: |a_ij| ≥ this · √(a_ii a_jj).
+constexpr double kStrong = 0.08;
+constexpr uint32_t kNone = std::numeric_limits<uint32_t>::max();
+
+// The fields (bit k) in which entry e is positive: across it a smooth mode
+// changes sign (x_j = σ x_i where the entry is −σ w).
+uint32_t sign_change(const SignedPairMatrix& a, uint32_t e) {
+  return (a.columns[e] >> 30 & 3) ^ (a.weights[e] > 0 ? 3u : 0u);
+}
+
+}  // namespace
+
+// Aggregation as in smoothed aggregation's first phases (Vaněk, Mandel and
+// Brezina 1996), over the slow rows only, in breadth-first order: a slow row
+// whose strong slow neighbours are all free roots an aggregate of itself and
+// them; the slow rows left join the aggregate of their strongest neighbour
+// of the first phase; those still left group with their free strong
+// neighbours. Rows alone stay out (a sweep solves a single row exactly).
+// Each aggregate is a tree of its rows' joins, and P's column for it is the
+// mode smooth along that tree, ±1 in each field by the signs of the entries
+// crossed (±√a_ii in the scaled variables).
+void SignedPairSolver::build_coarse_level(const SignedPairMatrix& a, const std::vector<double>& excess,
+                                          const std::vector<uint32_t>& bfs_order,
+                                          const std::vector<uint32_t>& position) {
+  const size_t n = a.rows();
+  std::vector<uint8_t> slow(n);
+  for (size_t i = 0; i < n; ++i) slow[i] = detail::is_slow(a.diagonal[i], excess[i], a.offsets[i + 1] > a.offsets[i]);
+
+  std::vector<double> inverse_root(n);  // 1 / √a_ii, by input row (roots_ are by the solver's)
+  for (size_t i = 0; i < n; ++i) inverse_root[i] = 1 / roots_[position[i]];
+  const auto column = [&](uint32_t e) { return a.columns[e] & SignedPairMatrix::kColumnMask; };
+  const auto strength = [&](uint32_t i, uint32_t e) {  // |a_ij| / √(a_ii a_jj)
+    return std::abs(a.weights[e]) * inverse_root[i] * inverse_root[column(e)];
+  };
+  const auto strong = [&](uint32_t i, uint32_t e) { return slow[column(e)] && strength(i, e) >= kStrong; };
+  std::vector<uint32_t> aggregate(n, kNone);
+  std::vector<uint8_t> flips(n, 0);  // bit k: the row's value in field k's column of P is negative
+  uint32_t aggregates = 0;
+  size_t aggregated = 0;
+  // i roots a new aggregate of itself and its strong neighbours that are free.
+  const auto root = [&](uint32_t i) {
+    aggregate[i] = aggregates, flips[i] = 0, ++aggregated;
+    for (uint32_t e = a.offsets[i]; e < a.offsets[i + 1]; ++e) {
+      const uint32_t j = column(e);
+      if (strong(i, e) && aggregate[j] == kNone)
+        aggregate[j] = aggregates, flips[j] = static_cast<uint8_t>(sign_change(a, e)), ++aggregated;
+    }
+    ++aggregates;
+  };
+  for (const uint32_t i : bfs_order) {
+    if (!slow[i] || aggregate[i] != kNone) continue;
+    bool any = false, free = true;
+    for (uint32_t e = a.offsets[i]; e < a.offsets[i + 1]; ++e)
+      if (strong(i, e)) any = true, free = free && aggregate[column(e)] == kNone;
+    if (any && free) root(i);
+  }
+  const std::vector<uint32_t> first = aggregate;
+  for (const uint32_t i : bfs_order) {
+    if (!slow[i] || aggregate[i] != kNone) continue;
+    uint32_t best = kNone;
+    double strongest = 0;
+    for (uint32_t e = a.offsets[i]; e < a.offsets[i + 1]; ++e) {
+      const double s = strength(i, e);
+      if (first[column(e)] != kNone && strong(i, e) && s > strongest) strongest = s, best = e;
+    }
+    if (best == kNone) continue;
+    const uint32_t j = column(best);
+    aggregate[i] = first[j], flips[i] = static_cast<uint8_t>(flips[j] ^ sign_change(a, best)), ++aggregated;
+  }
+  for (const uint32_t i : bfs_order) {
+    if (!slow[i] || aggregate[i] != kNone) continue;
+    bool any = false;
+    for (uint32_t e = a.offsets[i]; e < a.offsets[i + 1]; ++e)
+      any = any || (strong(i, e) && aggregate[column(e)] == kNone);
+    if (any) root(i);
+  }
+  if (aggregated < detail::min_aggregated(n)) return;
+  aggregated_ = aggregated;
+
+  // The members of each aggregate, in breadth-first order.
+  std::vector<uint32_t> member_begin(aggregates + 1, 0), members(aggregated);
+  for (size_t i = 0; i < n; ++i)
+    if (aggregate[i] != kNone) ++member_begin[aggregate[i] + 1];
+  for (uint32_t c = 0; c < aggregates; ++c) member_begin[c + 1] += member_begin[c];
+  {
+    std::vector<uint32_t> fill(member_begin.begin(), member_begin.end() - 1);
+    for (const uint32_t i : bfs_order)
+      if (aggregate[i] != kNone) members[fill[aggregate[i]]++] = i;
+  }
+  // Ac = Pᵀ A P with P's columns the signed indicators s of the aggregates.
+  // Its diagonal as a sum of terms ≥ 0 (no cancellation where R is large):
+  // sᵀ A s = Σ excess_i + Σ over entries to other rows |a_ij| + Σ over
+  // entries inside (|a_ij| + s_i s_j a_ij), the last 0 where the signs follow
+  // the entry. Diagonally dominant, so positive definite. Each row's entries
+  // to earlier aggregates come first: the coarse solve's first sweep reads
+  // only those (the later ones are still 0).
+  const auto signed_entry = [&](uint32_t i, uint32_t j, uint32_t e, int k) {  // s_i s_j a_ij in field k
+    return (a.columns[e] >> 30 ^ flips[i] ^ flips[j]) >> k & 1 ? -a.weights[e] : a.weights[e];
+  };
+  std::vector<double> diagonal(2 * size_t{aggregates}, 0.0);
+  std::vector<uint32_t> slot(aggregates, kNone), row_columns;
+  std::vector<double> row_values, off_values;
+  std::vector<uint32_t> off_begin(aggregates + 1, 0), off_columns;
+  coarse_upper_begin_.resize(aggregates);
+  for (uint32_t c = 0; c < aggregates; ++c) {
+    row_columns.clear(), row_values.clear();
+    for (uint32_t m = member_begin[c]; m < member_begin[c + 1]; ++m) {
+      const uint32_t i = members[m];
+      double sum[2] = {excess[i], excess[i]};
+      for (uint32_t e = a.offsets[i]; e < a.offsets[i + 1]; ++e) {
+        const uint32_t j = column(e), d = aggregate[j];
+        const double magnitude = std::abs(a.weights[e]);
+        if (d == c) {
+          for (int k = 0; k < 2; ++k) sum[k] += magnitude + signed_entry(i, j, e, k);
+          continue;
+        }
+        sum[0] += magnitude, sum[1] += magnitude;
+        if (d == kNone) continue;
+        if (slot[d] == kNone) {
+          slot[d] = static_cast<uint32_t>(row_columns.size());
+          row_columns.push_back(d), row_values.resize(row_values.size() + 2, 0.0);
+        }
+        for (int k = 0; k < 2; ++k) row_values[2 * size_t{slot[d]} + k] += signed_entry(i, j, e, k);
+      }
+      diagonal[2 * size_t{c}] += sum[0], diagonal[2 * size_t{c} + 1] += sum[1];
+    }
+    for (const bool earlier : {true, false})
+      for (const uint32_t d : row_columns)
+        if ((d < c) == earlier) {
+          off_columns.push_back(d);
+          off_values.insert(off_values.end(), {row_values[2 * size_t{slot[d]}], row_values[2 * size_t{slot[d]} + 1]});
+        }
+    for (const uint32_t d : row_columns) slot[d] = kNone;
+    coarse_upper_begin_[c] = off_begin[c] + static_cast<uint32_t>(std::count_if(row_columns.begin(), row_columns.end(),
+                                                                                [c](uint32_t d) { return d < c; }));
+    off_begin[c + 1] = static_cast<uint32_t>(off_columns.size());
+  }
+  // Scaled to a unit diagonal per field, as the fine level.
+  std::vector<double> coarse_root(2 * size_t{aggregates});
+  for (size_t j = 0; j < coarse_root.size(); ++j) coarse_root[j] = std::sqrt(diagonal[j]);
+  coarse_begin_ = std::move(off_begin);
+  coarse_columns_ = std::move(off_columns);
+  coarse_values_.resize(off_values.size());
+  for (uint32_t c = 0; c < aggregates; ++c)
+    for (uint32_t e = coarse_begin_[c]; e < coarse_begin_[c + 1]; ++e)
+      for (int k = 0; k < 2; ++k)
+        coarse_values_[2 * size_t{e} + k] =
+            off_values[2 * size_t{e} + k] / (coarse_root[2 * c + k] * coarse_root[2 * size_t{coarse_columns_[e]} + k]);
+
+  // P in the solver's rows and scaled variables: s_i √a_ii / √Ac_cc.
+  std::vector<uint32_t> fine_aggregate(n, kNone);
+  std::vector<double> p(2 * n, 0.0);
+  for (size_t i = 0; i < n; ++i) {
+    const uint32_t c = aggregate[i];
+    if (c == kNone) continue;
+    fine_aggregate[position[i]] = c;
+    for (int k = 0; k < 2; ++k)
+      p[2 * size_t{position[i]} + k] =
+          (flips[i] >> k & 1 ? -roots_[position[i]] : roots_[position[i]]) / coarse_root[2 * c + k];
+  }
+  // Q = L P by fine row, from the float entries the sweeps use.
+  q_begin_.assign(n + 1, 0);
+  for (size_t r = 0; r < n; ++r) {
+    row_columns.clear(), row_values.clear();
+    for (uint32_t e = lower_begin_[r]; e < a_.offsets[r + 1]; ++e) {
+      const uint32_t j = a_.columns[e], c = fine_aggregate[j];
+      if (c == kNone) continue;
+      if (slot[c] == kNone) {
+        slot[c] = static_cast<uint32_t>(row_columns.size());
+        row_columns.push_back(c), row_values.resize(row_values.size() + 2, 0.0);
+      }
+      for (int k = 0; k < 2; ++k)
+        row_values[2 * slot[c] + k] += double{weights_[2 * size_t{e} + k]} * p[2 * size_t{j} + k];
+    }
+    for (const uint32_t c : row_columns) slot[c] = kNone;
+    q_columns_.insert(q_columns_.end(), row_columns.begin(), row_columns.end());
+    for (const double v : row_values) q_values_.push_back(static_cast<float>(v));
+    q_begin_[r + 1] = static_cast<uint32_t>(q_columns_.size());
+  }
+  // Qᵀ by coarse row, fine rows in order.
+  qt_begin_.assign(aggregates + 1, 0);
+  for (const uint32_t c : q_columns_) ++qt_begin_[c + 1];
+  for (uint32_t c = 0; c < aggregates; ++c) qt_begin_[c + 1] += qt_begin_[c];
+  qt_rows_.resize(q_columns_.size());
+  qt_values_.resize(q_values_.size());
+  std::vector<uint32_t> fill(qt_begin_.begin(), qt_begin_.end() - 1);
+  for (uint32_t r = 0; r < n; ++r)
+    for (uint32_t e = q_begin_[r]; e < q_begin_[r + 1]; ++e) {
+      const uint32_t to = fill[q_columns_[e]]++;
+      qt_rows_[to] = r;
+      qt_values_[2 * size_t{to}] = q_values_[2 * size_t{e}],
+                     qt_values_[2 * size_t{to} + 1] = q_values_[2 * size_t{e} + 1];
+    }
+}
+
+}  // namespace crestline
