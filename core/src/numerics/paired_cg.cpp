@@ -25,6 +25,8 @@ constexpr size_t kMinBlocksPerThread = 4;
 // The true residual is formed from the iteration whose predicted squared
 // residual is at most this many times the limit.
 constexpr double kNearFactor = 16;
+// Symmetric Gauss–Seidel sweeps of the coarse solve.
+constexpr int kCoarseSweeps = 4;
 
 // Up to two sums per field: sums[k] and sums[2 + k] for field k.
 using BlockSums = std::array<double, 4>;
@@ -201,7 +203,7 @@ std::vector<uint32_t> detail::greedy_colours(const SignedPairMatrix& a) {
   return colour;
 }
 
-SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix) {
+SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix, bool two_level) {
   const size_t n = matrix.rows();
   const std::vector<uint32_t> colour = detail::greedy_colours(matrix);
   const uint32_t colours = n == 0 ? 0 : *std::max_element(colour.begin(), colour.end()) + 1;
@@ -211,9 +213,10 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix) {
   for (uint32_t c = 0; c < colours; ++c) colour_begin_[c + 1] += colour_begin_[c];
   order_.resize(n);
   std::vector<uint32_t> position(n);
+  const std::vector<uint32_t> bfs_order = locality_order(matrix);
   {
     std::vector<uint32_t> fill(colour_begin_.begin(), colour_begin_.end() - 1);
-    for (const uint32_t i : locality_order(matrix)) position[i] = fill[colour[i]]++, order_[position[i]] = i;
+    for (const uint32_t i : bfs_order) position[i] = fill[colour[i]]++, order_[position[i]] = i;
   }
   a_.diagonal.resize(n);
   roots_.resize(n);
@@ -242,6 +245,10 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix) {
     float weight[2];
   };
   std::vector<Entry> lower(widest);
+  // What each row's diagonal exceeds its off-diagonal magnitudes by (the
+  // coarse level's test), summed here where the entries are read anyway.
+  std::vector<double> excess(two_level ? n : 0);
+  size_t slow_rows = 0;
   uint32_t next = 0;
   const auto put = [&](const Entry& entry) {
     a_.columns[next] = entry.column;
@@ -253,7 +260,9 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix) {
     const size_t i = order_[k];
     const uint32_t earlier = colour_begin_[colour[i]];
     size_t lowers = 0;
+    double off = 0;
     for (uint32_t e = matrix.offsets[i]; e < matrix.offsets[i + 1]; ++e) {
+      off += std::abs(matrix.weights[e]);
       const uint32_t column = matrix.columns[e], to = position[column & SignedPairMatrix::kColumnMask];
       // The product of the roots is the same both ways: A stays symmetric.
       // Rounding to float commutes with the sign.
@@ -267,6 +276,34 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix) {
     lower_begin_[k] = next;
     for (size_t l = 0; l < lowers; ++l) put(lower[l]);
     a_.offsets[k + 1] = next;
+    if (two_level) {
+      excess[i] = std::max(0.0, a_.diagonal[k] - off);
+      slow_rows += detail::is_slow(a_.diagonal[k], excess[i], matrix.offsets[i + 1] > matrix.offsets[i]);
+    }
+  }
+  if (two_level && slow_rows >= detail::min_aggregated(n)) build_coarse_level(matrix, excess, bfs_order, position);
+}
+
+// Symmetric Gauss–Seidel sweeps on Ac (unit diagonal) from y = 0: a fixed
+// number of them is a symmetric positive definite approximation of Ac⁻¹, so
+// the preconditioner stays symmetric positive definite. Serial: the coarse
+// level is a few per cent of the rows.
+void SignedPairSolver::coarse_solve(const double* g, double* y) const {
+  const size_t rows = coarse_rows();
+  const uint32_t *const begin = coarse_begin_.data(), *const upper = coarse_upper_begin_.data();
+  const uint32_t* const columns = coarse_columns_.data();
+  const double* const values = coarse_values_.data();
+  const auto relax = [=](size_t c, uint32_t end) {
+    Pair s = Pair::load(g + 2 * c);
+    for (uint32_t e = begin[c]; e < end; ++e)
+      s = s - Pair::load(values + 2 * size_t{e}) * Pair::load(y + 2 * size_t{columns[e]});
+    s.store(y + 2 * c);
+  };
+  for (int sweep = 0; sweep < kCoarseSweeps; ++sweep) {
+    // The first forward sweep reads only earlier rows: y is 0 beyond (not
+    // stored first: callgrind counts a fill by the byte).
+    for (size_t c = 0; c < rows; ++c) relax(c, sweep == 0 ? upper[c] : begin[c + 1]);
+    for (size_t c = rows; c-- > 0;) relax(c, begin[c + 1]);
   }
 }
 
@@ -286,6 +323,8 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix) {
 // 1: with D = I the sweeps read no diagonal and multiply by none (x̂ = S⁻¹
 // x and b̂ = S b on the way in, x = S x̂ out; the stopping rule's residual is
 // r = S⁻¹ r̂). PCG with the Gauss–Seidel M is the same method on either.
+// With a coarse level, CG on Ã is preconditioned by B̃⁻¹ = I + Q Ac⁻¹ Qᵀ
+// instead of I (paired_cg.h), the same two passes an iteration.
 // It iterates on the correction to the caller's x₀, whose first residual is
 // formed unscaled: a row with r = 0 and no entries (the smoothing's frozen
 // band, b = M x₀) keeps x₀ to the bit, not x₀ √d / √d.
@@ -336,7 +375,32 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
     rsum.store(&sums[0]), dsum.store(&sums[2]);
   });
   std::fill(xv, xv + 2 * n, 0.0);  // the correction S⁻¹ (x − x₀)
-  double rz[2] = {rr[2], rr[3]};   // ⟨r̃, r̃⟩ per field
+  // With a coarse level, z = B̃⁻¹ r̃ = r̃ + Q y, y = Ac⁻¹ Qᵀ r̃ (the coarse
+  // sweeps), and ⟨r̃, z⟩ = ⟨r̃, r̃⟩ + ⟨Qᵀ r̃, y⟩: y is formed after the pass
+  // that updates r̃ and Q y gathered in the next pass that forms p.
+  const size_t coarse = coarse_rows();
+  std::vector<double> restricted(2 * coarse), y(2 * coarse);
+  const auto coarse_correction = [&]() {
+    const uint32_t *const qt_begin = qt_begin_.data(), *const qt_rows = qt_rows_.data();
+    const float* const qt_values = qt_values_.data();
+    double* const g = restricted.data();
+    parallel_for(coarse, [=](size_t begin, size_t end) {
+      for (size_t c = begin; c < end; ++c)
+        accumulate(qt_rows, qt_values, rv, qt_begin[c], qt_begin[c + 1]).store(g + 2 * c);
+    });
+    coarse_solve(restricted.data(), y.data());
+    Pair dot = Pair::both(0.0);
+    for (size_t j = 0; j < 2 * coarse; j += 2) dot = dot + Pair::load(g + j) * Pair::load(y.data() + j);
+    BlockSums out{};
+    dot.store(&out[0]);
+    return out;
+  };
+  double rr_tilde[2] = {rr[2], rr[3]};  // ⟨r̃, r̃⟩ per field
+  double rz[2] = {rr[2], rr[3]};        // ⟨r̃, z⟩ per field
+  if (coarse > 0) {
+    const BlockSums gy = coarse_correction();
+    for (int k = 0; k < 2; ++k) rz[k] += gy[k];
+  }
   bool active[2];
   const double limit[2] = {tolerance * tolerance * b2[0], tolerance * tolerance * b2[1]};
   for (int k = 0; k < 2; ++k) {
@@ -350,7 +414,7 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
   }
   // ‖r‖² / ⟨r̃, r̃⟩ at the last iterate whose true residual was formed.
   double ratio[2];
-  for (int k = 0; k < 2; ++k) ratio[k] = rz[k] > 0 ? rr[k] / rz[k] : 0.0;
+  for (int k = 0; k < 2; ++k) ratio[k] = rr_tilde[k] > 0 ? rr[k] / rr_tilde[k] : 0.0;
   // From the first iteration if the residual is within a factor kNearFactor
   // (in norm) of the limit, as the first iteration rarely cuts more.
   bool check = false;  // whether the iteration forms the true residual
@@ -367,7 +431,10 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
     // rounding; only conjugacy is perturbed, by 2⁻²⁴. t in float is 8 bytes
     // a row less to write, read and gather: misses −15 % on the bunny (and
     // instructions +2 %), the same iterations on the bunny, 1.1M and dragon.
-    const BlockSums pq = sweep(colour_begin_, true, partial, [=](size_t begin, size_t end, BlockSums& sums) {
+    const double* const yv = y.data();
+    const uint32_t *const q_begin = q_begin_.data(), *const q_columns = q_columns_.data();
+    const float* const q_values = q_values_.data();
+    const auto first = [=](auto with_coarse, size_t begin, size_t end, BlockSums& sums) {
       const uint32_t *const offsets_ = offsets, *const lower_ = lower, *const columns_ = columns;
       const float* const weights_ = weights;
       double *const rv_ = rv, *const utv_ = utv;
@@ -376,7 +443,10 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
       Pair sum = Pair::load(&sums[0]);
       for (size_t i = begin; i < end; ++i) {
         const Pair q = Pair::load(tv_ + 2 * i) + Pair::load(utv_ + 2 * i);
-        const Pair pi = keep_ * (Pair::load(rv_ + 2 * i) + beta_ * q);
+        Pair zi = Pair::load(rv_ + 2 * i);
+        if constexpr (decltype(with_coarse)::value)
+          zi = zi + accumulate(q_columns, q_values, yv, q_begin[i], q_begin[i + 1]);
+        const Pair pi = keep_ * (zi + beta_ * q);
         const Pair uti = accumulate(columns_, weights_, tv_, offsets_[i], lower_[i]);
         (pi - uti).store(tv_ + 2 * i);
         uti.store(utv_ + 2 * i);
@@ -384,7 +454,12 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
         sum = sum + ti * (ti + Pair::both(2.0) * uti);
       }
       sum.store(&sums[0]);
-    });
+    };
+    const BlockSums pq =
+        coarse > 0 ? sweep(colour_begin_, true, partial,
+                           [=](size_t begin, size_t end, BlockSums& s) { first(std::true_type{}, begin, end, s); })
+                   : sweep(colour_begin_, true, partial,
+                           [=](size_t begin, size_t end, BlockSums& s) { first(std::false_type{}, begin, end, s); });
     double alpha[2];
     for (int k = 0; k < 2; ++k) alpha[k] = active[k] ? rz[k] / pq[k] : 0.0;
     const Pair alpha_pair = Pair::of(alpha[0], alpha[1]);
@@ -432,10 +507,15 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
       }
       // The next residual, predicted from this iteration's reduction of
       // ⟨r̃, r̃⟩ and the ratio at the last true residual.
-      const double predicted = ratio[k] * sums[2 + k] * (sums[2 + k] / rz[k]);
+      const double predicted = ratio[k] * sums[2 + k] * (sums[2 + k] / rr_tilde[k]);
       near = near || (active[k] && !(predicted > kNearFactor * limit[k]));
-      beta[k] = active[k] ? sums[2 + k] / rz[k] : 0.0;
-      rz[k] = sums[2 + k];
+      rr_tilde[k] = sums[2 + k];
+    }
+    const BlockSums gy = coarse > 0 && (active[0] || active[1]) ? coarse_correction() : BlockSums{};
+    for (int k = 0; k < 2; ++k) {
+      const double next = coarse > 0 ? sums[2 + k] + gy[k] : sums[2 + k];
+      beta[k] = active[k] ? next / rz[k] : 0.0;
+      rz[k] = next;
     }
     check = check || near;
     if (on_iteration) on_iteration(it + 1);

@@ -89,7 +89,6 @@ void SignedPairSolver::build_coarse_level(const SignedPairMatrix& a, const std::
     if (any) root(i);
   }
   if (aggregated < detail::min_aggregated(n)) return;
-  aggregated_ = aggregated;
 
   // The members of each aggregate, in breadth-first order.
   std::vector<uint32_t> member_begin(aggregates + 1, 0), members(aggregated);
@@ -149,6 +148,16 @@ void SignedPairSolver::build_coarse_level(const SignedPairMatrix& a, const std::
                                                                                 [c](uint32_t d) { return d < c; }));
     off_begin[c + 1] = static_cast<uint32_t>(off_columns.size());
   }
+  // An aggregate without excess or neighbours outside it (Ac_cc = 0: a
+  // whole component whose diagonals are the sums of their off-diagonal
+  // magnitudes, to rounding) would make Ac singular: no coarse level then,
+  // the one-level solve as before.
+  for (const double d : diagonal)
+    if (!(d > 0)) {
+      coarse_upper_begin_.clear();
+      return;
+    }
+  aggregated_ = aggregated;
   // Scaled to a unit diagonal per field, as the fine level.
   std::vector<double> coarse_root(2 * size_t{aggregates});
   for (size_t j = 0; j < coarse_root.size(); ++j) coarse_root[j] = std::sqrt(diagonal[j]);

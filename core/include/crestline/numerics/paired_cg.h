@@ -90,30 +90,49 @@
 // (dragon, small blocks) an iteration: bunny 308 M, dragon 14.25 G. An
 // iteration's cost, not the count, is what a block method must cut first.
 //
-// Two-level (multiplicative) preconditioner, built on 85d284e and not
-// landed (branch solver-two-level, 37805c6): the sweeps here as smoother
-// around a coarse correction. In the Eisenstat variables the whole
-// preconditioner is B̃⁻¹ = I + Q Ac⁻¹ Qᵀ with Q = L P (the other terms
-// cancel: S + Sᵀ − Â = I), so an iteration keeps its two passes and gains a
-// gather of Q y in the first, Qᵀ r̃ and the coarse solve. Only rows with
-// m < 0.1 d (R > 9) aggregated (roots and their strong neighbours, P = ±√d
-// along each aggregate's tree), 4 serial symmetric Gauss–Seidel sweeps on
-// Ac; none where under 1 % of the rows are aggregated. CLI defaults, 1
-// thread, callgrind of smooth_extremality against 2c9f974: 1.1M 23/19/18 →
-// 16/13/12 iterations, 5.68 G → 4.73 G; dragon 57/55/47 → 24/21/17, 9.81 G
-// → 7.13 G (coarse solve 1.80 G); bunny unchanged (35, +2 % for the set-up).
-// Line counts equal on 35 meshes (classic, smooth, cad), zero crossings
-// against a 10⁻¹² solve: 1.1M max 0.0068 → 0.0010 edge, dragon 0.016 →
-// 0.040 (moves above 0.01 only where both ends are below 3·10⁻⁶ of the
-// RMS), no crossing appearing or vanishing (6 and 7 before). Not landed:
-// invariance_full failed (cad/cessna.obj, ×10⁻³ + 10⁷ diagonals: the
-// counts change, not flagged as decided by round-off) — the aggregation's
-// thresholds are discrete, so round-off can change the preconditioner and
-// with it the iterates by tolerance amounts; to be settled before landing
-// (e.g. thresholds with a margin, or the coarse level off where the
-// iterates must not depend on it). Also measured: every row aggregated
-// (1.1M 60 → 39 iterations but 5.68 → 6.60 G: the coarse level cost an
-// iteration); smoothed aggregation (Q and Ac 2–4× denser; dragon 8.49 G).
+// Two-level (multiplicative) preconditioner (paired_cg_coarse.cpp builds the
+// coarse level; first built on 85d284e, branch solver-two-level, and rebuilt):
+// the sweeps here as smoother around a coarse correction over aggregates of the
+// slow rows. Forward sweep, coarse correction P Ac⁻¹ Pᵀ, backward sweep: in the
+// Eisenstat variables the whole preconditioner is B̃⁻¹ = I + Q Ac⁻¹ Qᵀ with Q =
+// L P (the other terms cancel: S + Sᵀ − Â = I), so an iteration keeps its two
+// passes; the first gathers Q y into p, and after the second Qᵀ r̃ is gathered
+// by coarse row and y = Ac⁻¹ Qᵀ r̃ formed, ⟨r̃, z⟩ = ⟨r̃, r̃⟩ + ⟨Qᵀ r̃, y⟩.
+// Only rows with m < 0.1 d (R > 9; detail::is_slow, from the matrix: d −
+// Σ|a_ij| < 0.1 d) are aggregated: roots and their strong slow neighbours
+// (|â_ij| ≥ 0.08), then the rest joined to their strongest neighbour's
+// aggregate; P = ±√d along each aggregate's tree, its sign following the
+// entries σ (so flipping a row's sign flips exactly its value, as the smoothing
+// promises). Ac from the double entries as a sum of terms ≥ 0 (positive
+// definite however large R is), solved by 4 serial symmetric Gauss–Seidel
+// sweeps from 0 (a symmetric positive definite operator, so CG stays CG; 2, 3
+// and 6 sweeps: dragon 70, 62 and 53 iterations against 58, no fewer
+// instructions). No coarse level where under 1 % of the rows are aggregated
+// (the bunny): the iterates there are the one-level ones to the bit (CLI OBJ
+// byte-identical with two_level = false and with main on the 1.1M, the dragon,
+// feline and cessna). CLI defaults, 1 thread, callgrind of smooth_extremality
+// against 2817f06: iterations 1.1M 23/19/18 → 15/12/12, dragon 57/55/47 →
+// 23/19/16, bunny 12/12/11 unchanged; instructions 1.1M 5.68 G → 4.69 G
+// (−17 %), dragon 9.81 G → 6.51 G (−34 %; coarse solve 0.99 G, Qᵀ r̃ 0.31 G,
+// set-up 0.21 G), bunny 243.4 M → 247.4 M (+1.6 %: the test for slow rows, and
+// aggregates too few for a coarse level). Line counts equal to main's on 54
+// meshes (classic, smooth, cad, glb, large and the 1.1M; 38 of them with other
+// iterations, e.g. cad/crank 150 → 74, cgal-blade 105 → 31). Zero crossings
+// against a 10⁻¹² solve (largest and mean move along the edge, in edge lengths,
+// over both fields; crossings appearing or vanishing): 1.1M 0.0068 / 9·10⁻⁷,
+// 6 → 0.0018 / 9·10⁻⁷, 0; dragon 0.036 / 2.3·10⁻⁶, 7 → 0.12 / 8.6·10⁻⁷, 4;
+// moves above 0.01 edge 6 → 2 (0.12 where both ends are below 2·10⁻⁷ of the
+// field's RMS, 0.019 below 1.2·10⁻³). Round-off and the discrete thresholds: no
+// row of the 28 meshes with slow rows enough to aggregate (classic, cad, the
+// dragon and the 1.1M) lies within 10⁻⁹ (relative) of either threshold, within
+// 10⁻⁶ 1 row and 6 strength tests; so a margin would buy nothing. The iterates
+// still depend on the preconditioner by tolerance amounts, as they do on the
+// stopping iteration: where the lines are decided by round-off (cad/cessna)
+// they differ under the invariance transforms, as main's do
+// (tests/unit/pipeline/invariance_test.cpp). Also measured on the first branch:
+// every row aggregated (1.1M 60 → 39 iterations but 5.68 → 6.60 G); smoothed
+// aggregation (Q and Ac 2–4× denser; dragon 8.49 G); and here R > 4 (m <
+// 0.2 d): bunny 35 → 28 iterations but 243 → 429 M.
 //
 // Vectors in float beyond t, measured on 2dd3268 and not kept: U t, u and
 // r̃ in float (48 instead of 56 bytes a row of vectors), callgrind of the
@@ -155,16 +174,26 @@ struct SignedPairMatrix {
 };
 
 namespace detail {
+/// Whether the sweeps smooth a row slowly, so that it takes part in the
+/// coarse level: its diagonal exceeds the sum of its off-diagonal magnitudes
+/// (`excess`) by less than a tenth of the diagonal (in the smoothing, m <
+/// 0.1 d: R = t Σ_q w_pq / m_p > 9).
+inline bool is_slow(double diagonal, double excess, bool has_entries) { return has_entries && excess < 0.1 * diagonal; }
+/// The fewest aggregated rows of `rows` for which there is a coarse level (1 %).
+inline size_t min_aggregated(size_t rows) { return (rows + 99) / 100; }
+
 /// Greedy colouring in row order: each row takes the least colour that none
 /// of its earlier neighbours (columns below its row) has.
 std::vector<uint32_t> greedy_colours(const SignedPairMatrix& a);
 }  // namespace detail
 
 /// Conjugate gradients on both systems, preconditioned by multicolour
-/// symmetric Gauss–Seidel (paired_cg.cpp).
+/// symmetric Gauss–Seidel (paired_cg.cpp), with a coarse correction between
+/// its two sweeps where enough rows qualify (see above).
 class SignedPairSolver {
  public:
-  explicit SignedPairSolver(SignedPairMatrix matrix);
+  /// two_level = false leaves the coarse level out (one-level sweeps only).
+  explicit SignedPairSolver(SignedPairMatrix matrix, bool two_level = true);
 
   /// x (2 values per row, interleaved: x[2i+k]) holds the guess on entry;
   /// b is overwritten (the solver uses it as scratch: one vector less).
@@ -178,14 +207,31 @@ class SignedPairSolver {
 
   /// The colours of the Gauss–Seidel sweeps (no two neighbours share one).
   size_t colours() const { return colour_begin_.size() - 1; }
+  /// Rows of the coarse level (one per aggregate); 0 without one.
+  size_t coarse_rows() const { return coarse_begin_.empty() ? 0 : coarse_begin_.size() - 1; }
+  /// Rows of the fine level in some aggregate.
+  size_t aggregated_rows() const { return aggregated_; }
 
  private:
+  void build_coarse_level(const SignedPairMatrix& matrix, const std::vector<double>& excess,
+                          const std::vector<uint32_t>& bfs_order, const std::vector<uint32_t>& position);
+  // y ≈ Ac⁻¹ g, both fields, by the coarse sweeps (paired_cg.cpp).
+  void coarse_solve(const double* g, double* y) const;
+
   SignedPairMatrix a_;           // rows in colour order; entries: later colours | earlier ones;
                                  // columns without sign bits, weights empty:
   std::vector<float> weights_;   // (σ_0 w, σ_1 w) / √(a_ii a_jj) per entry, rounded to float
   std::vector<uint32_t> order_;  // the input row of each row of a_
   std::vector<uint32_t> colour_begin_, lower_begin_;
   std::vector<double> roots_;  // √A(i,i): the solver works on the system scaled to a unit diagonal
+  // The coarse level (empty without one), scaled to a unit diagonal per field:
+  // Q = L P by fine row (q_begin_, n + 1 offsets) and by coarse row
+  // (qt_begin_), entries (column, field 0, field 1); Ac by coarse row,
+  // off-diagonal entries only, those to later rows from coarse_upper_begin_.
+  std::vector<uint32_t> q_begin_, q_columns_, qt_begin_, qt_rows_, coarse_begin_, coarse_upper_begin_, coarse_columns_;
+  std::vector<float> q_values_, qt_values_;
+  std::vector<double> coarse_values_;
+  size_t aggregated_ = 0;
 };
 
 }  // namespace crestline
