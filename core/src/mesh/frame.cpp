@@ -8,6 +8,7 @@
 #include "crestline/mesh/topology.h"
 #include "crestline/numerics/parallel.h"
 #include "crestline/numerics/uninitialised.h"
+#include "parts.h"
 
 namespace crestline {
 
@@ -15,25 +16,9 @@ uint32_t ComponentFrames::largest() const {
   return static_cast<uint32_t>(std::max_element(triangle_count.begin(), triangle_count.end()) - triangle_count.begin());
 }
 
-namespace {
-
-// Calls body(part, begin, end) on `parts` consecutive ranges covering
-// [0, count), each on its own thread where there are threads.
-template <typename Body>
-void for_each_part(size_t parts, size_t count, const Body& body) {
-  parallel_for(
-      parts,
-      [&](size_t first, size_t last) {
-        for (size_t p = first; p < last; ++p) body(p, count * p / parts, count * (p + 1) / parts);
-      },
-      1);
-}
-
-}  // namespace
-
 ComponentFrames component_frames(const Mesh& mesh) {
   const size_t nv = mesh.positions.size(), nt = mesh.triangles.size();
-  const size_t threads = nt < (size_t{1} << 15) ? 1 : std::min<size_t>(size_t(max_threads()), 8);
+  const size_t threads = detail::part_count(nt);
   // Union-find over the vertices, always linking the larger root under the
   // smaller: a tree's root is then its component's smallest vertex whatever
   // order the links were made in, so the triangles are joined on every thread
@@ -72,7 +57,7 @@ ComponentFrames component_frames(const Mesh& mesh) {
   // Components are numbered in order of first appearance among the
   // triangles, i.e. of their first triangles (a triangle's corners share a
   // component): each root's first triangle is a minimum over every thread's
-  // triangles, the first triangles then gathered in order, part by part.
+  // triangles, and those first triangles numbered in order on every thread.
   std::unique_ptr<std::atomic<uint32_t>[]> first(new std::atomic<uint32_t>[nv]);
   parallel_for(nv, [&](size_t begin, size_t end) {
     for (size_t v = begin; v < end; ++v) first[v].store(kNone, std::memory_order_relaxed);
@@ -85,17 +70,12 @@ ComponentFrames component_frames(const Mesh& mesh) {
       }
     }
   });
-  std::vector<std::vector<uint32_t>> part_firsts(threads);
-  for_each_part(threads, nt, [&](size_t p, size_t begin, size_t end) {
-    for (size_t t = begin; t < end; ++t)
-      if (first[root(mesh.triangles[t][0])].load(std::memory_order_relaxed) == t) part_firsts[p].push_back(uint32_t(t));
-  });
   ComponentFrames f;
   UninitialisedVector<uint32_t> component(nv);  // of each root; set below for the roots of triangles
-  for (const std::vector<uint32_t>& firsts : part_firsts)
-    for (uint32_t t : firsts)
-      component[root(mesh.triangles[t][0])] = uint32_t(f.triangle_count.size()), f.triangle_count.push_back(0);
-  part_firsts = {};
+  detail::place_kept(
+      nt, [&](size_t t) { return first[root(mesh.triangles[t][0])].load(std::memory_order_relaxed) == t; },
+      [&](size_t n) { f.triangle_count.assign(n, 0); },
+      [&](size_t t, size_t c) { component[root(mesh.triangles[t][0])] = uint32_t(c); });
   const size_t n = f.triangle_count.size();
   f.vertex_component.resize(nv);
   // Unreferenced vertices (none after repair) join component 0.
@@ -114,7 +94,7 @@ ComponentFrames component_frames(const Mesh& mesh) {
   // pass in vertex order. One part when the components are many and small.
   const size_t box_parts = n * 64 <= nv ? threads : 1;
   std::vector<Vec3> lo(box_parts * n, Vec3::Constant(INFINITY)), hi(box_parts * n, Vec3::Constant(-INFINITY));
-  for_each_part(box_parts, nv, [&](size_t p, size_t begin, size_t end) {
+  detail::for_each_part(box_parts, nv, [&](size_t p, size_t begin, size_t end) {
     Vec3 *part_lo = lo.data() + p * n, *part_hi = hi.data() + p * n;
     for (size_t v = begin; v < end; ++v) {
       const uint32_t c = f.vertex_component[v];

@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <mutex>
 #include <numeric>
 #include <string>
@@ -13,6 +14,7 @@
 #include "crestline/mesh/topology.h"
 #include "crestline/numerics/parallel.h"
 #include "half_edges.h"
+#include "parts.h"
 
 namespace crestline {
 namespace {
@@ -65,26 +67,40 @@ void check_soup(const TriangleSoup& soup, const RepairOptions& options) {
                                          ".");
   if (soup.triangle_count() == 0) throw Error(ErrorKind::InvalidInput, "the mesh contains no triangles.");
   const size_t nv = soup.vertex_count();
-  for (size_t i = 0; i < soup.indices.size(); ++i)
-    if (soup.indices[i] >= nv)
-      throw Error(ErrorKind::InvalidInput, "triangle " + std::to_string(i / 3) + " refers to vertex " +
-                                               std::to_string(soup.indices[i]) + " but there are only " +
-                                               std::to_string(nv) + " vertices.");
+  // The first index out of range: each thread's first, the smallest kept.
+  std::atomic<size_t> first_bad{soup.indices.size()};
+  parallel_for(soup.indices.size(), [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i)
+      if (soup.indices[i] >= nv) {
+        size_t seen = first_bad.load(std::memory_order_relaxed);
+        while (i < seen && !first_bad.compare_exchange_weak(seen, i, std::memory_order_relaxed)) {
+        }
+        return;
+      }
+  });
+  const size_t i = first_bad;
+  if (i < soup.indices.size())
+    throw Error(ErrorKind::InvalidInput, "triangle " + std::to_string(i / 3) + " refers to vertex " +
+                                             std::to_string(soup.indices[i]) + " but there are only " +
+                                             std::to_string(nv) + " vertices.");
 }
 
 // Merges vertices closer than `tolerance`: vertex i joins the earliest
 // representative (a vertex that joined no other) j < i within tolerance, or
-// represents itself. The grid is a flat open-addressing table from cell to a
-// list (through `next`) of the vertices in it: one probe per cell instead of
-// a node chase. Cells measure 16 tolerances, so the box of ±tolerance (plus
-// a margin of half a tolerance for rounding) around a vertex spans 3/16 of a
-// cell per axis: 1.7 probes on average (1 to 8), where cells of 2
-// tolerances took 15.6 (8 to 27). Vertices closer than a few cells are rare
-// at a tolerance of 1e-7 of the diagonal (seam copies sit at distance 0),
-// so the lists stay short. The result does not depend on the cells: exact
-// distances decide.
-// On several threads the table holds every vertex; the searches run on every thread and find
-// the earliest vertex within tolerance, which is the answer unless that
+// represents itself. Vertices are found through a grid hashed to slots
+// (cells whose keys share a slot only cost distance tests). Cells measure 16
+// tolerances, so the box of ±tolerance (plus a margin of half a tolerance
+// for rounding) around a vertex spans 3/16 of a cell per axis: 1.7 probes on
+// average (1 to 8), where cells of 2 tolerances took 15.6 (8 to 27).
+// Vertices closer than a few cells are rare at a tolerance of 1e-7 of the
+// diagonal (seam copies sit at distance 0), so the slots stay short. The
+// result does not depend on the cells: exact distances decide.
+// On one thread the grid is a flat open-addressing table from slot to a list
+// (through `next`) of representatives, inserted as they are found (a sixth
+// of the entries on a soup, so fewer cache misses per search). On several,
+// every vertex is grouped by slot at once (a counting sort on every thread,
+// each slot's vertices in input order); the searches run on every thread and
+// find the earliest vertex within tolerance, which is the answer unless that
 // vertex joined another one itself (a chain, rare: seams have exact copies);
 // those few are searched again in input order, among representatives only.
 // Only `weldable` vertices (finite and used by a triangle, so inside the
@@ -111,73 +127,92 @@ std::vector<uint32_t> weld(const std::vector<Vec3>& points, const std::vector<ui
     return static_cast<uint64_t>(x) * 73856093u ^ static_cast<uint64_t>(y) * 19349663u ^
            static_cast<uint64_t>(z) * 83492791u;
   };
+  const bool one_thread = max_threads() == 1;
+  // Slots: twice the vertices for the open-addressing table, as many for the grouping.
   int bits = 1;
-  while ((size_t{1} << bits) < 2 * points.size()) ++bits;
+  while ((size_t{1} << bits) < (one_thread ? 2 : 1) * points.size()) ++bits;
   const size_t mask = (size_t{1} << bits) - 1;
-  std::vector<uint64_t> keys(mask + 1);
-  std::vector<uint32_t> head(mask + 1, kNone), next(points.size(), kNone);
-  // The slot of a cell (empty if head == kNone); cells whose keys collide
-  // share a list, which only costs distance tests.
-  auto slot = [&](uint64_t key) {
-    size_t s = static_cast<size_t>((key * 0x9E3779B97F4A7C15ull) >> (64 - bits));
-    while (head[s] != kNone && keys[s] != key) s = (s + 1) & mask;
-    return s;
+  auto hashed = [&](uint64_t key) { return static_cast<size_t>((key * 0x9E3779B97F4A7C15ull) >> (64 - bits)); };
+  // Calls visit(key) for the cells within reach of vertex i.
+  auto for_cells_near = [&](uint32_t i, const auto& visit) {
+    const Vec3 q = scaled(points[i]);
+    const int64_t x0 = cell(q.x() - kReach), x1 = cell(q.x() + kReach), y0 = cell(q.y() - kReach),
+                  y1 = cell(q.y() + kReach), z0 = cell(q.z() - kReach), z1 = cell(q.z() + kReach);
+    for (int64_t x = x0; x <= x1; ++x)
+      for (int64_t y = y0; y <= y1; ++y)
+        for (int64_t z = z0; z <= z1; ++z) visit(cell_key(x, y, z));
   };
   auto key_of = [&](uint32_t i) {
     const Vec3 q = scaled(points[i]);
     return cell_key(cell(q.x()), cell(q.y()), cell(q.z()));
   };
-  // Lists in descending index order (each vertex is pushed at its head).
-  auto insert = [&](uint32_t i, uint64_t key) {
-    const size_t s = slot(key);
-    keys[s] = key;
-    next[i] = head[s];
-    head[s] = i;
-  };
   const double tol2 = tolerance * tolerance;
-  // The earliest vertex j < i within tolerance (among representatives only
-  // if `representatives_only`).
-  auto earliest = [&](uint32_t i, bool representatives_only) {
-    const Vec3 q = scaled(points[i]);
-    const int64_t x0 = cell(q.x() - kReach), x1 = cell(q.x() + kReach), y0 = cell(q.y() - kReach),
-                  y1 = cell(q.y() + kReach), z0 = cell(q.z() - kReach), z1 = cell(q.z() + kReach);
-    uint32_t found = kNone;
-    for (int64_t x = x0; x <= x1; ++x)
-      for (int64_t y = y0; y <= y1; ++y)
-        for (int64_t z = z0; z <= z1; ++z)
-          for (uint32_t j = head[slot(cell_key(x, y, z))]; j != kNone; j = next[j])
-            if (j < i && j < found && (!representatives_only || representative[j] == j) &&
-                (points[j] - points[i]).squaredNorm() <= tol2)
-              found = j;
-    return found;
-  };
-  if (max_threads() == 1) {
-    // One thread: insert as we go, representatives only. The same answer
-    // (the earliest representative within tolerance) from a table with a
-    // sixth of the entries on a soup, so fewer cache misses per search.
+  auto near = [&](uint32_t j, uint32_t i) { return (points[j] - points[i]).squaredNorm() <= tol2; };
+  if (one_thread) {
+    std::vector<uint64_t> keys(mask + 1);
+    std::vector<uint32_t> head(mask + 1, kNone), next(points.size(), kNone);
+    // The slot of a cell (empty if head == kNone); cells whose keys collide
+    // share a list, which only costs distance tests.
+    auto slot = [&](uint64_t key) {
+      size_t s = hashed(key);
+      while (head[s] != kNone && keys[s] != key) s = (s + 1) & mask;
+      return s;
+    };
     for (uint32_t i = 0; i < points.size(); ++i) {
       if (!weldable[i]) continue;
-      const uint32_t found = earliest(i, false);
-      if (found != kNone)
+      uint32_t found = kNone;
+      for_cells_near(i, [&](uint64_t key) {
+        for (uint32_t j = head[slot(key)]; j != kNone; j = next[j])
+          if (j < found && near(j, i)) found = j;
+      });
+      if (found != kNone) {
         representative[i] = found, ++welded;
-      else
-        insert(i, key_of(i));
+      } else {
+        // Lists in descending index order (each vertex is pushed at its head).
+        const uint64_t key = key_of(i);
+        const size_t s = slot(key);
+        keys[s] = key;
+        next[i] = head[s];
+        head[s] = i;
+      }
     }
     return representative;
   }
-  // Several threads: the keys on every thread, then the table in input order.
-  std::vector<uint64_t> vertex_key(points.size());
+  // Several threads: every weldable vertex grouped by the slot of its cell.
+  UninitialisedVector<uint32_t> vertex_slot(points.size());
   parallel_for(points.size(), [&](size_t begin, size_t end) {
-    for (size_t i = begin; i < end; ++i)
-      if (weldable[i]) vertex_key[i] = key_of(uint32_t(i));
+    for (size_t i = begin; i < end; ++i) vertex_slot[i] = weldable[i] ? uint32_t(hashed(key_of(uint32_t(i)))) : kNone;
   });
-  for (uint32_t i = 0; i < points.size(); ++i)
-    if (weldable[i]) insert(i, vertex_key[i]);
-  vertex_key = std::vector<uint64_t>();
-  std::vector<uint32_t> nearest(points.size(), kNone);
+  std::vector<uint32_t> slot_start;
+  UninitialisedVector<uint32_t> slot_vertices;
+  detail::group_by_bucket(
+      points.size(), mask + 1,
+      [&](size_t i, const auto& emit) {
+        if (vertex_slot[i] != kNone) emit(vertex_slot[i], uint32_t(i));
+      },
+      slot_start, slot_vertices);
+  vertex_slot = {};
+  // The earliest vertex j < i within tolerance (among representatives only
+  // if `representatives_only`): each slot's first such one, its vertices
+  // being ascending.
+  auto earliest = [&](uint32_t i, bool representatives_only) {
+    uint32_t found = kNone;
+    for_cells_near(i, [&](uint64_t key) {
+      const size_t s = hashed(key);
+      for (uint32_t k = slot_start[s]; k < slot_start[s + 1]; ++k) {
+        const uint32_t j = slot_vertices[k];
+        if (j >= std::min(i, found)) break;
+        if ((!representatives_only || representative[j] == j) && near(j, i)) {
+          found = j;
+          break;
+        }
+      }
+    });
+    return found;
+  };
+  UninitialisedVector<uint32_t> nearest(points.size());
   parallel_for(points.size(), [&](size_t begin, size_t end) {
-    for (size_t i = begin; i < end; ++i)
-      if (weldable[i]) nearest[i] = earliest(static_cast<uint32_t>(i), false);
+    for (size_t i = begin; i < end; ++i) nearest[i] = weldable[i] ? earliest(static_cast<uint32_t>(i), false) : kNone;
   });
   for (uint32_t i = 0; i < points.size(); ++i) {
     uint32_t found = nearest[i];
@@ -195,42 +230,47 @@ std::vector<uint32_t> weld(const std::vector<Vec3>& points, const std::vector<ui
 // they have the same opposite corner; conversely two half-edges of one edge
 // with the same opposite corner are a duplicate pair. So a clean mesh needs
 // no pass of its own to prove it has none.
+// Every entry is written once, by its edge's group, so none is zero-filled first.
 struct EdgePairs {
-  std::vector<uint32_t> partner;  // the corner across a manifold edge, kNone elsewhere
-  std::vector<uint8_t> same;      // partner runs the same way (the triangles disagree)
-  std::vector<uint8_t> cut;       // 3 per triangle, edge k = corners k, k+1
-  size_t nonmanifold = 0;         // edges of more than two triangles
-  size_t single = 0;              // edges of one triangle
-  bool duplicates = false;        // two triangles have the same three vertices
+  UninitialisedVector<uint32_t> partner;  // the corner across a manifold edge, kNone elsewhere
+  UninitialisedVector<uint8_t> same;      // partner runs the same way (the triangles disagree)
+  UninitialisedVector<uint8_t> cut;       // 3 per triangle, edge k = corners k, k+1
+  size_t nonmanifold = 0;                 // edges of more than two triangles
+  size_t single = 0;                      // edges of one triangle
+  bool duplicates = false;                // two triangles have the same three vertices
 };
 
 EdgePairs pair_half_edges(const std::vector<Triangle>& tris, size_t vertex_count) {
   const size_t nt = tris.size();
   EdgePairs out;
-  out.partner.assign(3 * nt, kNone);
-  out.same.assign(3 * nt, 0);
-  out.cut.assign(3 * nt, 0);
+  out.partner.resize(3 * nt);
+  out.same.resize(3 * nt);
+  out.cut.resize(3 * nt);
   const detail::HalfEdgeOrder order = detail::order_half_edges(tris, vertex_count);
   using H = detail::HalfEdgeOrder;
   auto from = [&](uint32_t c) { return tris[c / 3][c % 3]; };
   auto opposite = [&](uint32_t c) { return tris[c / 3][(c % 3 + 2) % 3]; };
   std::atomic<size_t> nonmanifold{0}, single{0};
   std::atomic<bool> duplicates{false};
-  parallel_for(vertex_count, [&](size_t begin, size_t end) {
+  detail::for_bucket_ranges(order.start, [&](size_t begin, size_t end) {
     size_t count = 0, singles = 0;
     bool repeated = false;
     order.for_each_edge(begin, end, [&](uint32_t, uint32_t, const uint64_t* first, const uint64_t* last) {
       if (last - first == 1) {
         ++singles;
+        const uint32_t a = H::corner(first[0]);
+        out.partner[a] = kNone, out.same[a] = 0, out.cut[a] = 0;
       } else if (last - first == 2) {
         const uint32_t a = H::corner(first[0]), b = H::corner(first[1]);
         out.partner[a] = b, out.partner[b] = a;
         out.same[a] = out.same[b] = from(a) == from(b);
+        out.cut[a] = out.cut[b] = 0;
         repeated |= opposite(a) == opposite(b);
       } else {
         ++count;
         for (const uint64_t* h = first; h < last; ++h) {
-          out.cut[H::corner(*h)] = 1;
+          const uint32_t a = H::corner(*h);
+          out.partner[a] = kNone, out.same[a] = 0, out.cut[a] = 1;
           for (const uint64_t* g = first; g < h; ++g) repeated |= opposite(H::corner(*g)) == opposite(H::corner(*h));
         }
       }
@@ -267,58 +307,136 @@ void drop_duplicates(std::vector<Triangle>& tris, size_t vertex_count, RepairRep
   tris.resize(n);
 }
 
+// Components and flips (see orient) from a union-find over the triangles,
+// on every thread: an entry holds its parent << 1 | its flip relative to
+// the parent, and links always put the larger root under the smaller, so
+// whatever the order of the links a component's root is its seed and, where
+// the component is orientable, a triangle's flip relative to the root is the
+// only consistent one. Sets each triangle's component (numbered in order of
+// seeds) and flip, and each component's seed; returns which components are
+// not orientable, their triangles left with component kNone and no flip for
+// the traversal. Entries are 31-bit triangle indices (3 nt corners fit in 32 bits).
+std::vector<uint8_t> link_components(const UninitialisedVector<uint32_t>& partner,
+                                     const UninitialisedVector<uint8_t>& same, const UninitialisedVector<uint8_t>& cut,
+                                     UninitialisedVector<uint32_t>& component, std::vector<uint8_t>& flipped,
+                                     std::vector<uint32_t>& seeds) {
+  const size_t nt = component.size();
+  std::unique_ptr<std::atomic<uint32_t>[]> link(new std::atomic<uint32_t>[nt]);
+  parallel_for(nt, [&](size_t begin, size_t end) {
+    for (size_t t = begin; t < end; ++t) link[t].store(uint32_t(t) << 1, std::memory_order_relaxed);
+  });
+  // The root of t << 1 | t's flip relative to it. Halving the path stores
+  // t's grandparent with the flips added: a relation read whole from one
+  // entry stays true, so any interleaving leaves every entry valid.
+  auto find = [&](uint32_t t) {
+    for (uint32_t flip = 0;;) {
+      const uint32_t to_parent = link[t].load(std::memory_order_relaxed), parent = to_parent >> 1;
+      if (parent == t) return t << 1 | flip;
+      const uint32_t to_grandparent = link[parent].load(std::memory_order_relaxed);
+      if (to_grandparent >> 1 == parent) return parent << 1 | (flip ^ (to_parent & 1));
+      const uint32_t skip = (to_grandparent & ~1u) | ((to_parent ^ to_grandparent) & 1);
+      link[t].store(skip, std::memory_order_relaxed);
+      flip ^= skip & 1;
+      t = skip >> 1;
+    }
+  };
+  // Joins t and u, u flipped relative to t by `flip`; false if they are
+  // joined already with the other flip (a loop that cannot agree).
+  auto unite = [&](uint32_t t, uint32_t u, uint32_t flip) {
+    for (;;) {
+      const uint32_t a = find(t), b = find(u), relative = (a ^ b ^ flip) & 1;
+      uint32_t ra = a >> 1, rb = b >> 1;
+      if (ra == rb) return relative == 0;
+      if (ra < rb) std::swap(ra, rb);
+      uint32_t expected = ra << 1;  // still a root unless another thread linked it since
+      if (link[ra].compare_exchange_weak(expected, rb << 1 | relative, std::memory_order_relaxed)) return true;
+    }
+  };
+  std::vector<uint32_t> disagreeing;  // a triangle of each loop that cannot agree
+  std::mutex disagreeing_mutex;
+  parallel_for(nt, [&](size_t begin, size_t end) {
+    std::vector<uint32_t> found;
+    for (size_t t = begin; t < end; ++t)
+      for (uint32_t corner = uint32_t(3 * t); corner < 3 * t + 3; ++corner)
+        if (partner[corner] != kNone && !cut[corner] && corner < partner[corner] &&
+            !unite(uint32_t(t), partner[corner] / 3, same[corner]))
+          found.push_back(uint32_t(t));
+    if (found.empty()) return;
+    const std::lock_guard<std::mutex> lock(disagreeing_mutex);
+    disagreeing.insert(disagreeing.end(), found.begin(), found.end());
+  });
+  // Every triangle straight under its root; the roots numbered in order.
+  parallel_for(nt, [&](size_t begin, size_t end) {
+    for (size_t t = begin; t < end; ++t) link[t].store(find(uint32_t(t)), std::memory_order_relaxed);
+  });
+  auto seed = [&](size_t t) { return link[t].load(std::memory_order_relaxed) >> 1; };
+  detail::place_kept(
+      nt, [&](size_t t) { return seed(t) == t; }, [&](size_t n) { seeds.resize(n); },
+      [&](size_t t, size_t c) { component[t] = uint32_t(c), seeds[c] = uint32_t(t); });
+  parallel_for(nt, [&](size_t begin, size_t end) {
+    for (size_t t = begin; t < end; ++t) {
+      if (seed(t) != t) component[t] = component[seed(t)];  // a seed's own entry is read, not rewritten
+      flipped[t] = link[t].load(std::memory_order_relaxed) & 1;
+    }
+  });
+  link.reset();
+  std::vector<uint8_t> unorientable(seeds.size(), 0);
+  for (uint32_t t : disagreeing) unorientable[component[t]] = 1;
+  if (!disagreeing.empty())
+    parallel_for(nt, [&](size_t begin, size_t end) {
+      for (size_t t = begin; t < end; ++t)
+        if (unorientable[component[t]]) component[t] = kNone, flipped[t] = 0;
+    });
+  return unorientable;
+}
+
 // Orients triangles consistently across shared edges, component by
 // component; edges that cannot agree (non-orientable surfaces) are cut.
 // Returns per-corner "edge is cut" flags and the component of each triangle.
 struct Orientation {
-  std::vector<uint8_t> cut;  // 3 per triangle, edge k = corners k, k+1
+  UninitialisedVector<uint8_t> cut;  // 3 per triangle, edge k = corners k, k+1
   // EdgePairs::partner, its slots following the flips (its values still
   // name the other triangle, the corner there as paired): split_fans walks it.
-  std::vector<uint32_t> partner;
-  std::vector<uint32_t> component;
+  UninitialisedVector<uint32_t> partner;
+  UninitialisedVector<uint32_t> component;
   size_t components = 0;
   size_t single_edges = 0;  // edges of one triangle: boundary edges whatever the repair does
 };
 
+// A component's triangles are those joined through uncut paired edges; a
+// triangle is flipped relative to the component's first triangle (its seed,
+// the smallest index) when an odd number of disagreeing edges lead to it.
+// On one thread, one depth-first traversal from each seed in turn finds
+// both, and cuts an edge where the flips of its triangles disagree
+// (non-orientable surfaces). On several, a union-find over the triangles
+// finds them on every thread (see link_components), and only the
+// non-orientable components are traversed, from their seeds, so that the
+// cuts are those of the traversal.
 Orientation orient(std::vector<Triangle>& tris, const std::vector<Vec3>& points, EdgePairs pairs,
                    RepairReport& report) {
   const size_t nt = tris.size();
   Orientation out;
   out.cut = std::move(pairs.cut);
-  out.component.assign(nt, kNone);
   report.nonmanifold_edges += pairs.nonmanifold;
   out.single_edges = pairs.single;
   out.partner = std::move(pairs.partner);
-  const std::vector<uint32_t>& partner = out.partner;
-  std::vector<uint8_t>& same = pairs.same;
+  const UninitialisedVector<uint32_t>& partner = out.partner;
+  const UninitialisedVector<uint8_t>& same = pairs.same;
+  auto joined = [&](uint32_t corner) { return partner[corner] != kNone && !out.cut[corner]; };
 
-  // The traversal, component by component: a triangle is flipped relative to
-  // the component's first triangle (its seed, the smallest index) when an odd
-  // number of disagreeing edges lead to it. `members` lists every component's
-  // triangles in traversal order, component c from member_start[c].
-  // A component is closed when none of its corners lacks a partner or is
-  // cut (a cut made here is between two of its own triangles).
-  std::vector<uint8_t> flipped(nt, 0), closed;
-  std::vector<uint32_t> stack, members, member_start;
-  members.reserve(nt);
-  for (uint32_t seed = 0; seed < nt; ++seed) {
-    if (out.component[seed] != kNone) continue;
-    const uint32_t c = static_cast<uint32_t>(out.components++);
-    member_start.push_back(static_cast<uint32_t>(members.size()));
-    closed.push_back(1);
-    stack.assign(1, seed);
-    out.component[seed] = c;
+  std::vector<uint8_t> flipped(nt, 0);
+  out.component.resize(nt);
+  std::vector<uint32_t> seeds, stack;  // seeds[c]: component c's first triangle
+  // Component c from its seed, over the triangles not yet visited (kNone).
+  auto traverse = [&](uint32_t c) {
+    stack.assign(1, seeds[c]);
+    out.component[seeds[c]] = c;
     while (!stack.empty()) {
       const uint32_t t = stack.back();
       stack.pop_back();
-      members.push_back(t);
       for (uint32_t corner = 3 * t; corner < 3 * t + 3; ++corner) {
-        const uint32_t other = partner[corner];
-        if (other == kNone || out.cut[corner]) {
-          closed[c] = 0;
-          continue;
-        }
-        const uint32_t u = other / 3;
+        if (!joined(corner)) continue;
+        const uint32_t other = partner[corner], u = other / 3;
         const uint8_t disagree = same[corner] ^ flipped[t];
         if (out.component[u] == kNone) {
           flipped[u] = disagree;
@@ -326,50 +444,73 @@ Orientation orient(std::vector<Triangle>& tris, const std::vector<Vec3>& points,
           stack.push_back(u);
         } else if (disagree != flipped[u]) {
           out.cut[corner] = out.cut[other] = 1;  // non-orientable here
-          closed[c] = 0;
         }
       }
     }
+  };
+  if (detail::part_count(nt) == 1) {
+    std::fill(out.component.begin(), out.component.end(), kNone);
+    for (uint32_t t = 0; t < nt; ++t)
+      if (out.component[t] == kNone) seeds.push_back(t), traverse(uint32_t(seeds.size() - 1));
+  } else {
+    const std::vector<uint8_t> unorientable = link_components(partner, same, out.cut, out.component, flipped, seeds);
+    for (uint32_t c = 0; c < seeds.size(); ++c)
+      if (unorientable[c]) traverse(c);
   }
-  member_start.push_back(static_cast<uint32_t>(members.size()));
-  same = std::vector<uint8_t>();
+  const size_t n = out.components = seeds.size();
 
-  // Closed components face outwards: the signed volume of each triangle about
-  // the first corner of its component, in units of the component's first
-  // edge (the same sign at any position and scale), on every thread; each
-  // component's terms are then added in traversal order.
-  std::vector<double> volume(nt, 0);
-  parallel_for(nt, [&](size_t begin, size_t end) {
+  // Each component's size, flipped triangles and whether it is open (a
+  // corner without a partner, or cut: every non-orientable one), counted by
+  // parts on every thread (on one part when the components are many).
+  const size_t parts = n * 64 <= nt ? detail::part_count(nt) : 1;
+  std::vector<uint32_t> size(parts * n, 0), nflip(parts * n, 0);
+  std::vector<uint8_t> open(parts * n, 0);
+  detail::for_each_part(parts, nt, [&](size_t p, size_t begin, size_t end) {
+    uint32_t *part_size = size.data() + p * n, *part_nflip = nflip.data() + p * n;
+    uint8_t* part_open = open.data() + p * n;
     for (size_t t = begin; t < end; ++t) {
       const uint32_t c = out.component[t];
-      if (!closed[c]) continue;
-      const Triangle& first = tris[members[member_start[c]]];
-      const Vec3& origin = points[first[0]];
-      const double unit = (points[first[1]] - origin).norm();
-      const double inv_unit = unit > 0 ? 1 / unit : 1;
-      const Triangle& f = tris[t];
-      const Vec3 a = (points[f[0]] - origin) * inv_unit, b = (points[f[1]] - origin) * inv_unit,
-                 d = (points[f[2]] - origin) * inv_unit;
-      volume[t] = a.dot(b.cross(d));
+      ++part_size[c], part_nflip[c] += flipped[t];
+      if (!joined(uint32_t(3 * t)) || !joined(uint32_t(3 * t + 1)) || !joined(uint32_t(3 * t + 2))) part_open[c] = 1;
     }
   });
-  // Keep the orientation most of the file agreed on; closed components then
-  // face outwards (positive signed volume).
-  std::vector<uint8_t> invert(out.components, 0);
-  for (size_t c = 0; c < out.components; ++c) {
-    const uint32_t* first = members.data() + member_start[c];
-    const uint32_t* last = members.data() + member_start[c + 1];
-    size_t nflip = 0;
-    for (const uint32_t* t = first; t < last; ++t) nflip += flipped[*t];
-    bool flip_all = 2 * nflip > size_t(last - first);
-    if (closed[c]) {
-      double sum = 0;
-      for (const uint32_t* t = first; t < last; ++t) sum += (flipped[*t] != flip_all) ? -volume[*t] : volume[*t];
-      flip_all = flip_all != (sum < 0);
-    }
-    invert[c] = flip_all;
-    report.flipped_triangles += flip_all ? size_t(last - first) - nflip : nflip;
+  for (size_t p = 1; p < parts; ++p)
+    for (size_t c = 0; c < n; ++c) size[c] += size[p * n + c], nflip[c] += nflip[p * n + c], open[c] |= open[p * n + c];
+  // Keep the orientation most of the file agreed on.
+  std::vector<uint8_t> invert(n);
+  for (size_t c = 0; c < n; ++c) invert[c] = 2 * size_t(nflip[c]) > size[c];
+  // Closed components then face outwards (positive signed volume): the
+  // signed volume of each triangle about the first corner of its component's
+  // seed, in units of the seed's first edge (the same sign at any position
+  // and scale), with the sign of its orientation as kept, on every thread;
+  // each component's terms then added in triangle order. (They were added in
+  // traversal order before 2 threads could find the components: the order
+  // only decides a sum within rounding of 0, a flat closed surface, which
+  // faces neither way.)
+  if (std::count(open.begin(), open.begin() + ptrdiff_t(n), 0) > 0) {
+    UninitialisedVector<double> volume(nt);
+    parallel_for(nt, [&](size_t begin, size_t end) {
+      for (size_t t = begin; t < end; ++t) {
+        const uint32_t c = out.component[t];
+        if (open[c]) continue;
+        const Triangle& first = tris[seeds[c]];
+        const Vec3& origin = points[first[0]];
+        const double unit = (points[first[1]] - origin).norm();
+        const double inv_unit = unit > 0 ? 1 / unit : 1;
+        const Triangle& f = tris[t];
+        const Vec3 a = (points[f[0]] - origin) * inv_unit, b = (points[f[1]] - origin) * inv_unit,
+                   d = (points[f[2]] - origin) * inv_unit;
+        const double v = a.dot(b.cross(d));
+        volume[t] = flipped[t] != invert[c] ? -v : v;
+      }
+    });
+    std::vector<double> sum(n, 0.0);
+    for (size_t t = 0; t < nt; ++t)
+      if (!open[out.component[t]]) sum[out.component[t]] += volume[t];
+    for (size_t c = 0; c < n; ++c)
+      if (!open[c]) invert[c] = invert[c] != (sum[c] < 0);
   }
+  for (size_t c = 0; c < n; ++c) report.flipped_triangles += invert[c] ? size[c] - nflip[c] : nflip[c];
   parallel_for(nt, [&](size_t begin, size_t end) {
     for (size_t t = begin; t < end; ++t)
       if (flipped[t] != invert[out.component[t]]) {
@@ -396,13 +537,10 @@ Orientation orient(std::vector<Triangle>& tris, const std::vector<Vec3>& points,
 // vertex's only one: nearly every fan. The rest, found on every thread, are
 // sorted by (vertex, first corner).
 void split_fans(std::vector<Triangle>& tris, std::vector<Vec3>& points, const Orientation& orientation,
-                RepairReport& report) {
-  const size_t nv = points.size(), nt = tris.size();
-  const std::vector<uint8_t>& cut = orientation.cut;
-  const std::vector<uint32_t>& partner = orientation.partner;
-  std::vector<uint32_t> triangles_at(nv, 0);
-  for (const Triangle& t : tris)
-    for (uint32_t v : t) ++triangles_at[v];
+                const std::vector<uint32_t>& triangles_at, RepairReport& report) {
+  const size_t nt = tris.size();
+  const UninitialisedVector<uint8_t>& cut = orientation.cut;
+  const UninitialisedVector<uint32_t>& partner = orientation.partner;
   // The corner at v of the triangle across the edge of corner `edge` (a
   // corner of v's triangle), or kNone where the edge is cut or has no other.
   auto across = [&](uint32_t edge, uint32_t v) {
@@ -473,12 +611,20 @@ void split_fans(std::vector<Triangle>& tris, std::vector<Vec3>& points, const Or
 // each end); only the cut edges' half-edges, few, are grouped anew by their
 // renamed ends, and one left alone is a boundary edge.
 size_t count_boundary_edges(const std::vector<Triangle>& tris, const Orientation& orientation) {
+  // Found on every thread (sorted after, so in any order).
   std::vector<uint64_t> cut_edges;
-  for (size_t c = 0; c < orientation.cut.size(); ++c)
-    if (orientation.cut[c]) {
-      const uint32_t a = tris[c / 3][c % 3], b = tris[c / 3][(c + 1) % 3];
-      cut_edges.push_back(uint64_t{std::min(a, b)} << 32 | std::max(a, b));
-    }
+  std::mutex cut_edges_mutex;
+  parallel_for(orientation.cut.size(), [&](size_t begin, size_t end) {
+    std::vector<uint64_t> found;
+    for (size_t c = begin; c < end; ++c)
+      if (orientation.cut[c]) {
+        const uint32_t a = tris[c / 3][c % 3], b = tris[c / 3][(c + 1) % 3];
+        found.push_back(uint64_t{std::min(a, b)} << 32 | std::max(a, b));
+      }
+    if (found.empty()) return;
+    const std::lock_guard<std::mutex> lock(cut_edges_mutex);
+    cut_edges.insert(cut_edges.end(), found.begin(), found.end());
+  });
   std::sort(cut_edges.begin(), cut_edges.end());
   size_t boundary = orientation.single_edges;
   for (size_t i = 0, j = 0; i < cut_edges.size(); i = j) {
@@ -498,17 +644,38 @@ RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options)
   report.input_vertices = soup.vertex_count();
   report.input_triangles = soup.triangle_count();
 
-  const size_t nv = soup.vertex_count();
+  const size_t nv = soup.vertex_count(), input_nt = soup.triangle_count();
   std::vector<Vec3> points(nv);
-  std::vector<uint8_t> finite(nv);
-  Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
-  for (size_t i = 0; i < nv; ++i) {
-    points[i] = Vec3(soup.positions[3 * i], soup.positions[3 * i + 1], soup.positions[3 * i + 2]);
-    finite[i] = points[i].allFinite();
-  }
-  std::vector<uint8_t> weldable(nv, 0);
-  for (uint32_t v : soup.indices)
-    if (finite[v]) lo = lo.cwiseMin(points[v]), hi = hi.cwiseMax(points[v]), weldable[v] = 1;
+  // Vertices used by a triangle, flagged from every thread (relaxed stores
+  // of the same value: no race, no ordering needed).
+  std::unique_ptr<std::atomic<uint8_t>[]> referenced(new std::atomic<uint8_t>[nv]);
+  parallel_for(nv, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      points[i] = Vec3(soup.positions[3 * i], soup.positions[3 * i + 1], soup.positions[3 * i + 2]);
+      referenced[i].store(0, std::memory_order_relaxed);
+    }
+  });
+  parallel_for(soup.indices.size(), [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) referenced[soup.indices[i]].store(1, std::memory_order_relaxed);
+  });
+  // The bounding box of the weldable vertices (finite and referenced), by
+  // parts merged in order. (Equal minima of −0 and 0 may keep the other
+  // sign than a pass in index order did; nothing below sees a zero's sign.)
+  std::vector<uint8_t> finite(nv), weldable(nv);
+  const size_t parts = detail::part_count(nv);
+  std::vector<Vec3> part_lo(parts, Vec3::Constant(INFINITY)), part_hi(parts, Vec3::Constant(-INFINITY));
+  detail::for_each_part(parts, nv, [&](size_t p, size_t begin, size_t end) {
+    Vec3 lo = part_lo[p], hi = part_hi[p];
+    for (size_t i = begin; i < end; ++i) {
+      finite[i] = points[i].allFinite();
+      weldable[i] = finite[i] && referenced[i].load(std::memory_order_relaxed);
+      if (weldable[i]) lo = lo.cwiseMin(points[i]), hi = hi.cwiseMax(points[i]);
+    }
+    part_lo[p] = lo, part_hi[p] = hi;
+  });
+  referenced.reset();
+  Vec3 lo = part_lo[0], hi = part_hi[0];
+  for (size_t p = 1; p < parts; ++p) lo = lo.cwiseMin(part_lo[p]), hi = hi.cwiseMax(part_hi[p]);
   // The diagonal measured without squaring raw coordinates (no underflow).
   const double extent = (hi - lo).cwiseAbs().maxCoeff();
   const double diagonal = extent > 0 && std::isfinite(extent) ? extent * ((hi - lo) / extent).norm() : extent;
@@ -527,38 +694,41 @@ RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options)
       weld(points, weldable, lo, options.weld_tolerance * diagonal, report.welded_vertices);
 
   // Triangles on welded vertices; drop non-finite, degenerate and duplicates.
-  std::vector<Triangle> tris;
-  tris.reserve(soup.triangle_count());
   // Twice the area relative to the squared diagonal: sides are divided by the
   // diagonal first, so the test means the same at every scale (at 1e-100 the
   // squared cross product of raw coordinates would underflow to zero).
   constexpr double kMinRelativeDoubleArea = 1e-14;
   const double inv_diagonal = diagonal > 0 ? 1 / diagonal : 0;
   // The tests run on every thread (one status byte per triangle); the kept
-  // triangles are then gathered in input order.
+  // triangles are then gathered in input order, also on every thread.
   enum : uint8_t { kKeep, kNonFinite, kDegenerate };
-  std::vector<uint8_t> status(soup.triangle_count());
-  parallel_for(status.size(), [&](size_t begin, size_t end) {
+  auto welded = [&](size_t t) -> Triangle {
+    return {rep[soup.indices[3 * t]], rep[soup.indices[3 * t + 1]], rep[soup.indices[3 * t + 2]]};
+  };
+  UninitialisedVector<uint8_t> status(input_nt);
+  std::atomic<size_t> nonfinite{0}, degenerate{0};
+  parallel_for(input_nt, [&](size_t begin, size_t end) {
+    size_t part_nonfinite = 0, part_degenerate = 0;
     for (size_t t = begin; t < end; ++t) {
-      const Triangle f{rep[soup.indices[3 * t]], rep[soup.indices[3 * t + 1]], rep[soup.indices[3 * t + 2]]};
+      const Triangle f = welded(t);
       if (!finite[f[0]] || !finite[f[1]] || !finite[f[2]])
-        status[t] = kNonFinite;
+        status[t] = kNonFinite, ++part_nonfinite;
       else if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2] ||
                !(((points[f[1]] - points[f[0]]) * inv_diagonal)
                      .cross((points[f[2]] - points[f[0]]) * inv_diagonal)
                      .norm() > kMinRelativeDoubleArea))
-        status[t] = kDegenerate;
+        status[t] = kDegenerate, ++part_degenerate;
       else
         status[t] = kKeep;
     }
+    nonfinite += part_nonfinite, degenerate += part_degenerate;
   });
-  for (size_t t = 0; t < status.size(); ++t) {
-    if (status[t] == kKeep)
-      tris.push_back({rep[soup.indices[3 * t]], rep[soup.indices[3 * t + 1]], rep[soup.indices[3 * t + 2]]});
-    else
-      ++(status[t] == kNonFinite ? report.nonfinite_triangles : report.degenerate_triangles);
-  }
-  status = std::vector<uint8_t>();
+  report.nonfinite_triangles = nonfinite, report.degenerate_triangles = degenerate;
+  std::vector<Triangle> tris;
+  detail::place_kept(
+      input_nt, [&](size_t t) { return status[t] == kKeep; }, [&](size_t n) { tris.resize(n); },
+      [&](size_t t, size_t rank) { tris[rank] = welded(t); });
+  status = {};
   if (tris.empty())
     throw Error(ErrorKind::InvalidInput,
                 "no usable triangle remains (all are degenerate or have non-finite coordinates).");
@@ -572,26 +742,27 @@ RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options)
   }
   Orientation orientation = orient(tris, points, std::move(pairs), report);
   report.components = orientation.components;
-  split_fans(tris, points, orientation, report);
-  orientation.partner = std::vector<uint32_t>();
-
-  // Compact: keep referenced vertices in first-use order of the input.
-  std::vector<uint32_t> index(points.size(), kNone);
-  uint32_t next = 0;
-  std::vector<uint8_t> used(points.size(), 0);
+  // Triangles at each vertex: split_fans finds vertices of several fans by
+  // them, and a vertex is used after the split if it had any (its first
+  // fan keeps it; its copies are all used).
+  std::vector<uint32_t> triangles_at(nv, 0);
   for (const Triangle& t : tris)
-    for (uint32_t v : t) used[v] = 1;
-  for (size_t v = 0; v < points.size(); ++v)
-    if (used[v]) index[v] = next++;
-  size_t input_used = 0;
-  for (size_t v = 0; v < nv; ++v) input_used += used[v];
-  report.unreferenced_vertices = nv - report.welded_vertices - input_used;
-  result.mesh.positions.resize(next);
-  for (size_t v = 0; v < points.size(); ++v)
-    if (used[v]) result.mesh.positions[index[v]] = points[v];
+    for (uint32_t v : t) ++triangles_at[v];
+  split_fans(tris, points, orientation, triangles_at, report);
+  orientation.partner = {};
+
+  // Compact: keep used vertices in input order (copies last), on every thread.
+  UninitialisedVector<uint32_t> index(points.size());
+  const size_t used = detail::place_kept(
+      points.size(), [&](size_t v) { return v >= nv || triangles_at[v] > 0; },
+      [&](size_t n) { result.mesh.positions.resize(n); },
+      [&](size_t v, size_t rank) { index[v] = uint32_t(rank), result.mesh.positions[rank] = points[v]; });
+  report.unreferenced_vertices = nv - report.welded_vertices - (used - (points.size() - nv));
   result.mesh.triangles = std::move(tris);
-  for (Triangle& t : result.mesh.triangles)
-    for (uint32_t& v : t) v = index[v];
+  parallel_for(result.mesh.triangles.size(), [&](size_t begin, size_t end) {
+    for (size_t t = begin; t < end; ++t)
+      for (uint32_t& v : result.mesh.triangles[t]) v = index[v];
+  });
 
   report.boundary_edges = count_boundary_edges(result.mesh.triangles, orientation);
   return result;

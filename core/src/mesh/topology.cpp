@@ -1,6 +1,7 @@
 #include "crestline/mesh/topology.h"
 
 #include <algorithm>
+#include <mutex>
 
 #include "crestline/error.h"
 #include "crestline/numerics/parallel.h"
@@ -25,15 +26,23 @@ Topology build_topology(const Mesh& mesh) {
   const size_t edge_count = first_edge[nv];
   topo.edges.resize(edge_count);
   topo.edge_triangles.resize(edge_count);
-  parallel_for(nv, [&](size_t begin, size_t end) {
+  // Boundary edges (few) are listed on the way, their ends marked after.
+  std::vector<std::array<uint32_t, 2>> boundary_edges;
+  std::mutex boundary_mutex;
+  detail::for_bucket_ranges(order.start, [&](size_t begin, size_t end) {
+    std::vector<std::array<uint32_t, 2>> found;
     order.for_each_edge(begin, end, [&](uint32_t near, uint32_t far, const uint64_t* first, const uint64_t* last) {
       if (last - first > 2)
         throw Error(ErrorKind::InvalidInput, "the mesh has an edge shared by more than two triangles.");
       const uint32_t e = first_edge[near]++;
       topo.edges[e] = {near, far};
       topo.edge_triangles[e] = {H::corner(first[0]) / 3, last - first == 2 ? H::corner(first[1]) / 3 : kNone};
+      if (last - first == 1) found.push_back({near, far});
       for (const uint64_t* h = first; h < last; ++h) topo.triangle_edges[H::corner(*h) / 3][H::corner(*h) % 3] = e;
     });
+    if (found.empty()) return;
+    const std::lock_guard<std::mutex> lock(boundary_mutex);
+    boundary_edges.insert(boundary_edges.end(), found.begin(), found.end());
   });
 
   detail::group_by_bucket(
@@ -44,11 +53,8 @@ Topology build_topology(const Mesh& mesh) {
       topo.vertex_offsets, topo.vertex_triangles);
 
   topo.boundary_vertex.assign(nv, 0);
-  for (size_t e = 0; e < topo.edges.size(); ++e)
-    if (topo.is_boundary_edge(static_cast<uint32_t>(e))) {
-      topo.boundary_vertex[topo.edges[e][0]] = 1;
-      topo.boundary_vertex[topo.edges[e][1]] = 1;
-    }
+  for (const std::array<uint32_t, 2>& edge : boundary_edges)
+    topo.boundary_vertex[edge[0]] = topo.boundary_vertex[edge[1]] = 1;
   return topo;
 }
 

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <map>
+#include <random>
 #include <set>
 #include <utility>
 #include <vector>
@@ -88,5 +89,42 @@ TEST_CASE("topology refuses an edge of three triangles on any thread count", "[t
   for (int threads : {1, 2}) {
     INFO("threads: " << threads);
     CHECK_THROWS_WITH(topology_on(threads, mesh), "the mesh has an edge shared by more than two triangles.");
+  }
+}
+
+TEST_CASE("topology of several components in random order is the same on 1, 2 and 3 threads", "[topology][threads]") {
+  // An icosphere numbers its coarse vertices first, and half-edges are
+  // grouped under their smaller end: the first vertices hold most of them,
+  // so the threads split the grouping by half-edges, not by vertices. With
+  // an open patch (boundary vertices) and a torus, triangles shuffled.
+  Mesh mesh;
+  testing::GridOptions grid;
+  grid.nu = grid.nv = 60;
+  grid.random_diagonals = true;
+  for (const TriangleSoup& part : {testing::icosphere(5, 1), testing::torus(3, 1, grid),
+                                   testing::height_field([](double x, double y) { return 0.1 * x * y; }, 1, 1, grid)}) {
+    const uint32_t base = uint32_t(mesh.vertex_count());
+    for (size_t v = 0; v < part.vertex_count(); ++v)
+      mesh.positions.push_back(Vec3(part.positions[3 * v], part.positions[3 * v + 1], part.positions[3 * v + 2]));
+    for (size_t t = 0; t < part.triangle_count(); ++t)
+      mesh.triangles.push_back(
+          {base + part.indices[3 * t], base + part.indices[3 * t + 1], base + part.indices[3 * t + 2]});
+  }
+  std::mt19937 random(9);
+  std::shuffle(mesh.triangles.begin(), mesh.triangles.end(), random);
+  const Topology one = topology_on(1, mesh);
+  // Boundary vertices: the patch's rim, as its edges of one triangle say.
+  std::map<std::pair<uint32_t, uint32_t>, int> uses;
+  for (const Triangle& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) ++uses[{std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])}];
+  std::vector<uint8_t> boundary(mesh.vertex_count(), 0);
+  for (const auto& [edge, n] : uses)
+    if (n == 1) boundary[edge.first] = boundary[edge.second] = 1;
+  CHECK(one.boundary_vertex == boundary);
+  CHECK(std::count(boundary.begin(), boundary.end(), 1) == 4 * 60);
+  CHECK(one.edges.size() == uses.size());
+  for (int threads : {2, 3}) {
+    INFO("threads: " << threads);
+    testing::check_same_topology(topology_on(threads, mesh), one);
   }
 }
