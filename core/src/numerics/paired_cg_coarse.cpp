@@ -33,9 +33,10 @@ uint32_t sign_change(const SignedPairMatrix& a, uint32_t e) {
 // Each aggregate is a tree of its rows' joins, and P's column for it is the
 // mode smooth along that tree, ±1 in each field by the signs of the entries
 // crossed (±√a_ii in the scaled variables).
-void SignedPairSolver::build_coarse_level(const SignedPairMatrix& a, const std::vector<double>& excess,
-                                          const std::vector<uint32_t>& bfs_order,
-                                          const std::vector<uint32_t>& position) {
+SignedPairSolver::Aggregation SignedPairSolver::build_coarse_matrix(const SignedPairMatrix& a,
+                                                                    const std::vector<double>& excess,
+                                                                    const std::vector<uint32_t>& bfs_order,
+                                                                    const std::vector<uint32_t>& position) {
   const size_t n = a.rows();
   std::vector<uint8_t> slow(n);
   for (size_t i = 0; i < n; ++i) slow[i] = detail::is_slow(a.diagonal[i], excess[i], a.offsets[i + 1] > a.offsets[i]);
@@ -88,7 +89,7 @@ void SignedPairSolver::build_coarse_level(const SignedPairMatrix& a, const std::
       any = any || (strong(i, e) && aggregate[column(e)] == kNone);
     if (any) root(i);
   }
-  if (aggregated < detail::min_aggregated(n)) return;
+  if (aggregated < detail::min_aggregated(n)) return {};
 
   // The members of each aggregate, in breadth-first order.
   std::vector<uint32_t> member_begin(aggregates + 1, 0), members(aggregated);
@@ -155,7 +156,7 @@ void SignedPairSolver::build_coarse_level(const SignedPairMatrix& a, const std::
   for (const double d : diagonal)
     if (!(d > 0)) {
       coarse_upper_begin_.clear();
-      return;
+      return {};
     }
   aggregated_ = aggregated;
   // Scaled to a unit diagonal per field, as the fine level.
@@ -170,17 +171,27 @@ void SignedPairSolver::build_coarse_level(const SignedPairMatrix& a, const std::
         coarse_values_[2 * size_t{e} + k] =
             off_values[2 * size_t{e} + k] / (coarse_root[2 * c + k] * coarse_root[2 * size_t{coarse_columns_[e]} + k]);
 
-  // P in the solver's rows and scaled variables: s_i √a_ii / √Ac_cc.
-  std::vector<uint32_t> fine_aggregate(n, kNone);
-  std::vector<double> p(2 * n, 0.0);
-  for (size_t i = 0; i < n; ++i) {
-    const uint32_t c = aggregate[i];
-    if (c == kNone) continue;
-    fine_aggregate[position[i]] = c;
-    for (int k = 0; k < 2; ++k)
-      p[2 * size_t{position[i]} + k] =
-          (flips[i] >> k & 1 ? -roots_[position[i]] : roots_[position[i]]) / coarse_root[2 * c + k];
-  }
+  // By the solver's rows, for P (build_coarse_transfer).
+  Aggregation out;
+  out.aggregate.assign(n, kNone);
+  out.flips.assign(n, 0);
+  for (size_t i = 0; i < n; ++i) out.aggregate[position[i]] = aggregate[i], out.flips[position[i]] = flips[i];
+  out.coarse_root = std::move(coarse_root);
+  return out;
+}
+
+// P in the solver's rows and scaled variables, s_i √a_ii / √Ac_cc, formed
+// where Q reads it (not stored: 16 bytes a row).
+void SignedPairSolver::build_coarse_transfer(const Aggregation& aggregation) {
+  const size_t n = roots_.size();
+  const uint32_t aggregates = static_cast<uint32_t>(coarse_begin_.size() - 1);
+  const std::vector<uint32_t>& fine_aggregate = aggregation.aggregate;
+  const auto p = [&](uint32_t j, int k) {
+    const double s = aggregation.flips[j] >> k & 1 ? -roots_[j] : roots_[j];
+    return s / aggregation.coarse_root[2 * size_t{fine_aggregate[j]} + k];
+  };
+  std::vector<uint32_t> slot(aggregates, kNone), row_columns;
+  std::vector<double> row_values;
   // Q = L P by fine row, from the float entries the sweeps use.
   q_begin_.assign(n + 1, 0);
   for (size_t r = 0; r < n; ++r) {
@@ -192,14 +203,16 @@ void SignedPairSolver::build_coarse_level(const SignedPairMatrix& a, const std::
         slot[c] = static_cast<uint32_t>(row_columns.size());
         row_columns.push_back(c), row_values.resize(row_values.size() + 2, 0.0);
       }
-      for (int k = 0; k < 2; ++k)
-        row_values[2 * slot[c] + k] += double{weights_[2 * size_t{e} + k]} * p[2 * size_t{j} + k];
+      for (int k = 0; k < 2; ++k) row_values[2 * slot[c] + k] += double{weights_[2 * size_t{e} + k]} * p(j, k);
     }
     for (const uint32_t c : row_columns) slot[c] = kNone;
     q_columns_.insert(q_columns_.end(), row_columns.begin(), row_columns.end());
     for (const double v : row_values) q_values_.push_back(static_cast<float>(v));
     q_begin_[r + 1] = static_cast<uint32_t>(q_columns_.size());
   }
+  // Grown by appending (up to twice their size), kept through the solves.
+  q_columns_.shrink_to_fit();
+  q_values_.shrink_to_fit();
   // Qᵀ by coarse row, fine rows in order.
   qt_begin_.assign(aggregates + 1, 0);
   for (const uint32_t c : q_columns_) ++qt_begin_[c + 1];

@@ -213,8 +213,20 @@ class SignedPairSolver {
   size_t aggregated_rows() const { return aggregated_; }
 
  private:
-  void build_coarse_level(const SignedPairMatrix& matrix, const std::vector<double>& excess,
-                          const std::vector<uint32_t>& bfs_order, const std::vector<uint32_t>& position);
+  // The coarse level's aggregates, by the solver's rows, and the roots of
+  // Ac's diagonal; empty without a coarse level.
+  struct Aggregation {
+    std::vector<uint32_t> aggregate;  // of each row, or none
+    std::vector<uint8_t> flips;       // bit k: the row's value in field k's column of P is negative
+    std::vector<double> coarse_root;  // √Ac_cc per field
+  };
+  // Aggregates the slow rows and builds Ac from the input matrix (by input
+  // row), before the permuted matrix exists: the two are never held beside
+  // the aggregation's work (paired_cg_coarse.cpp).
+  Aggregation build_coarse_matrix(const SignedPairMatrix& matrix, const std::vector<double>& excess,
+                                  const std::vector<uint32_t>& bfs_order, const std::vector<uint32_t>& position);
+  // Q = L P and Qᵀ from the permuted float matrix, once the input is released.
+  void build_coarse_transfer(const Aggregation& aggregation);
   // y ≈ Ac⁻¹ g, both fields, by the coarse sweeps (paired_cg.cpp).
   void coarse_solve(const double* g, double* y) const;
 
