@@ -241,6 +241,7 @@ struct Run {
 /// Splits a projected polyline into visible runs. Vertices are kept; inside a
 /// segment only the samples where visibility changes become points.
 std::vector<Run> visible_runs(const std::vector<Vec3>& projected, bool closed, const DepthBuffer& depth) {
+  constexpr double kMaxSamples = 1 << 24;
   std::vector<Run> runs;
   const size_t n = projected.size();
   if (n < 2) return runs;
@@ -259,8 +260,10 @@ std::vector<Run> visible_runs(const std::vector<Vec3>& projected, bool closed, c
   for (size_t s = 0; s < segments; ++s) {
     const Vec3& a = projected[s];
     const Vec3& b = projected[(s + 1) % n];
+    // One sample a pixel; a segment with a non-finite end keeps its ends only
+    // (never drawn), and the count is bounded so that it stays an int.
     const double pixels = std::hypot(b.x() - a.x(), b.y() - a.y()) * depth.factor();
-    const int samples = std::max(1, static_cast<int>(std::ceil(pixels)));
+    const int samples = std::isfinite(pixels) ? static_cast<int>(std::clamp(std::ceil(pixels), 1.0, kMaxSamples)) : 1;
     for (int k = s == 0 ? 0 : 1; k <= samples; ++k) {
       const double t = static_cast<double>(k) / samples;
       const Vec3 q = k == samples ? b : Vec3(a + t * (b - a));
