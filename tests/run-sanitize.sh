@@ -9,7 +9,10 @@ build=${CRESTLINE_ASAN_BUILD:-build-asan}
 # -O1 -g1 (line tables, no variables) instead of RelWithDebInfo's -O2 -g: the
 # reports keep their symbolised stacks, and compiling halves (Catch2's main
 # 102 -> 47 s); the compile was 13 of this suite's 16.6 minutes in CI.
-cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+# clang++ rather than g++: the same sanitizers, and it compiles this build a
+# third faster (write_lines_test.cpp 18.6 -> 13.4 CPU-s, creases.cpp 14.3 ->
+# 9.3), the largest compile of CI.
+CC=${CC:-clang} CXX=${CXX:-clang++} cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" \
   -DCRESTLINE_SANITIZE=ON >/dev/null
 # What CTest runs: the unit and quality tests and the CLI (cli/test_cli.sh);
