@@ -63,12 +63,7 @@ ComponentFrames component_frames(const Mesh& mesh) {
     for (size_t v = begin; v < end; ++v) first[v].store(kNone, std::memory_order_relaxed);
   });
   parallel_for(nt, [&](size_t begin, size_t end) {
-    for (size_t t = begin; t < end; ++t) {
-      std::atomic<uint32_t>& f = first[root(mesh.triangles[t][0])];
-      uint32_t seen = f.load(std::memory_order_relaxed);
-      while (t < seen && !f.compare_exchange_weak(seen, uint32_t(t), std::memory_order_relaxed)) {
-      }
-    }
+    for (size_t t = begin; t < end; ++t) detail::atomic_min(first[root(mesh.triangles[t][0])], uint32_t(t));
   });
   ComponentFrames f;
   UninitialisedVector<uint32_t> component(nv);  // of each root; set below for the roots of triangles

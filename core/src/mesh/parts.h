@@ -5,6 +5,7 @@
 // follow the thread count. Shared by repair_mesh, build_topology and
 // component_frames.
 #include <algorithm>
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -28,6 +29,15 @@ void for_each_part(size_t parts, size_t count, const Body& body) {
         for (size_t p = first; p < last; ++p) body(p, count * p / parts, count * (p + 1) / parts);
       },
       1);
+}
+
+/// Lowers `target` to `value` if it is smaller, whichever thread gets there
+/// first: the smallest value offered wins.
+template <typename T>
+void atomic_min(std::atomic<T>& target, T value) {
+  T seen = target.load(std::memory_order_relaxed);
+  while (value < seen && !target.compare_exchange_weak(seen, value, std::memory_order_relaxed)) {
+  }
 }
 
 /// An ordered compaction on every thread: counts the i in [0, count) with

@@ -72,9 +72,7 @@ void check_soup(const TriangleSoup& soup, const RepairOptions& options) {
   parallel_for(soup.indices.size(), [&](size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i)
       if (soup.indices[i] >= nv) {
-        size_t seen = first_bad.load(std::memory_order_relaxed);
-        while (i < seen && !first_bad.compare_exchange_weak(seen, i, std::memory_order_relaxed)) {
-        }
+        detail::atomic_min(first_bad, i);
         return;
       }
   });
