@@ -65,6 +65,15 @@ struct Pair {
     return {_mm_cvtps_pd(_mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p))))};
   }
   static Pair load(const float* p) { return widen(p); }
+  // An entry of Â (see SignedPairSolver::a_): its float widened to both
+  // lanes, lane 1 negated where bit 31 of the column word is set (exact).
+  static Pair widen_signed(const float* p, uint32_t column) {
+    const __m128d w = _mm_cvtps_pd(_mm_load_ss(p));
+    // The column word in the upper half of lane 1 only, then its top bit.
+    const __m128i word = _mm_shuffle_epi32(_mm_cvtsi32_si128(static_cast<int>(column)), 0x15);
+    const __m128i flip = _mm_and_si128(word, _mm_set_epi32(static_cast<int>(0x80000000u), 0, 0, 0));
+    return {_mm_xor_pd(_mm_unpacklo_pd(w, w), _mm_castsi128_pd(flip))};
+  }
   void store(double* p) const { _mm_storeu_pd(p, v); }
   // Rounded to the nearest floats, as static_cast<float> does.
   void store(float* p) const { _mm_storel_pi(reinterpret_cast<__m64*>(p), _mm_cvtpd_ps(v)); }
@@ -81,6 +90,10 @@ struct Pair {
   static Pair of(double x, double y) { return {x, y}; }
   static Pair widen(const float* p) { return {double{p[0]}, double{p[1]}}; }
   static Pair load(const float* p) { return widen(p); }
+  static Pair widen_signed(const float* p, uint32_t column) {
+    const double w = *p;
+    return {w, column >> 31 ? -w : w};
+  }
   void store(double* p) const { p[0] = a, p[1] = b; }
   void store(float* p) const { p[0] = static_cast<float>(a), p[1] = static_cast<float>(b); }
 };
@@ -91,7 +104,7 @@ inline Pair operator/(Pair x, Pair y) { return {x.a / y.a, x.b / y.b}; }
 #endif
 
 // Σ a_ij v_j over entries [begin, end) of a row, both fields: weights holds
-// each entry's pair (σ_0 w, σ_1 w).
+// each entry's pair of values (Q's, whose fields differ).
 template <typename Value>
 inline Pair accumulate(const uint32_t* columns, const float* weights, const Value* v, uint32_t begin, uint32_t end) {
   Pair s = Pair::both(0.0);
@@ -101,15 +114,34 @@ inline Pair accumulate(const uint32_t* columns, const float* weights, const Valu
   return s;
 }
 
-// Σ a_ij v_j and Σ a_ij w_j over the same entries: each entry read once.
+// Where a row's pair starts in v: 2 × the column of an entry of Â, the
+// flip bit shifted out (one instruction, as the × 2 was before).
+template <typename Value>
+inline const Value* row_of(const Value* v, uint32_t column) {
+  return v + size_t{static_cast<uint32_t>(column << 1)};
+}
+
+// The same over entries of Â: one float each, field 0's sign in it and
+// field 1's flip in the column word (SignedPairSolver::a_).
+template <typename Value>
+inline Pair accumulate_signed(const uint32_t* columns, const float* weights, const Value* v, uint32_t begin,
+                              uint32_t end) {
+  Pair s = Pair::both(0.0);
+  const float* w = weights + begin;
+  for (const uint32_t *c = columns + begin, *last = columns + end; c != last; ++c, ++w)
+    s = s + Pair::widen_signed(w, *c) * Pair::load(row_of(v, *c));
+  return s;
+}
+
+// Σ a_ij v_j and Σ a_ij w_j over the same entries of Â: each entry read once.
 inline void accumulate2(const uint32_t* columns, const float* weights, const double* v, const double* w, uint32_t begin,
                         uint32_t end, Pair& sv, Pair& sw) {
   sv = Pair::both(0.0), sw = Pair::both(0.0);
-  const float* e = weights + 2 * size_t{begin};
-  for (const uint32_t *c = columns + begin, *last = columns + end; c != last; ++c, e += 2) {
-    const Pair a = Pair::widen(e);
-    sv = sv + a * Pair::load(v + 2 * size_t{*c});
-    sw = sw + a * Pair::load(w + 2 * size_t{*c});
+  const float* e = weights + begin;
+  for (const uint32_t *c = columns + begin, *last = columns + end; c != last; ++c, ++e) {
+    const Pair a = Pair::widen_signed(e, *c);
+    sv = sv + a * Pair::load(row_of(v, *c));
+    sw = sw + a * Pair::load(row_of(w, *c));
   }
 }
 
@@ -253,20 +285,19 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix, bool two_level) {
   // instructions a row (callgrind, CLI defaults: bunny, 1.1M, dragon).
   const size_t entries = matrix.columns.size();
   a_.columns.resize(entries);
-  weights_.resize(2 * entries);
+  weights_.resize(entries);
   a_.offsets.resize(n + 1);
   lower_begin_.resize(n);
   uint32_t widest = 0;
   for (size_t i = 0; i < n; ++i) widest = std::max(widest, matrix.offsets[i + 1] - matrix.offsets[i]);
   struct Entry {
-    uint32_t column;
-    float weight[2];
+    uint32_t column;  // with field 1's flip (kFlipBit)
+    float weight;     // with field 0's sign
   };
   std::vector<Entry> lower(widest);
   uint32_t next = 0;
   const auto put = [&](const Entry& entry) {
-    a_.columns[next] = entry.column;
-    weights_[2 * size_t{next}] = entry.weight[0], weights_[2 * size_t{next} + 1] = entry.weight[1];
+    a_.columns[next] = entry.column, weights_[next] = entry.weight;
     ++next;
   };
   a_.offsets[0] = 0;
@@ -277,9 +308,9 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix, bool two_level) {
     for (uint32_t e = matrix.offsets[i]; e < matrix.offsets[i + 1]; ++e) {
       const uint32_t column = matrix.columns[e], to = position[column & SignedPairMatrix::kColumnMask];
       // The product of the roots is the same both ways: A stays symmetric.
-      // Rounding to float commutes with the sign.
+      // Rounding to float commutes with the sign applied in the sweeps.
       const float w = static_cast<float>(matrix.weights[e] / (roots_[k] * roots_[to]));
-      const Entry entry{to, {column >> 30 & 1 ? -w : w, column >> 31 ? -w : w}};
+      const Entry entry{to | ((column >> 30 ^ column >> 31) & 1) << 31, column >> 30 & 1 ? -w : w};
       if (to < earlier)
         lower[lowers++] = entry;
       else
@@ -367,7 +398,7 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
   double *const xv = xp.data(), *const rv = rt.data(), *const utv = ut.data(), *const uv = u.data();
   float* const tv = tf.data();
   const auto row_sum = [columns, weights](const double* v, uint32_t begin, uint32_t end) {
-    return accumulate(columns, weights, v, begin, end);
+    return accumulate_signed(columns, weights, v, begin, end);
   };
   // r = b − A x₀ = b − D x₀ − S⁻¹ N̂ S⁻¹ x₀ and r̂ = S r, then r̃ = (I + L)⁻¹
   // r̂ in place, colour by colour.
@@ -457,7 +488,7 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
         if constexpr (decltype(with_coarse)::value)
           zi = zi + accumulate(q_columns, q_values, yv, q_begin[i], q_begin[i + 1]);
         const Pair pi = keep_ * (zi + beta_ * q);
-        const Pair uti = accumulate(columns_, weights_, tv_, offsets_[i], lower_[i]);
+        const Pair uti = accumulate_signed(columns_, weights_, tv_, offsets_[i], lower_[i]);
         (pi - uti).store(tv_ + 2 * i);
         uti.store(utv_ + 2 * i);
         const Pair ti = Pair::load(tv_ + 2 * i);
@@ -490,7 +521,7 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
         if constexpr (decltype(form_residual)::value)
           accumulate2(columns_, weights_, uv_, rv_, lower_[i], offsets_[i + 1], lu, lr);
         else
-          lu = accumulate(columns_, weights_, uv_, lower_[i], offsets_[i + 1]);
+          lu = accumulate_signed(columns_, weights_, uv_, lower_[i], offsets_[i + 1]);
         const Pair ti = Pair::load(tv_ + 2 * i), ui = Pair::load(utv_ + 2 * i) - lu;
         ui.store(uv_ + 2 * i);
         (Pair::load(xv_ + 2 * i) + alpha_ * ti).store(xv_ + 2 * i);
