@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "crestline/numerics/parallel.h"
+
 using crestline::LineType;
 using crestline::Polyline;
 using crestline::Vec3;
@@ -226,6 +228,63 @@ TEST_CASE("OBJ with the mesh: o surface with v/f first, line indices numbered af
   const size_t plain_first = plain.find("v 0.1 ");
   CHECK(obj.substr(first_line_vertex, obj.find("\no ridges\n") - first_line_vertex) ==
         plain.substr(plain_first, plain.find("\no ridges\n") - plain_first));
+}
+
+TEST_CASE("large files are formatted in parts on every thread: the same bytes for any thread count", "[io][writers]") {
+  // 3000 lines of every type (some closed, some too short for OBJ) and a
+  // 2000-vertex surface: enough items for every writer loop to run in parts.
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> coordinate(-2, 2);
+  std::vector<Polyline> lines;
+  for (int i = 0; i < 3000; ++i) {
+    std::vector<Vec3> points(size_t(1 + random() % 12));
+    for (Vec3& p : points) p = Vec3(coordinate(random), coordinate(random), coordinate(random));
+    const auto type = static_cast<LineType>(random() % 3);
+    lines.push_back(make_line(type, std::move(points), random() % 4 == 0, coordinate(random)));
+    lines.back().convex = random() % 2 == 0;
+  }
+  crestline::Mesh mesh;
+  for (uint32_t v = 0; v < 2000; ++v) {
+    mesh.positions.emplace_back(coordinate(random), coordinate(random), coordinate(random));
+    mesh.triangles.push_back({v, (v + 1) % 2000, (v + 7) % 2000});
+  }
+  const int before = crestline::max_threads();
+  std::vector<std::string> json, obj, with_mesh;
+  for (int threads : {1, 2, 3}) {
+    crestline::set_max_threads(threads);
+    json.push_back(crestline::io::write_lines_json(lines, {}));
+    obj.push_back(crestline::io::write_lines_obj(lines));
+    with_mesh.push_back(crestline::io::write_mesh_and_lines_obj(mesh, lines));
+  }
+  crestline::set_max_threads(before);
+  for (size_t i = 1; i < 3; ++i) {
+    CHECK(json[i] == json[0]);
+    CHECK(obj[i] == obj[0]);
+    CHECK(with_mesh[i] == with_mesh[0]);
+  }
+  // And in order: every line's points read back in its type's array.
+  const auto parsed = nlohmann::json::parse(json[1]);
+  size_t seen[3] = {0, 0, 0};
+  const char* names[3] = {"ridges", "valleys", "creases"};
+  for (const Polyline& line : lines) {
+    const int type = static_cast<int>(line.type);
+    const auto& got = parsed[names[type]][seen[type]++]["points"];
+    REQUIRE(got.size() == line.points.size());
+    CHECK(got.back()[2].get<double>() == line.points.back().z());
+  }
+  CHECK(parsed["creases"].size() == seen[2]);
+  // The OBJ's last `l` line is the last crease with two points or more.
+  size_t last = lines.size();
+  while (lines[--last].type != LineType::Crease || lines[last].points.size() < 2) {
+  }
+  size_t vertices = 0;
+  for (const Polyline& line : lines) vertices += line.points.size() >= 2 ? line.points.size() : 0;
+  const std::vector<std::string> rows = lines_of(obj[2]);
+  std::string want = "l";
+  for (size_t k = 0; k < lines[last].points.size(); ++k)
+    want += " " + std::to_string(vertices - lines[last].points.size() + 1 + k);
+  if (lines[last].closed) want += " " + std::to_string(vertices - lines[last].points.size() + 1);
+  CHECK(rows.back() == want);
 }
 
 TEST_CASE("creases: OBJ object o creases after the valleys, JSON with convex per line", "[io][writers][creases]") {
