@@ -74,13 +74,20 @@ static std::vector<uint8_t> clean_crease_vertices(const Mesh& mesh, const Topolo
       sharp_edge[e] = topology.edge_triangles[e][1] != kNone && !degenerate && c <= cos_sharp;
     }
   });
-  std::vector<uint8_t> candidate(nv, 0);
-  for (size_t e = 0; e < ne; ++e)
-    if (sharp_edge[e]) candidate[topology.edges[e][0]] = candidate[topology.edges[e][1]] = 1;
+  // The sharp edges and then their vertices, gathered in ascending order on
+  // every thread.
+  std::vector<uint32_t> sharp, candidates;
+  auto gather = [](size_t count, const auto& keep, std::vector<uint32_t>& out) {
+    detail::place_kept(
+        count, keep, [&](size_t n) { out.resize(n); }, [&](size_t i, size_t rank) { out[rank] = uint32_t(i); });
+  };
+  gather(
+      ne, [&](size_t e) { return sharp_edge[e] != 0; }, sharp);
   sharp_edge = UninitialisedVector<uint8_t>();
-  std::vector<uint32_t> candidates;
-  for (uint32_t v = 0; v < nv; ++v)
-    if (candidate[v]) candidates.push_back(v);
+  std::vector<uint8_t> candidate(nv, 0);
+  for (uint32_t e : sharp) candidate[topology.edges[e][0]] = candidate[topology.edges[e][1]] = 1;
+  gather(
+      nv, [&](size_t v) { return candidate[v] != 0; }, candidates);
   // At each: at least two sharp edges, at least two flat ones and none in
   // between (counts up to 2; a degenerate edge means never clean), or on a
   // wall (a sharp edge and one in between): the total turn over the
@@ -203,22 +210,51 @@ std::vector<double> surface_noise_levels(const Mesh& mesh, const Topology& topol
   parallel_for(ne, [&](size_t begin, size_t end) {
     for (size_t e = begin; e < end; ++e) length[e] = (x[topology.edges[e][1]] - x[topology.edges[e][0]]).norm();
   });
+  // The sums themselves stay in triangle order on the calling thread (their
+  // bits are the level's): each block's side lengths and components are
+  // gathered on every thread first, and a run of one component's triangles
+  // is summed in a register.
   std::vector<double> edge_sum(components, 0.0);
   std::vector<size_t> edge_count(components, 0);
-  for (size_t f = 0; f < nt; ++f) {
-    const uint32_t c = vertex_component[mesh.triangles[f][0]];
-    for (uint32_t e : topology.triangle_edges[f]) edge_sum[c] += length[e];
-    edge_count[c] += 3;
+  constexpr size_t kBlock = size_t{1} << 15;
+  UninitialisedVector<double> sides(3 * std::min(nt, kBlock));
+  UninitialisedVector<uint32_t> side_component(std::min(nt, kBlock));
+  for (size_t block = 0; block < nt; block += kBlock) {
+    const size_t n = std::min(kBlock, nt - block);
+    parallel_for(n, [&](size_t begin, size_t end) {
+      for (size_t i = begin; i < end; ++i) {
+        const size_t f = block + i;
+        side_component[i] = vertex_component[mesh.triangles[f][0]];
+        for (int k = 0; k < 3; ++k) sides[3 * i + k] = length[topology.triangle_edges[f][k]];
+      }
+    });
+    for (size_t i = 0; i < n;) {
+      const uint32_t c = side_component[i];
+      const size_t run = i;
+      double sum = edge_sum[c];
+      for (; i < n && side_component[i] == c; ++i)
+        sum += sides[3 * i], sum += sides[3 * i + 1], sum += sides[3 * i + 2];
+      edge_sum[c] = sum, edge_count[c] += 3 * (i - run);
+    }
   }
-  std::vector<std::vector<double>> jumps(components);
-  for (size_t v = 0; v < nv; ++v)
-    if (has_jump[v]) jumps[vertex_component[v]].push_back(jump[v]);
+  length = UninitialisedVector<double>();
+  // Each component's jumps in vertex order (as a copy: the median does not
+  // depend on it), grouped on every thread.
+  std::vector<uint32_t> jump_start;
+  UninitialisedVector<double> jumps;
+  detail::group_by_bucket(
+      nv, components,
+      [&](size_t v, const auto& emit) {
+        if (has_jump[v]) emit(vertex_component[v], jump[v]);
+      },
+      jump_start, jumps);
   std::vector<double> level(components, 0.0);
   for (size_t c = 0; c < components; ++c) {
-    const double h = edge_count[c] ? edge_sum[c] / edge_count[c] : 0;
-    if (jumps[c].empty() || !(h > 0)) continue;
-    auto middle = jumps[c].begin() + jumps[c].size() / 2;
-    std::nth_element(jumps[c].begin(), middle, jumps[c].end());
+    const double h = edge_count[c] ? edge_sum[c] / double(edge_count[c]) : 0;
+    const auto first = jumps.begin() + jump_start[c], last = jumps.begin() + jump_start[c + 1];
+    if (first == last || !(h > 0)) continue;
+    const auto middle = first + (last - first) / 2;
+    std::nth_element(first, middle, last);
     level[c] = *middle / h;
   }
   return level;
