@@ -237,7 +237,7 @@ std::vector<uint32_t> detail::greedy_colours(const SignedPairMatrix& a) {
 
 SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix, bool two_level) {
   const size_t n = matrix.rows();
-  const std::vector<uint32_t> colour = detail::greedy_colours(matrix);
+  std::vector<uint32_t> colour = detail::greedy_colours(matrix);
   const uint32_t colours = n == 0 ? 0 : *std::max_element(colour.begin(), colour.end()) + 1;
   // Rows ordered by colour (a counting sort keeps the locality order within one).
   colour_begin_.assign(colours + 1, 0);
@@ -250,11 +250,15 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix, bool two_level) {
     std::vector<uint32_t> fill(colour_begin_.begin(), colour_begin_.end() - 1);
     for (const uint32_t i : bfs_order) position[i] = fill[colour[i]]++, order_[position[i]] = i;
   }
+  std::vector<uint32_t>().swap(colour);  // a row's is known from its position now
+  // √A(i,i) by the solver's row, for the set-up only: the solves take the
+  // square root where they need it (the same value, 8 bytes a row less
+  // through them).
   a_.diagonal.resize(n);
-  roots_.resize(n);
+  std::vector<double> roots(n);
   for (size_t k = 0; k < n; ++k) {
     a_.diagonal[k] = matrix.diagonal[order_[k]];
-    roots_[k] = std::sqrt(a_.diagonal[k]);
+    roots[k] = std::sqrt(a_.diagonal[k]);
   }
   // The coarse level's test, what each row's diagonal exceeds its
   // off-diagonal magnitudes by, and with it Ac, from the input matrix
@@ -264,16 +268,20 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix, bool two_level) {
   Aggregation aggregation;
   if (two_level) {
     std::vector<double> excess(n);
+    std::vector<uint8_t> slow(n);
     size_t slow_rows = 0;
     for (size_t i = 0; i < n; ++i) {
       double off = 0;
       for (uint32_t e = matrix.offsets[i]; e < matrix.offsets[i + 1]; ++e) off += std::abs(matrix.weights[e]);
       excess[i] = std::max(0.0, matrix.diagonal[i] - off);
-      slow_rows += detail::is_slow(matrix.diagonal[i], excess[i], matrix.offsets[i + 1] > matrix.offsets[i]);
+      slow[i] = detail::is_slow(matrix.diagonal[i], excess[i], matrix.offsets[i + 1] > matrix.offsets[i]);
+      slow_rows += slow[i];
     }
-    if (slow_rows >= detail::min_aggregated(n)) aggregation = build_coarse_matrix(matrix, excess, bfs_order, position);
+    if (slow_rows >= detail::min_aggregated(n))
+      aggregation = build_coarse_matrix(matrix, CoarseInput{excess, slow, bfs_order, position, roots});
   }
   std::vector<uint32_t>().swap(bfs_order);
+  std::vector<double>().swap(matrix.diagonal);  // a_'s holds it
   // The permuted matrix in one pass over its rows: each row's entries to
   // later colours (upper) in input order, then those to earlier colours
   // (lower, set aside meanwhile) in input order. A neighbour's colour is
@@ -301,15 +309,17 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix, bool two_level) {
     ++next;
   };
   a_.offsets[0] = 0;
+  uint32_t row_colour = 0;
   for (size_t k = 0; k < n; ++k) {
     const size_t i = order_[k];
-    const uint32_t earlier = colour_begin_[colour[i]];
+    while (k >= colour_begin_[row_colour + 1]) ++row_colour;
+    const uint32_t earlier = colour_begin_[row_colour];
     size_t lowers = 0;
     for (uint32_t e = matrix.offsets[i]; e < matrix.offsets[i + 1]; ++e) {
       const uint32_t column = matrix.columns[e], to = position[column & SignedPairMatrix::kColumnMask];
       // The product of the roots is the same both ways: A stays symmetric.
       // Rounding to float commutes with the sign applied in the sweeps.
-      const float w = static_cast<float>(matrix.weights[e] / (roots_[k] * roots_[to]));
+      const float w = static_cast<float>(matrix.weights[e] / (roots[k] * roots[to]));
       const Entry entry{to | ((column >> 30 ^ column >> 31) & 1) << 31, column >> 30 & 1 ? -w : w};
       if (to < earlier)
         lower[lowers++] = entry;
@@ -322,7 +332,7 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix, bool two_level) {
   }
   // Not read beyond here: Q is built without the input beside it.
   matrix = SignedPairMatrix();
-  if (!aggregation.aggregate.empty()) build_coarse_transfer(aggregation);
+  if (!aggregation.aggregate.empty()) build_coarse_transfer(aggregation, roots);
 }
 
 // Symmetric Gauss–Seidel sweeps on Ac (unit diagonal) from y = 0: a fixed
@@ -372,7 +382,7 @@ void SignedPairSolver::coarse_solve(const double* g, double* y) const {
 bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, double tolerance, int max_iterations,
                              const std::function<void(int)>& on_iteration) const {
   const SignedPairMatrix& a = a_;
-  const size_t n = roots_.size();
+  const size_t n = a.rows();
   // xp and rt are written before they are read: not zeroed first
   // (callgrind at 1.1M: 32 bytes a row and solve less to write).
   UninitialisedVector<double> xp(2 * n), rt(2 * n);
@@ -382,7 +392,10 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
     for (int f = 0; f < 2; ++f)
       xp[2 * k + f] = x[2 * size_t{order_[k]} + f], rt[2 * k + f] = b[2 * size_t{order_[k]} + f];
   std::vector<double>& u = b;  // the caller's vector serves as scratch: S⁻¹ x₀ first
-  for (size_t j = 0; j < 2 * n; ++j) u[j] = xp[j] * roots_[j / 2];
+  for (size_t k = 0; k < n; ++k) {
+    const double root = std::sqrt(a.diagonal[k]);
+    u[2 * k] = xp[2 * k] * root, u[2 * k + 1] = xp[2 * k + 1] * root;
+  }
   Sums partial;
   const BlockSums b2 = sum_blocks(n, partial, [&](size_t begin, size_t end, BlockSums& sums) {
     for (size_t j = 2 * begin; j < 2 * end; ++j) sums[j & 1] += rt[j] * rt[j];
@@ -391,7 +404,7 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
   // sweeps of every iteration: a store through Pair may alias anything, so
   // the compiler reloads whatever sits in memory, the closure's copies too,
   // once per row (bunny, solve: 830 M → 737 M instructions).
-  const double *const root = roots_.data(), *const diagonal = a.diagonal.data();
+  const double* const diagonal = a.diagonal.data();
   const uint32_t *const offsets = a.offsets.data(), *const lower = lower_begin_.data();
   const uint32_t* const columns = a.columns.data();
   const float* const weights = weights_.data();
@@ -405,7 +418,7 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
   BlockSums rr = sweep(colour_begin_, false, partial, [=](size_t begin, size_t end, BlockSums& sums) {
     Pair rsum = Pair::load(&sums[0]), dsum = Pair::load(&sums[2]);
     for (size_t i = begin; i < end; ++i) {
-      const Pair ri = Pair::both(root[i]);
+      const Pair ri = Pair::both(std::sqrt(diagonal[i]));
       const Pair r = Pair::load(rv + 2 * i) - Pair::both(diagonal[i]) * Pair::load(xv + 2 * i) -
                      ri * row_sum(uv, offsets[i], offsets[i + 1]);
       rsum = rsum + r * r;
@@ -509,7 +522,7 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
     // residual r = (D + L) r̃, whose L part reads rows of earlier colours,
     // updated already, over the entries that u reads.
     const auto second = [=](auto form_residual, size_t begin, size_t end, BlockSums& s) {
-      const double* const root_ = root;
+      const double* const diagonal_ = diagonal;
       const uint32_t *const offsets_ = offsets, *const lower_ = lower, *const columns_ = columns;
       const float* const weights_ = weights;
       double *const xv_ = xv, *const rv_ = rv, *const utv_ = utv, *const uv_ = uv;
@@ -528,7 +541,7 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
         const Pair ri = Pair::load(rv_ + 2 * i) - alpha_ * (ti + ui);
         ri.store(rv_ + 2 * i);
         if constexpr (decltype(form_residual)::value) {
-          const Pair r = (ri + lr) * Pair::both(root_[i]);
+          const Pair r = (ri + lr) * Pair::both(std::sqrt(diagonal_[i]));
           norm = norm + r * r;
         }
         dot = dot + ri * ri;
@@ -563,7 +576,7 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
   }
   for (size_t k = 0; k < n; ++k)
     for (int f = 0; f < 2; ++f)
-      if (b2[f] != 0) x[2 * size_t{order_[k]} + f] += xp[2 * k + f] / roots_[k];
+      if (b2[f] != 0) x[2 * size_t{order_[k]} + f] += xp[2 * k + f] / std::sqrt(a.diagonal[k]);
   for (double v : x)
     if (!std::isfinite(v)) return false;
   return !active[0] && !active[1];

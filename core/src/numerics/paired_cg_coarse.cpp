@@ -33,16 +33,14 @@ uint32_t sign_change(const SignedPairMatrix& a, uint32_t e) {
 // Each aggregate is a tree of its rows' joins, and P's column for it is the
 // mode smooth along that tree, ±1 in each field by the signs of the entries
 // crossed (±√a_ii in the scaled variables).
-SignedPairSolver::Aggregation SignedPairSolver::build_coarse_matrix(const SignedPairMatrix& a,
-                                                                    const std::vector<double>& excess,
-                                                                    const std::vector<uint32_t>& bfs_order,
-                                                                    const std::vector<uint32_t>& position) {
+SignedPairSolver::Aggregation SignedPairSolver::build_coarse_matrix(const SignedPairMatrix& a, const CoarseInput& in) {
   const size_t n = a.rows();
-  std::vector<uint8_t> slow(n);
-  for (size_t i = 0; i < n; ++i) slow[i] = detail::is_slow(a.diagonal[i], excess[i], a.offsets[i + 1] > a.offsets[i]);
+  const std::vector<double>& excess = in.excess;
+  const std::vector<uint8_t>& slow = in.slow;
+  const std::vector<uint32_t>&bfs_order = in.bfs_order, &position = in.position;
 
-  std::vector<double> inverse_root(n);  // 1 / √a_ii, by input row (roots_ are by the solver's)
-  for (size_t i = 0; i < n; ++i) inverse_root[i] = 1 / roots_[position[i]];
+  std::vector<double> inverse_root(n);  // 1 / √a_ii, by input row (roots are by the solver's)
+  for (size_t i = 0; i < n; ++i) inverse_root[i] = 1 / in.roots[position[i]];
   const auto column = [&](uint32_t e) { return a.columns[e] & SignedPairMatrix::kColumnMask; };
   const auto strength = [&](uint32_t i, uint32_t e) {  // |a_ij| / √(a_ii a_jj)
     return std::abs(a.weights[e]) * inverse_root[i] * inverse_root[column(e)];
@@ -182,12 +180,12 @@ SignedPairSolver::Aggregation SignedPairSolver::build_coarse_matrix(const Signed
 
 // P in the solver's rows and scaled variables, s_i √a_ii / √Ac_cc, formed
 // where Q reads it (not stored: 16 bytes a row).
-void SignedPairSolver::build_coarse_transfer(const Aggregation& aggregation) {
-  const size_t n = roots_.size();
+void SignedPairSolver::build_coarse_transfer(const Aggregation& aggregation, const std::vector<double>& roots) {
+  const size_t n = roots.size();
   const uint32_t aggregates = static_cast<uint32_t>(coarse_begin_.size() - 1);
   const std::vector<uint32_t>& fine_aggregate = aggregation.aggregate;
   const auto p = [&](uint32_t j, int k) {
-    const double s = aggregation.flips[j] >> k & 1 ? -roots_[j] : roots_[j];
+    const double s = aggregation.flips[j] >> k & 1 ? -roots[j] : roots[j];
     return s / aggregation.coarse_root[2 * size_t{fine_aggregate[j]} + k];
   };
   std::vector<uint32_t> slot(aggregates, kNone), row_columns;

@@ -224,27 +224,34 @@ class SignedPairSolver {
     std::vector<uint8_t> flips;       // bit k: the row's value in field k's column of P is negative
     std::vector<double> coarse_root;  // √Ac_cc per field
   };
+  // What the constructor has found for the coarse level: by input row, each
+  // row's excess (diagonal − Σ|a_ij|) and detail::is_slow; the rows in
+  // breadth-first order; the solver's row of each; √A(i,i) by solver row.
+  struct CoarseInput {
+    const std::vector<double>& excess;
+    const std::vector<uint8_t>& slow;
+    const std::vector<uint32_t>&bfs_order, &position;
+    const std::vector<double>& roots;
+  };
   // Aggregates the slow rows and builds Ac from the input matrix (by input
   // row), before the permuted matrix exists: the two are never held beside
   // the aggregation's work (paired_cg_coarse.cpp).
-  Aggregation build_coarse_matrix(const SignedPairMatrix& matrix, const std::vector<double>& excess,
-                                  const std::vector<uint32_t>& bfs_order, const std::vector<uint32_t>& position);
+  Aggregation build_coarse_matrix(const SignedPairMatrix& matrix, const CoarseInput& in);
   // Q = L P and Qᵀ from the permuted float matrix, once the input is released.
-  void build_coarse_transfer(const Aggregation& aggregation);
+  void build_coarse_transfer(const Aggregation& aggregation, const std::vector<double>& roots);
   // y ≈ Ac⁻¹ g, both fields, by the coarse sweeps (paired_cg.cpp).
   void coarse_solve(const double* g, double* y) const;
 
-  // Â = S A S with rows in colour order; entries: later colours | earlier
-  // ones; weights empty. An entry's pair is (w, ±w): w = σ_0 w_ij / √(a_ii
-  // a_jj) rounded to float in weights_, and kFlipBit set in its column
-  // word where σ_1 ≠ σ_0 (one float an entry, not two: 4 bytes an entry
-  // less, the same values).
+  // Â = S A S, S = diag(1 / √A(i,i)), with rows in colour order; a_.diagonal
+  // holds A(i,i), whose roots are taken where needed (correctly rounded: the
+  // same each time); entries: later colours | earlier ones; weights empty. An entry's pair is (w, ±w): w = σ_0 w_ij /
+  // √(a_ii a_jj) rounded to float in weights_, and kFlipBit set in its column word where σ_1 ≠ σ_0 (one float an entry,
+  // not two: 4 bytes an entry less, the same values).
   SignedPairMatrix a_;
   std::vector<float> weights_;
   static constexpr uint32_t kFlipBit = 1u << 31;
   std::vector<uint32_t> order_;  // the input row of each row of a_
   std::vector<uint32_t> colour_begin_, lower_begin_;
-  std::vector<double> roots_;  // √A(i,i): the solver works on the system scaled to a unit diagonal
   // The coarse level (empty without one), scaled to a unit diagonal per field:
   // Q = L P by fine row (q_begin_, n + 1 offsets) and by coarse row
   // (qt_begin_), entries (column, field 0, field 1); Ac by coarse row,
