@@ -5,10 +5,12 @@
 #include <cstdlib>
 #include <random>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "crestline/error.h"
 #include "crestline/io/read_mesh.h"
+#include "crestline/numerics/parallel.h"
 #include "read_test_bytes.h"
 
 using crestline::Error;
@@ -201,4 +203,79 @@ TEST_CASE("OBJ: plain triangles read as the general face parse reads them", "[io
         "number.");
   CHECK(read_text(square + "f 1 2 3 # c").indices == std::vector<uint32_t>{0, 1, 2});
   CHECK(read_text(square + "f 4/1 2/2/2 3//3\t#\n").indices == std::vector<uint32_t>{3, 1, 2});
+}
+
+TEST_CASE("OBJ: a large file reads in parts on every thread to the same soup or the same message", "[io][obj]") {
+  // A 64 × 64 grid copied until the text passes 1 MB (four parts and more),
+  // then each variant below: what one thread reads (one pass) is what two
+  // and three threads read, soup or message.
+  auto grid = [](const std::string& end_of_line) {
+    std::string text = "# a grid\r\n" + std::string("mtllib none.mtl") + end_of_line;
+    size_t base = 0;
+    while (text.size() < (size_t{1} << 20)) {
+      for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x)
+          text += "v " + std::to_string(x * 0.1) + " " + std::to_string(y * 0.3) + " " + std::to_string(base % 7) +
+                  end_of_line;
+      text += "vn 0 0 1" + end_of_line + "vt 0.5 0.5" + end_of_line + end_of_line;
+      for (int y = 0; y + 1 < 64; ++y)
+        for (int x = 0; x + 1 < 64; ++x) {
+          const size_t v = base + size_t(64 * y + x) + 1;
+          text += "f " + std::to_string(v) + "/1/1 " + std::to_string(v + 1) + " " + std::to_string(v + 65) +
+                  "  # a comment" + end_of_line;
+          text += "f\t" + std::to_string(v) + " " + std::to_string(v + 65) + " " + std::to_string(v + 64) + end_of_line;
+        }
+      base += 64 * 64;
+    }
+    return text;
+  };
+  const std::string lf = grid("\n");
+  auto with = [](std::string text, double where, const std::string& line) {
+    const size_t at = text.find('\n', size_t(where * double(text.size()))) + 1;
+    return text.insert(at, line);
+  };
+  struct Variant {
+    const char* name;
+    std::string text;
+    crestline::io::ReadOptions options;
+  };
+  crestline::io::ReadOptions few;
+  few.max_triangles = 20000;
+  const std::vector<Variant> variants = {
+      {"plain (parts)", lf, {}},
+      {"CRLF (parts)", grid("\r\n"), {}},
+      {"a lone CR for every line end (one part)", grid("\r"), {}},
+      {"a quad near the end", with(lf, 0.9, "f 1 2 66 65\n"), {}},
+      {"relative indices in the middle", with(lf, 0.5, "f -1 -2 -3\n"), {}},
+      {"a face ahead of its vertices", with(lf, 0.1, "f 1 2 6000\n"), {}},
+      {"a face beyond every vertex", with(lf, 0.8, "f 1 2 999999\n"), {}},
+      {"a short face", with(lf, 0.6, "f 1 2\n"), {}},
+      {"an index of 0", with(lf, 0.7, "f 0 1 2\n"), {}},
+      {"two problems: the first one is named", with(with(lf, 0.9, "v 0x1 0 0\n"), 0.3, "f 1 2 x\n"), {}},
+      {"a huge exponent late", with(lf, 0.95, "v 1e99999999999 0 0\n"), {}},
+      {"too many triangles", lf, few},
+      {"a continuation line", with(lf, 0.4, "f 1 2 \\\n 3\n"), {}},
+  };
+  auto read = [](const Variant& variant) {
+    try {
+      const TriangleSoup soup = read_text(variant.text, variant.options);
+      return std::make_tuple(soup.positions, soup.indices, soup.notes, std::string());
+    } catch (const Error& e) {
+      return std::make_tuple(std::vector<double>(), std::vector<uint32_t>(), std::vector<std::string>(),
+                             std::string(e.what()));
+    }
+  };
+  const int before = crestline::max_threads();
+  for (const Variant& variant : variants) {
+    INFO(variant.name);
+    crestline::set_max_threads(1);
+    const auto one = read(variant);
+    if (variant.name == variants[0].name)
+      CHECK(std::get<1>(one).size() == 3 * 2 * 63 * 63 * (std::get<0>(one).size() / 3 / 4096));
+    for (int threads : {2, 3}) {
+      crestline::set_max_threads(threads);
+      CHECK(read(variant) == one);
+    }
+  }
+  crestline::set_max_threads(before);
 }
