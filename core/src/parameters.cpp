@@ -233,6 +233,20 @@ std::vector<Parameter> make_table() {
                Stage::Presmooth,
                [](const Settings& s) { return number(s.pipeline.creases.boundaries ? 1 : 0); },
                [](Settings& s, const ParameterValue& v) { s.pipeline.creases.boundaries = v.number != 0; }});
+  t.push_back({"creaseClearance",
+               "--crease-clearance",
+               "pipeline",
+               ParameterKind::Number,
+               false,
+               0,
+               20,
+               {},
+               "edge lengths at the crease",
+               "Ridges and valleys stop this far from the creases they stop at (--crease-boundaries); 0: where "
+               "the boundary band ends",
+               Stage::Polylines,
+               [](const Settings& s) { return number(s.pipeline.clearance.distance); },
+               [](Settings& s, const ParameterValue& v) { s.pipeline.clearance.distance = v.number; }});
   t.push_back({"shortLineLength",
                "--short-line-length",
                "pipeline",

@@ -285,6 +285,7 @@ test('without a mesh, Session.options() reports the core defaults; the app panel
     creaseMaxTurn: 60,
     creaseFilterSteps: 'auto',
     creaseBoundaries: true,
+    creaseClearance: 2,
     shortLineLength: 6,
     view: 'front',
     svgWidth: 1000,

@@ -3,6 +3,7 @@
 // crestline_crease_report prints every case.
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <cmath>
 
 #include "analytic_meshes.h"
 #include "cad_surfaces.h"
@@ -136,11 +137,14 @@ TEST_CASE("smooth lines keep off the sharp edges with crease boundaries", "[qual
       on.creases.boundaries = true;
       const std::vector<Polyline> lines_with = run_cad_pipeline(c, on).lines();
       const SmoothNearCreases with = smooth_lines_near(sharp, lines_with, c.h);
-      // Issue 16 asks for no smooth line within 2 edges of a crease. Measured
-      // within 2 h: the fillets' ridges end 1–2 h from the box's sharp edges
-      // (0.9 h of 29), weak lines on the cylinder's wall end near its creases
-      // (2.5 and 5.1 h of 165 and 162; 4.4 of 155 at σ = 0.25), none on the prism: at most 3.1 % of
-      // the smooth lines, ends only (without boundaries 10–100 % within 1 h).
+      // Issue 16 asks for no smooth line within 2 edges of a crease. Within
+      // 2 h, before the lines were cut back to 2 h from the creases found
+      // (ClearanceOptions): the fillets' ridges ended 1–2 h from the box's
+      // sharp edges (0.9 h of 29), weak lines on the cylinder's wall where the
+      // tracer's band of 2 rings ends, 1.74 h from its creases (2.5 and 5.1 h
+      // of 165 and 162; 4.4 of 155 at σ = 0.25), none on the prism. Since:
+      // 0–0.5 h (the found creases lie up to a noise amplitude off the true
+      // edges, and fairing moves inner points up to 0.25 h).
       const SmoothNearCreases with2 = smooth_lines_near(sharp, lines_with, c.h, 2.0);
       INFO(name << ", noise " << noise << ": within 1 h of a sharp edge " << without.near_length << " h of "
                 << without.length << " without boundaries, " << with.near_length << " h of " << with.length
@@ -148,7 +152,7 @@ TEST_CASE("smooth lines keep off the sharp edges with crease boundaries", "[qual
       if (noise == 0.25) CHECK(without.near_length > 100);
       CHECK(without.near_length > 5);
       CHECK(with.near_length < 0.5);
-      CHECK(with2.near_length <= 0.035 * with.length + 0.5);
+      CHECK(with2.near_length < 1.0);
     }
 }
 
@@ -167,10 +171,11 @@ TEST_CASE("smooth lines keep off the sharp edges with crease boundaries", "[qual
 // ridge that ran 1.2–2 h above the bottom edge of the notch's opposite wall,
 // whose crease was traced two rows inside the cap), none since splices
 // (creases.cpp, kSpliceShare). Within 2 h: the prism 24.1 h (that ridge)
-// before splices, none since; the cylinder's wall lines end there (3.7–4.6 h
-// per case, crossing at right angles).
+// before splices, none since; the cylinder's wall lines ended there (3.7–4.6 h
+// per case, crossing at right angles) until they were cut back to 2 h from
+// the creases found (ClearanceOptions): 0–0.3 h per case, 1.1 h in all.
 TEST_CASE("smooth lines keep off the sharp edges at σ = 0.25 over seeds 1–3", "[quality][creases]") {
-  double total = 0, prism_within_2 = 0;
+  double total = 0, prism_within_2 = 0, within_2 = 0;
   for (const std::string& name : {std::string("chamfered-cylinder"), std::string("notched-prism")})
     for (unsigned seed = 1; seed <= 3; ++seed)
       for (Triangulation t : {Triangulation::Uniform, Triangulation::Alternating, Triangulation::Irregular}) {
@@ -182,15 +187,77 @@ TEST_CASE("smooth lines keep off the sharp edges at σ = 0.25 over seeds 1–3",
         const SmoothNearCreases near2 = smooth_lines_near(sharp, lines, c.h, 2.0);
         INFO(name << " (" << triangulation_name(t) << "), seed " << seed << ": " << near.near_length << " h of "
                   << near.length << " within 1 h of a sharp edge, " << near2.near_length << " h within 2 h");
-        if (name == "chamfered-cylinder") CHECK(near.near_length < 0.5);
         CHECK(near.near_length < 0.5);
-        if (name == "notched-prism") {
-          CHECK(near2.near_length < 0.5);
-          prism_within_2 += near2.near_length;
-        }
-        total += near.near_length;
+        CHECK(near2.near_length < 1.0);
+        if (name == "notched-prism") prism_within_2 += near2.near_length;
+        total += near.near_length, within_2 += near2.near_length;
       }
-  INFO("in all " << total << " h within 1 h, the prism " << prism_within_2 << " h within 2 h");
+  INFO("in all " << total << " h within 1 h, " << within_2 << " h within 2 h (the prism " << prism_within_2 << ")");
   CHECK(total < 0.5);
+  CHECK(within_2 < 2.0);
   CHECK(prism_within_2 < 0.5);
+}
+
+// The cut itself (ClearanceOptions): every ridge and valley point is at least
+// the clearance, in edge lengths at the crease (the mean edge at its two
+// ends, at most the mean edge h), from the creases the Pipeline cut along; ends that were cut exactly
+// at it (fairing keeps ends; inner points move up to its bound, in mean
+// edges). Without it the cylinder's wall lines end 1.74 h from its creases,
+// where the tracer's band of 2 rings ends (its rows are 0.87 h apart).
+TEST_CASE("smooth lines stop the clearance away from the creases they were cut along", "[quality][creases]") {
+  for (const std::string& name : cad_surface_names())
+    for (double noise : {0.0, 0.1, 0.25})
+      for (double clearance : {0.0, 2.0, 3.0}) {
+        const CadCase c = make_cad_case(name, Triangulation::Irregular, noise, 101);
+        PipelineOptions options;
+        options.clearance.distance = clearance;
+        const Pipeline pipeline = run_cad_pipeline(c, options);
+        REQUIRE(pipeline.frames().count() == 1);
+        const double h = pipeline.frames().scale[0];
+        const Mesh& mesh = pipeline.input_mesh();
+        const Topology& topology = pipeline.topology();
+        const std::vector<uint32_t>& creases = pipeline.boundary_creases();
+        REQUIRE_FALSE(creases.empty());
+        std::vector<double> star_sum(mesh.positions.size()), star_count(mesh.positions.size());
+        for (const auto& [a, b] : topology.edges) {
+          const double length = (mesh.positions[b] - mesh.positions[a]).norm();
+          star_sum[a] += length, star_sum[b] += length, ++star_count[a], ++star_count[b];
+        }
+        // Distance in edge lengths at the crease, least over the creases.
+        auto clearance_at = [&](const Vec3& p) {
+          double least = INFINITY;
+          for (uint32_t e : creases) {
+            const auto [i, j] = topology.edges[e];
+            const Vec3 &a = mesh.positions[i], &b = mesh.positions[j];
+            const double t = std::clamp((p - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+            const double edge = std::min(h, (star_sum[i] + star_sum[j]) / (star_count[i] + star_count[j]));
+            least = std::min(least, (a + t * (b - a) - p).norm() / edge);
+          }
+          return least;
+        };
+        double nearest_end = INFINITY, nearest = INFINITY, edge_min = INFINITY, edge_max = 0;
+        for (uint32_t e : creases) {
+          const auto [i, j] = topology.edges[e];
+          const double edge = std::min(h, (star_sum[i] + star_sum[j]) / (star_count[i] + star_count[j])) / h;
+          edge_min = std::min(edge_min, edge), edge_max = std::max(edge_max, edge);
+        }
+        for (const Polyline& line : pipeline.lines())
+          for (size_t i = 0; i < line.points.size(); ++i) {
+            const double d = clearance_at(line.points[i]);
+            nearest = std::min(nearest, d);
+            if (!line.closed && (i == 0 || i + 1 == line.points.size())) nearest_end = std::min(nearest_end, d);
+          }
+        INFO(name << ", noise " << noise << ", clearance " << clearance << ": nearest end " << nearest_end
+                  << " edges, nearest point " << nearest << " edges; edges at the creases " << edge_min << "–"
+                  << edge_max << " h");
+        // The harness's meshes are even: their edges at a crease are about h
+        // (at most h: the Pipeline caps them there).
+        CHECK(edge_min > 0.7);
+        if (clearance > 0) {
+          CHECK(nearest_end >= clearance * (1 - 1e-9));
+          CHECK(nearest >= clearance - options.fairing.hausdorff_bound / edge_min);
+        } else if (name == "chamfered-cylinder") {
+          CHECK(nearest_end < 1.9);
+        }
+      }
 }

@@ -32,6 +32,8 @@ export interface PipelineOptions {
   creaseFilterSteps?: number | 'auto';
   /** Ridges and valleys stop at the creases of the automatic angle. */
   creaseBoundaries?: boolean;
+  /** ...this many edge lengths (at the crease) away from them; 0: where the boundary band ends. */
+  creaseClearance?: number;
   /** Per-vertex smoothing strength (0 freezes a vertex, 1 is the global time step). */
   vertexWeights?: Float64Array | null;
 }

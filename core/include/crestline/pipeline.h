@@ -22,6 +22,7 @@
 // input's coordinates; the per-stage fields (curvature(), extremality(),
 // segments(), …) stay in the working frame (lengths in mean edges of their
 // component, curvatures in 1 / mean edge).
+#include <array>
 #include <functional>
 #include <optional>
 #include <string>
@@ -29,6 +30,7 @@
 
 #include "crestline/curvature/extremality_smoothing.h"
 #include "crestline/curvature/shape_operator_averaging.h"
+#include "crestline/lines/clearance.h"
 #include "crestline/lines/creases.h"
 #include "crestline/lines/fairing.h"
 #include "crestline/lines/filter.h"
@@ -48,6 +50,9 @@ struct PipelineOptions {
   FairingOptions fairing;
   FilterOptions filter;
   CreaseOptions creases;
+  /// How far the smooth lines stop from the boundary creases (only where the
+  /// mesh was cut along creases).
+  ClearanceOptions clearance;
 };
 
 enum class Stage : int {
@@ -176,6 +181,7 @@ class Pipeline {
   BoundarySelection select_boundaries();
   // Cuts the input along the boundary creases; takes over its working-frame
   // mesh and adjacency when the cut splits any vertex.
+  void measure_boundary_edges(const Topology& topology, const Mesh& local);
   void cut_along_boundaries(std::vector<uint32_t> edges);
   // The creases stage's work; returns its seconds.
   double select_crease_lines(std::optional<CreaseResult> automatic);
@@ -213,6 +219,10 @@ class Pipeline {
   bool crease_angles_valid_ = false;
   bool boundaries_dirty_ = true;
   std::vector<uint32_t> boundary_edges_;
+  // The ends of boundary_edges_ (input vertices; the cut renumbers the
+  // edges) and the mean edge at them in the working frame: the clearance's.
+  std::vector<std::array<uint32_t, 2>> boundary_ends_;
+  std::vector<double> boundary_edge_lengths_;
   bool cut_active_ = false;
   CutMesh cut_;  // of local_input_, in the working frame
   Topology cut_topology_;
