@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
@@ -16,6 +17,7 @@
 #include <limits>
 #include <new>
 
+#include "../mesh/parts.h"
 #include "crestline/numerics/uninitialised.h"
 #include "readers.h"
 
@@ -182,31 +184,46 @@ bool find_companion(const Input& in, const std::string& uri, uint64_t max_bytes,
 
 void finish_soup(TriangleSoup& soup, const Input& in) {
   if (soup.indices.empty()) fail(ErrorKind::InvalidInput, in, "the file contains no triangles.");
-  const size_t vertices = soup.vertex_count();
-  std::vector<char> non_finite(vertices, 0);
-  size_t non_finite_count = 0;
-  for (size_t v = 0; v < vertices; ++v) {
-    const double* p = &soup.positions[3 * v];
-    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) {
-      non_finite[v] = 1;
-      ++non_finite_count;
-    }
-  }
-  bool any_finite_referenced = false;
-  for (size_t k = 0; k < soup.indices.size(); ++k) {
-    const uint32_t index = soup.indices[k];
-    if (index >= vertices) {
-      fail(ErrorKind::InvalidInput, in,
-           "triangle " + std::to_string(k / 3) + " refers to vertex " + std::to_string(index) + " but the file has " +
-               std::to_string(vertices) + " vertices.");
-    }
-    any_finite_referenced = any_finite_referenced || !non_finite[index];
+  // On every thread: counts summed, and the first index out of range is the
+  // smallest any part finds, so the message is the same for any count.
+  const size_t vertices = soup.vertex_count(), indices = soup.indices.size();
+  UninitialisedVector<char> non_finite(vertices);
+  std::atomic<size_t> non_finite_count{0};
+  crestline::detail::for_each_part(
+      crestline::detail::part_count(vertices), vertices, [&](size_t, size_t begin, size_t end) {
+        size_t count = 0;
+        for (size_t v = begin; v < end; ++v) {
+          const double* p = &soup.positions[3 * v];
+          non_finite[v] = !std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]);
+          count += size_t(non_finite[v]);
+        }
+        non_finite_count += count;
+      });
+  std::atomic<size_t> first_out_of_range{indices};
+  std::atomic<bool> any_finite_referenced{false};
+  crestline::detail::for_each_part(crestline::detail::part_count(indices), indices,
+                                   [&](size_t, size_t begin, size_t end) {
+                                     bool any_finite = false;
+                                     for (size_t k = begin; k < end; ++k) {
+                                       const uint32_t index = soup.indices[k];
+                                       if (index >= vertices) {
+                                         crestline::detail::atomic_min(first_out_of_range, k);
+                                         return;
+                                       }
+                                       any_finite = any_finite || !non_finite[index];
+                                     }
+                                     if (any_finite) any_finite_referenced = true;
+                                   });
+  if (const size_t k = first_out_of_range; k < indices) {
+    fail(ErrorKind::InvalidInput, in,
+         "triangle " + std::to_string(k / 3) + " refers to vertex " + std::to_string(soup.indices[k]) +
+             " but the file has " + std::to_string(vertices) + " vertices.");
   }
   if (!any_finite_referenced) {
     fail(ErrorKind::InvalidInput, in, "every vertex of every triangle has a NaN or infinite coordinate.");
   }
   if (non_finite_count > 0) {
-    soup.notes.push_back(std::to_string(non_finite_count) +
+    soup.notes.push_back(std::to_string(non_finite_count.load()) +
                          " vertices have NaN or infinite coordinates; their triangles are dropped.");
   }
 }

@@ -55,7 +55,10 @@ bool decode_utf16(const Input& in, std::string& text) {
 // only when the file has a continuation.
 std::string_view prepare_text(std::string_view text, std::string& storage) {
   if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
-  if (text.find("\\\n") == std::string_view::npos && text.find("\\\r\n") == std::string_view::npos) return text;
+  bool joins = false;  // one scan for a backslash, rare elsewhere
+  for (size_t i = text.find('\\'); i != std::string_view::npos && !joins; i = text.find('\\', i + 1))
+    joins = text.substr(i + 1, 1) == "\n" || text.substr(i + 1, 2) == "\r\n";
+  if (!joins) return text;
   storage.assign(text);
   for (size_t i = 0; i + 1 < storage.size(); ++i) {
     if (storage[i] != '\\') continue;

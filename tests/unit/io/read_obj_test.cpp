@@ -3,6 +3,7 @@
 // and messages that name the line of the face at fault.
 #include <catch2/catch.hpp>
 #include <cstdlib>
+#include <cstring>
 #include <random>
 #include <string>
 #include <tuple>
@@ -206,13 +207,14 @@ TEST_CASE("OBJ: plain triangles read as the general face parse reads them", "[io
 }
 
 TEST_CASE("OBJ: a large file reads in parts on every thread to the same soup or the same message", "[io][obj]") {
-  // A 64 × 64 grid copied until the text passes 1 MB (four parts and more),
-  // then each variant below: what one thread reads (one pass) is what two
-  // and three threads read, soup or message.
+  // A 64 × 64 grid copied until the text passes 2.5 MB (parts, and 2^15
+  // vertices and more for finish_soup's parts), then each variant below:
+  // what one thread reads (one pass) is what two and three threads read,
+  // soup or message.
   auto grid = [](const std::string& end_of_line) {
     std::string text = "# a grid\r\n" + std::string("mtllib none.mtl") + end_of_line;
     size_t base = 0;
-    while (text.size() < (size_t{1} << 20)) {
+    while (text.size() < (size_t{5} << 19)) {
       for (int y = 0; y < 64; ++y)
         for (int x = 0; x < 64; ++x)
           text += "v " + std::to_string(x * 0.1) + " " + std::to_string(y * 0.3) + " " + std::to_string(base % 7) +
@@ -255,13 +257,16 @@ TEST_CASE("OBJ: a large file reads in parts on every thread to the same soup or 
       {"a huge exponent late", with(lf, 0.95, "v 1e99999999999 0 0\n"), {}},
       {"too many triangles", lf, few},
       {"a continuation line", with(lf, 0.4, "f 1 2 \\\n 3\n"), {}},
+      {"non-finite vertices (a note with their count)", with(with(lf, 0.7, "v 1 inf 2\n"), 0.3, "v nan 1 2\n"), {}},
   };
   auto read = [](const Variant& variant) {
     try {
       const TriangleSoup soup = read_text(variant.text, variant.options);
-      return std::make_tuple(soup.positions, soup.indices, soup.notes, std::string());
+      std::vector<uint64_t> bits(soup.positions.size());  // NaN too
+      std::memcpy(bits.data(), soup.positions.data(), 8 * bits.size());
+      return std::make_tuple(bits, soup.indices, soup.notes, std::string());
     } catch (const Error& e) {
-      return std::make_tuple(std::vector<double>(), std::vector<uint32_t>(), std::vector<std::string>(),
+      return std::make_tuple(std::vector<uint64_t>(), std::vector<uint32_t>(), std::vector<std::string>(),
                              std::string(e.what()));
     }
   };
@@ -272,6 +277,9 @@ TEST_CASE("OBJ: a large file reads in parts on every thread to the same soup or 
     const auto one = read(variant);
     if (variant.name == variants[0].name)
       CHECK(std::get<1>(one).size() == 3 * 2 * 63 * 63 * (std::get<0>(one).size() / 3 / 4096));
+    if (std::string(variant.name).rfind("non-finite", 0) == 0)
+      CHECK(std::get<2>(one) ==
+            std::vector<std::string>{"2 vertices have NaN or infinite coordinates; their triangles are dropped."});
     for (int threads : {2, 3}) {
       crestline::set_max_threads(threads);
       CHECK(read(variant) == one);
