@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <type_traits>
 
@@ -65,14 +66,15 @@ struct Pair {
     return {_mm_cvtps_pd(_mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p))))};
   }
   static Pair load(const float* p) { return widen(p); }
-  // An entry of Â (see SignedPairSolver::a_): its float widened to both
-  // lanes, lane 1 negated where bit 31 of the column word is set (exact).
-  static Pair widen_signed(const float* p, uint32_t column) {
-    const __m128d w = _mm_cvtps_pd(_mm_load_ss(p));
+  // An entry of Â (detail::SignedEntry): its float widened to both lanes,
+  // lane 1 negated where the column word's top bit is set (exact). One load
+  // for both words, each moved where it is used.
+  static Pair widen_signed(const detail::SignedEntry* e) {
+    const __m128i words = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(e));  // column, weight, 0, 0
+    const __m128d w = _mm_cvtps_pd(_mm_castsi128_ps(_mm_shuffle_epi32(words, 0x55)));
     // The column word in the upper half of lane 1 only, then its top bit.
-    const __m128i word = _mm_shuffle_epi32(_mm_cvtsi32_si128(static_cast<int>(column)), 0x15);
-    const __m128i flip = _mm_and_si128(word, _mm_set_epi32(static_cast<int>(0x80000000u), 0, 0, 0));
-    return {_mm_xor_pd(_mm_unpacklo_pd(w, w), _mm_castsi128_pd(flip))};
+    const __m128i flip = _mm_and_si128(_mm_shuffle_epi32(words, 0x2a), _mm_set_epi32(INT32_MIN, 0, 0, 0));
+    return {_mm_xor_pd(w, _mm_castsi128_pd(flip))};
   }
   void store(double* p) const { _mm_storeu_pd(p, v); }
   // Rounded to the nearest floats, as static_cast<float> does.
@@ -90,9 +92,9 @@ struct Pair {
   static Pair of(double x, double y) { return {x, y}; }
   static Pair widen(const float* p) { return {double{p[0]}, double{p[1]}}; }
   static Pair load(const float* p) { return widen(p); }
-  static Pair widen_signed(const float* p, uint32_t column) {
-    const double w = *p;
-    return {w, column >> 31 ? -w : w};
+  static Pair widen_signed(const detail::SignedEntry* e) {
+    const double w = e->weight;
+    return {w, e->column >> 31 ? -w : w};
   }
   void store(double* p) const { p[0] = a, p[1] = b; }
   void store(float* p) const { p[0] = static_cast<float>(a), p[1] = static_cast<float>(b); }
@@ -121,27 +123,23 @@ inline const Value* row_of(const Value* v, uint32_t column) {
   return v + size_t{static_cast<uint32_t>(column << 1)};
 }
 
-// The same over entries of Â: one float each, field 0's sign in it and
-// field 1's flip in the column word (SignedPairSolver::a_).
+// The same over entries of Â (detail::SignedEntry).
 template <typename Value>
-inline Pair accumulate_signed(const uint32_t* columns, const float* weights, const Value* v, uint32_t begin,
-                              uint32_t end) {
+inline Pair accumulate_signed(const detail::SignedEntry* entries, const Value* v, uint32_t begin, uint32_t end) {
   Pair s = Pair::both(0.0);
-  const float* w = weights + begin;
-  for (const uint32_t *c = columns + begin, *last = columns + end; c != last; ++c, ++w)
-    s = s + Pair::widen_signed(w, *c) * Pair::load(row_of(v, *c));
+  for (const detail::SignedEntry *e = entries + begin, *last = entries + end; e != last; ++e)
+    s = s + Pair::widen_signed(e) * Pair::load(row_of(v, e->column));
   return s;
 }
 
 // Σ a_ij v_j and Σ a_ij w_j over the same entries of Â: each entry read once.
-inline void accumulate2(const uint32_t* columns, const float* weights, const double* v, const double* w, uint32_t begin,
+inline void accumulate2(const detail::SignedEntry* entries, const double* v, const double* w, uint32_t begin,
                         uint32_t end, Pair& sv, Pair& sw) {
   sv = Pair::both(0.0), sw = Pair::both(0.0);
-  const float* e = weights + begin;
-  for (const uint32_t *c = columns + begin, *last = columns + end; c != last; ++c, ++e) {
-    const Pair a = Pair::widen_signed(e, *c);
-    sv = sv + a * Pair::load(row_of(v, *c));
-    sw = sw + a * Pair::load(row_of(w, *c));
+  for (const detail::SignedEntry *e = entries + begin, *last = entries + end; e != last; ++e) {
+    const Pair a = Pair::widen_signed(e);
+    sv = sv + a * Pair::load(row_of(v, e->column));
+    sw = sw + a * Pair::load(row_of(w, e->column));
   }
 }
 
@@ -292,22 +290,14 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix, bool two_level) {
   // colouring's bit words, the set-up went from ≈ 1,100 to ≈ 570
   // instructions a row (callgrind, CLI defaults: bunny, 1.1M, dragon).
   const size_t entries = matrix.columns.size();
-  a_.columns.resize(entries);
-  weights_.resize(entries);
+  entries_.resize(entries);
   a_.offsets.resize(n + 1);
   lower_begin_.resize(n);
   uint32_t widest = 0;
   for (size_t i = 0; i < n; ++i) widest = std::max(widest, matrix.offsets[i + 1] - matrix.offsets[i]);
-  struct Entry {
-    uint32_t column;  // with field 1's flip (kFlipBit)
-    float weight;     // with field 0's sign
-  };
-  std::vector<Entry> lower(widest);
+  std::vector<detail::SignedEntry> lower(widest);
   uint32_t next = 0;
-  const auto put = [&](const Entry& entry) {
-    a_.columns[next] = entry.column, weights_[next] = entry.weight;
-    ++next;
-  };
+  const auto put = [&](const detail::SignedEntry& entry) { entries_[next++] = entry; };
   a_.offsets[0] = 0;
   uint32_t row_colour = 0;
   for (size_t k = 0; k < n; ++k) {
@@ -320,7 +310,7 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix, bool two_level) {
       // The product of the roots is the same both ways: A stays symmetric.
       // Rounding to float commutes with the sign applied in the sweeps.
       const float w = static_cast<float>(matrix.weights[e] / (roots[k] * roots[to]));
-      const Entry entry{to | ((column >> 30 ^ column >> 31) & 1) << 31, column >> 30 & 1 ? -w : w};
+      const detail::SignedEntry entry{to | ((column >> 30 ^ column >> 31) & 1) << 31, column >> 30 & 1 ? -w : w};
       if (to < earlier)
         lower[lowers++] = entry;
       else
@@ -406,12 +396,11 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
   // once per row (bunny, solve: 830 M → 737 M instructions).
   const double* const diagonal = a.diagonal.data();
   const uint32_t *const offsets = a.offsets.data(), *const lower = lower_begin_.data();
-  const uint32_t* const columns = a.columns.data();
-  const float* const weights = weights_.data();
+  const detail::SignedEntry* const entries = entries_.data();
   double *const xv = xp.data(), *const rv = rt.data(), *const utv = ut.data(), *const uv = u.data();
   float* const tv = tf.data();
-  const auto row_sum = [columns, weights](const double* v, uint32_t begin, uint32_t end) {
-    return accumulate_signed(columns, weights, v, begin, end);
+  const auto row_sum = [entries](const double* v, uint32_t begin, uint32_t end) {
+    return accumulate_signed(entries, v, begin, end);
   };
   // r = b − A x₀ = b − D x₀ − S⁻¹ N̂ S⁻¹ x₀ and r̂ = S r, then r̃ = (I + L)⁻¹
   // r̂ in place, colour by colour.
@@ -489,8 +478,8 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
     const uint32_t *const q_begin = q_begin_.data(), *const q_columns = q_columns_.data();
     const float* const q_values = q_values_.data();
     const auto first = [=](auto with_coarse, size_t begin, size_t end, BlockSums& sums) {
-      const uint32_t *const offsets_ = offsets, *const lower_ = lower, *const columns_ = columns;
-      const float* const weights_ = weights;
+      const uint32_t *const offsets_ = offsets, *const lower_ = lower;
+      const detail::SignedEntry* const entries_ = entries;
       double *const rv_ = rv, *const utv_ = utv;
       float* const tv_ = tv;
       const Pair keep_ = keep, beta_ = beta_pair;
@@ -501,7 +490,7 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
         if constexpr (decltype(with_coarse)::value)
           zi = zi + accumulate(q_columns, q_values, yv, q_begin[i], q_begin[i + 1]);
         const Pair pi = keep_ * (zi + beta_ * q);
-        const Pair uti = accumulate_signed(columns_, weights_, tv_, offsets_[i], lower_[i]);
+        const Pair uti = accumulate_signed(entries_, tv_, offsets_[i], lower_[i]);
         (pi - uti).store(tv_ + 2 * i);
         uti.store(utv_ + 2 * i);
         const Pair ti = Pair::load(tv_ + 2 * i);
@@ -523,8 +512,8 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
     // updated already, over the entries that u reads.
     const auto second = [=](auto form_residual, size_t begin, size_t end, BlockSums& s) {
       const double* const diagonal_ = diagonal;
-      const uint32_t *const offsets_ = offsets, *const lower_ = lower, *const columns_ = columns;
-      const float* const weights_ = weights;
+      const uint32_t *const offsets_ = offsets, *const lower_ = lower;
+      const detail::SignedEntry* const entries_ = entries;
       double *const xv_ = xv, *const rv_ = rv, *const utv_ = utv, *const uv_ = uv;
       const float* const tv_ = tv;
       const Pair alpha_ = alpha_pair;
@@ -532,9 +521,9 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
       for (size_t i = begin; i < end; ++i) {
         Pair lu, lr;
         if constexpr (decltype(form_residual)::value)
-          accumulate2(columns_, weights_, uv_, rv_, lower_[i], offsets_[i + 1], lu, lr);
+          accumulate2(entries_, uv_, rv_, lower_[i], offsets_[i + 1], lu, lr);
         else
-          lu = accumulate_signed(columns_, weights_, uv_, lower_[i], offsets_[i + 1]);
+          lu = accumulate_signed(entries_, uv_, lower_[i], offsets_[i + 1]);
         const Pair ti = Pair::load(tv_ + 2 * i), ui = Pair::load(utv_ + 2 * i) - lu;
         ui.store(uv_ + 2 * i);
         (Pair::load(xv_ + 2 * i) + alpha_ * ti).store(xv_ + 2 * i);

@@ -5,13 +5,14 @@
 // off-diagonal entries. Conjugate gradients on both in lockstep read each
 // matrix entry once for both fields, which is what a sparse matrix-vector
 // product is limited by. The solver stores an entry as its column word and
-// σ_0 w / √(a_ii a_jj) in float, σ_1's flip against σ_0 in the column
-// word's top bit (8 bytes; as the pair (σ_0 w, σ_1 w) in 12 bytes, the same
-// values, the smoothing's peak memory at 1.1M 11.4 bytes a triangle less
-// and its instructions +21 % on the bunny: 5 more an entry to widen one
-// float to both lanes and flip lane 1; the system scaled to a unit
-// diagonal, so that no sweep reads a diagonal or its inverse: 32 of ≈ 340
-// bytes per row and iteration, and
+// σ_0 w / √(a_ii a_jj) in float side by side, σ_1's flip against σ_0 in the
+// column word's top bit (detail::SignedEntry: 8 bytes, one load; as the
+// pair (σ_0 w, σ_1 w) and the column apart in 12 bytes, the same values,
+// the smoothing's peak memory at 1.1M 11.4 bytes a triangle less, its
+// instructions on the bunny +13 %: 4–5 more an entry to widen the float to
+// both lanes and flip lane 1; the system scaled to a unit diagonal, so
+// that no sweep reads a diagonal or its inverse: 32 of ≈ 340 bytes per row
+// and iteration, and
 // bunny 397 M → 379 M instructions, last-level misses −18 %, the same
 // iterations on the bunny, 1.1M and the dragon): the
 // system it solves differs from the double one by 2⁻²⁴ relative per entry,
@@ -186,6 +187,15 @@ inline bool is_slow(double diagonal, double excess, bool has_entries) { return h
 /// The fewest aggregated rows of `rows` for which there is a coarse level (1 %).
 inline size_t min_aggregated(size_t rows) { return (rows + 99) / 100; }
 
+/// An entry of the solver's scaled matrix Â, both fields: its pair is (w,
+/// ±w), w = σ_0 w_ij / √(a_ii a_jj) rounded to float, negated in field 1
+/// where the column word's top bit is set (σ_1 ≠ σ_0). One 8-byte load an
+/// entry in the sweeps.
+struct SignedEntry {
+  uint32_t column;
+  float weight;
+};
+
 /// Greedy colouring in row order: each row takes the least colour that none
 /// of its earlier neighbours (columns below its row) has.
 std::vector<uint32_t> greedy_colours(const SignedPairMatrix& a);
@@ -244,11 +254,11 @@ class SignedPairSolver {
 
   // Â = S A S, S = diag(1 / √A(i,i)), with rows in colour order; a_.diagonal
   // holds A(i,i), whose roots are taken where needed (correctly rounded: the
-  // same each time); entries: later colours | earlier ones; weights empty. An entry's pair is (w, ±w): w = σ_0 w_ij /
-  // √(a_ii a_jj) rounded to float in weights_, and kFlipBit set in its column word where σ_1 ≠ σ_0 (one float an entry,
-  // not two: 4 bytes an entry less, the same values).
+  // same each time); a row's entries, later colours | earlier ones, are in
+  // entries_ (a_'s columns and weights empty; one float an entry, not two:
+  // 4 bytes an entry less, the same values).
   SignedPairMatrix a_;
-  std::vector<float> weights_;
+  std::vector<detail::SignedEntry> entries_;
   static constexpr uint32_t kFlipBit = 1u << 31;
   std::vector<uint32_t> order_;  // the input row of each row of a_
   std::vector<uint32_t> colour_begin_, lower_begin_;
