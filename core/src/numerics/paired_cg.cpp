@@ -67,13 +67,13 @@ struct Pair {
   }
   static Pair load(const float* p) { return widen(p); }
   // An entry of Â (detail::SignedEntry): its float widened to both lanes,
-  // lane 1 negated where the column word's top bit is set (exact). One load
-  // for both words, each moved where it is used.
+  // lane 1 negated where the word's flip bit is set (exact). One load for
+  // both words, each moved where it is used.
   static Pair widen_signed(const detail::SignedEntry* e) {
     const __m128i words = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(e));  // column, weight, 0, 0
     const __m128d w = _mm_cvtps_pd(_mm_castsi128_ps(_mm_shuffle_epi32(words, 0x55)));
-    // The column word in the upper half of lane 1 only, then its top bit.
-    const __m128i flip = _mm_and_si128(_mm_shuffle_epi32(words, 0x2a), _mm_set_epi32(INT32_MIN, 0, 0, 0));
+    // The word in the upper half of lane 1 only, its flip bit moved to the top.
+    const __m128i flip = _mm_slli_epi32(_mm_shuffle_epi32(words, 0x2a), 31);
     return {_mm_xor_pd(w, _mm_castsi128_pd(flip))};
   }
   void store(double* p) const { _mm_storeu_pd(p, v); }
@@ -94,7 +94,7 @@ struct Pair {
   static Pair load(const float* p) { return widen(p); }
   static Pair widen_signed(const detail::SignedEntry* e) {
     const double w = e->weight;
-    return {w, e->column >> 31 ? -w : w};
+    return {w, e->word & 1 ? -w : w};
   }
   void store(double* p) const { p[0] = a, p[1] = b; }
   void store(float* p) const { p[0] = static_cast<float>(a), p[1] = static_cast<float>(b); }
@@ -116,11 +116,11 @@ inline Pair accumulate(const uint32_t* columns, const float* weights, const Valu
   return s;
 }
 
-// Where a row's pair starts in v: 2 × the column of an entry of Â, the
-// flip bit shifted out (one instruction, as the × 2 was before).
+// Where the pair of an entry's column starts in v: the word less its flip
+// bit is 2 × the column (one instruction, as the × 2 was before).
 template <typename Value>
-inline const Value* row_of(const Value* v, uint32_t column) {
-  return v + size_t{static_cast<uint32_t>(column << 1)};
+inline const Value* row_of(const Value* v, uint32_t word) {
+  return v + size_t{word & ~uint32_t{1}};
 }
 
 // The same over entries of Â (detail::SignedEntry).
@@ -128,7 +128,7 @@ template <typename Value>
 inline Pair accumulate_signed(const detail::SignedEntry* entries, const Value* v, uint32_t begin, uint32_t end) {
   Pair s = Pair::both(0.0);
   for (const detail::SignedEntry *e = entries + begin, *last = entries + end; e != last; ++e)
-    s = s + Pair::widen_signed(e) * Pair::load(row_of(v, e->column));
+    s = s + Pair::widen_signed(e) * Pair::load(row_of(v, e->word));
   return s;
 }
 
@@ -138,8 +138,8 @@ inline void accumulate2(const detail::SignedEntry* entries, const double* v, con
   sv = Pair::both(0.0), sw = Pair::both(0.0);
   for (const detail::SignedEntry *e = entries + begin, *last = entries + end; e != last; ++e) {
     const Pair a = Pair::widen_signed(e);
-    sv = sv + a * Pair::load(row_of(v, e->column));
-    sw = sw + a * Pair::load(row_of(w, e->column));
+    sv = sv + a * Pair::load(row_of(v, e->word));
+    sw = sw + a * Pair::load(row_of(w, e->word));
   }
 }
 
@@ -310,7 +310,7 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix, bool two_level) {
       // The product of the roots is the same both ways: A stays symmetric.
       // Rounding to float commutes with the sign applied in the sweeps.
       const float w = static_cast<float>(matrix.weights[e] / (roots[k] * roots[to]));
-      const detail::SignedEntry entry{to | ((column >> 30 ^ column >> 31) & 1) << 31, column >> 30 & 1 ? -w : w};
+      const detail::SignedEntry entry{to << 1 | ((column >> 30 ^ column >> 31) & 1), column >> 30 & 1 ? -w : w};
       if (to < earlier)
         lower[lowers++] = entry;
       else

@@ -195,14 +195,14 @@ void SignedPairSolver::build_coarse_transfer(const Aggregation& aggregation, con
   for (size_t r = 0; r < n; ++r) {
     row_columns.clear(), row_values.clear();
     for (uint32_t e = lower_begin_[r]; e < a_.offsets[r + 1]; ++e) {
-      const uint32_t j = entries_[e].column & ~kFlipBit, c = fine_aggregate[j];
+      const uint32_t j = entries_[e].word >> 1, c = fine_aggregate[j];
       if (c == kNone) continue;
       if (slot[c] == kNone) {
         slot[c] = static_cast<uint32_t>(row_columns.size());
         row_columns.push_back(c), row_values.resize(row_values.size() + 2, 0.0);
       }
       // The sweeps' entry, field 1's flip applied as they do.
-      const double w = entries_[e].weight, w1 = entries_[e].column & kFlipBit ? -w : w;
+      const double w = entries_[e].weight, w1 = entries_[e].word & 1 ? -w : w;
       row_values[2 * size_t{slot[c]}] += w * p(j, 0);
       row_values[2 * size_t{slot[c]} + 1] += w1 * p(j, 1);
     }

@@ -4,13 +4,13 @@
 // and the cotan weights, and their matrices differ only in the signs σ_pq of
 // off-diagonal entries. Conjugate gradients on both in lockstep read each
 // matrix entry once for both fields, which is what a sparse matrix-vector
-// product is limited by. The solver stores an entry as its column word and
-// σ_0 w / √(a_ii a_jj) in float side by side, σ_1's flip against σ_0 in the
-// column word's top bit (detail::SignedEntry: 8 bytes, one load; as the
-// pair (σ_0 w, σ_1 w) and the column apart in 12 bytes, the same values,
-// the smoothing's peak memory at 1.1M 11.4 bytes a triangle less, its
-// instructions on the bunny +13 %: 4–5 more an entry to widen the float to
-// both lanes and flip lane 1; the system scaled to a unit diagonal, so
+// product is limited by. The solver stores an entry as its column and
+// σ_1's flip against σ_0 in one word, σ_0 w / √(a_ii a_jj) in float beside
+// it (detail::SignedEntry: 8 bytes, one load; as the pair (σ_0 w, σ_1 w)
+// and the column apart in 12 bytes, the same values, the smoothing's peak
+// memory at 1.1M 11.4 bytes a triangle less, its instructions on the bunny
+// +11 %: 3 more an entry to widen the float to both lanes and flip lane
+// 1; the system scaled to a unit diagonal, so
 // that no sweep reads a diagonal or its inverse: 32 of ≈ 340 bytes per row
 // and iteration, and
 // bunny 397 M → 379 M instructions, last-level misses −18 %, the same
@@ -189,10 +189,9 @@ inline size_t min_aggregated(size_t rows) { return (rows + 99) / 100; }
 
 /// An entry of the solver's scaled matrix Â, both fields: its pair is (w,
 /// ±w), w = σ_0 w_ij / √(a_ii a_jj) rounded to float, negated in field 1
-/// where the column word's top bit is set (σ_1 ≠ σ_0). One 8-byte load an
-/// entry in the sweeps.
+/// where σ_1 ≠ σ_0. One 8-byte load an entry in the sweeps.
 struct SignedEntry {
-  uint32_t column;
+  uint32_t word;  // column << 1 | (σ_1 ≠ σ_0): the low bit masked off is the column's offset in a vector of pairs
   float weight;
 };
 
@@ -259,7 +258,6 @@ class SignedPairSolver {
   // 4 bytes an entry less, the same values).
   SignedPairMatrix a_;
   std::vector<detail::SignedEntry> entries_;
-  static constexpr uint32_t kFlipBit = 1u << 31;
   std::vector<uint32_t> order_;  // the input row of each row of a_
   std::vector<uint32_t> colour_begin_, lower_begin_;
   // The coarse level (empty without one), scaled to a unit diagonal per field:
