@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdint>
 #include <cstring>
 #include <type_traits>
 
@@ -66,16 +65,6 @@ struct Pair {
     return {_mm_cvtps_pd(_mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(p))))};
   }
   static Pair load(const float* p) { return widen(p); }
-  // An entry of Â (detail::SignedEntry): its float widened to both lanes,
-  // lane 1 negated where the word's flip bit is set (exact). One load for
-  // both words, each moved where it is used.
-  static Pair widen_signed(const detail::SignedEntry* e) {
-    const __m128i words = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(e));  // column, weight, 0, 0
-    const __m128d w = _mm_cvtps_pd(_mm_castsi128_ps(_mm_shuffle_epi32(words, 0x55)));
-    // The word in the upper half of lane 1 only, its flip bit moved to the top.
-    const __m128i flip = _mm_slli_epi32(_mm_shuffle_epi32(words, 0x2a), 31);
-    return {_mm_xor_pd(w, _mm_castsi128_pd(flip))};
-  }
   void store(double* p) const { _mm_storeu_pd(p, v); }
   // Rounded to the nearest floats, as static_cast<float> does.
   void store(float* p) const { _mm_storel_pi(reinterpret_cast<__m64*>(p), _mm_cvtpd_ps(v)); }
@@ -92,10 +81,6 @@ struct Pair {
   static Pair of(double x, double y) { return {x, y}; }
   static Pair widen(const float* p) { return {double{p[0]}, double{p[1]}}; }
   static Pair load(const float* p) { return widen(p); }
-  static Pair widen_signed(const detail::SignedEntry* e) {
-    const double w = e->weight;
-    return {w, e->word & 1 ? -w : w};
-  }
   void store(double* p) const { p[0] = a, p[1] = b; }
   void store(float* p) const { p[0] = static_cast<float>(a), p[1] = static_cast<float>(b); }
 };
@@ -106,7 +91,7 @@ inline Pair operator/(Pair x, Pair y) { return {x.a / y.a, x.b / y.b}; }
 #endif
 
 // Σ a_ij v_j over entries [begin, end) of a row, both fields: weights holds
-// each entry's pair of values (Q's, whose fields differ).
+// each entry's pair (σ_0 w, σ_1 w).
 template <typename Value>
 inline Pair accumulate(const uint32_t* columns, const float* weights, const Value* v, uint32_t begin, uint32_t end) {
   Pair s = Pair::both(0.0);
@@ -116,30 +101,15 @@ inline Pair accumulate(const uint32_t* columns, const float* weights, const Valu
   return s;
 }
 
-// Where the pair of an entry's column starts in v: the word less its flip
-// bit is 2 × the column (one instruction, as the × 2 was before).
-template <typename Value>
-inline const Value* row_of(const Value* v, uint32_t word) {
-  return v + size_t{word & ~uint32_t{1}};
-}
-
-// The same over entries of Â (detail::SignedEntry).
-template <typename Value>
-inline Pair accumulate_signed(const detail::SignedEntry* entries, const Value* v, uint32_t begin, uint32_t end) {
-  Pair s = Pair::both(0.0);
-  for (const detail::SignedEntry *e = entries + begin, *last = entries + end; e != last; ++e)
-    s = s + Pair::widen_signed(e) * Pair::load(row_of(v, e->word));
-  return s;
-}
-
-// Σ a_ij v_j and Σ a_ij w_j over the same entries of Â: each entry read once.
-inline void accumulate2(const detail::SignedEntry* entries, const double* v, const double* w, uint32_t begin,
+// Σ a_ij v_j and Σ a_ij w_j over the same entries: each entry read once.
+inline void accumulate2(const uint32_t* columns, const float* weights, const double* v, const double* w, uint32_t begin,
                         uint32_t end, Pair& sv, Pair& sw) {
   sv = Pair::both(0.0), sw = Pair::both(0.0);
-  for (const detail::SignedEntry *e = entries + begin, *last = entries + end; e != last; ++e) {
-    const Pair a = Pair::widen_signed(e);
-    sv = sv + a * Pair::load(row_of(v, e->word));
-    sw = sw + a * Pair::load(row_of(w, e->word));
+  const float* e = weights + 2 * size_t{begin};
+  for (const uint32_t *c = columns + begin, *last = columns + end; c != last; ++c, e += 2) {
+    const Pair a = Pair::widen(e);
+    sv = sv + a * Pair::load(v + 2 * size_t{*c});
+    sw = sw + a * Pair::load(w + 2 * size_t{*c});
   }
 }
 
@@ -235,7 +205,7 @@ std::vector<uint32_t> detail::greedy_colours(const SignedPairMatrix& a) {
 
 SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix, bool two_level) {
   const size_t n = matrix.rows();
-  std::vector<uint32_t> colour = detail::greedy_colours(matrix);
+  const std::vector<uint32_t> colour = detail::greedy_colours(matrix);
   const uint32_t colours = n == 0 ? 0 : *std::max_element(colour.begin(), colour.end()) + 1;
   // Rows ordered by colour (a counting sort keeps the locality order within one).
   colour_begin_.assign(colours + 1, 0);
@@ -248,15 +218,11 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix, bool two_level) {
     std::vector<uint32_t> fill(colour_begin_.begin(), colour_begin_.end() - 1);
     for (const uint32_t i : bfs_order) position[i] = fill[colour[i]]++, order_[position[i]] = i;
   }
-  std::vector<uint32_t>().swap(colour);  // a row's is known from its position now
-  // √A(i,i) by the solver's row, for the set-up only: the solves take the
-  // square root where they need it (the same value, 8 bytes a row less
-  // through them).
   a_.diagonal.resize(n);
-  std::vector<double> roots(n);
+  roots_.resize(n);
   for (size_t k = 0; k < n; ++k) {
     a_.diagonal[k] = matrix.diagonal[order_[k]];
-    roots[k] = std::sqrt(a_.diagonal[k]);
+    roots_[k] = std::sqrt(a_.diagonal[k]);
   }
   // The coarse level's test, what each row's diagonal exceeds its
   // off-diagonal magnitudes by, and with it Ac, from the input matrix
@@ -266,20 +232,16 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix, bool two_level) {
   Aggregation aggregation;
   if (two_level) {
     std::vector<double> excess(n);
-    std::vector<uint8_t> slow(n);
     size_t slow_rows = 0;
     for (size_t i = 0; i < n; ++i) {
       double off = 0;
       for (uint32_t e = matrix.offsets[i]; e < matrix.offsets[i + 1]; ++e) off += std::abs(matrix.weights[e]);
       excess[i] = std::max(0.0, matrix.diagonal[i] - off);
-      slow[i] = detail::is_slow(matrix.diagonal[i], excess[i], matrix.offsets[i + 1] > matrix.offsets[i]);
-      slow_rows += slow[i];
+      slow_rows += detail::is_slow(matrix.diagonal[i], excess[i], matrix.offsets[i + 1] > matrix.offsets[i]);
     }
-    if (slow_rows >= detail::min_aggregated(n))
-      aggregation = build_coarse_matrix(matrix, CoarseInput{excess, slow, bfs_order, position, roots});
+    if (slow_rows >= detail::min_aggregated(n)) aggregation = build_coarse_matrix(matrix, excess, bfs_order, position);
   }
   std::vector<uint32_t>().swap(bfs_order);
-  std::vector<double>().swap(matrix.diagonal);  // a_'s holds it
   // The permuted matrix in one pass over its rows: each row's entries to
   // later colours (upper) in input order, then those to earlier colours
   // (lower, set aside meanwhile) in input order. A neighbour's colour is
@@ -290,27 +252,34 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix, bool two_level) {
   // colouring's bit words, the set-up went from ≈ 1,100 to ≈ 570
   // instructions a row (callgrind, CLI defaults: bunny, 1.1M, dragon).
   const size_t entries = matrix.columns.size();
-  entries_.resize(entries);
+  a_.columns.resize(entries);
+  weights_.resize(2 * entries);
   a_.offsets.resize(n + 1);
   lower_begin_.resize(n);
   uint32_t widest = 0;
   for (size_t i = 0; i < n; ++i) widest = std::max(widest, matrix.offsets[i + 1] - matrix.offsets[i]);
-  std::vector<detail::SignedEntry> lower(widest);
+  struct Entry {
+    uint32_t column;
+    float weight[2];
+  };
+  std::vector<Entry> lower(widest);
   uint32_t next = 0;
-  const auto put = [&](const detail::SignedEntry& entry) { entries_[next++] = entry; };
+  const auto put = [&](const Entry& entry) {
+    a_.columns[next] = entry.column;
+    weights_[2 * size_t{next}] = entry.weight[0], weights_[2 * size_t{next} + 1] = entry.weight[1];
+    ++next;
+  };
   a_.offsets[0] = 0;
-  uint32_t row_colour = 0;
   for (size_t k = 0; k < n; ++k) {
     const size_t i = order_[k];
-    while (k >= colour_begin_[row_colour + 1]) ++row_colour;
-    const uint32_t earlier = colour_begin_[row_colour];
+    const uint32_t earlier = colour_begin_[colour[i]];
     size_t lowers = 0;
     for (uint32_t e = matrix.offsets[i]; e < matrix.offsets[i + 1]; ++e) {
       const uint32_t column = matrix.columns[e], to = position[column & SignedPairMatrix::kColumnMask];
       // The product of the roots is the same both ways: A stays symmetric.
-      // Rounding to float commutes with the sign applied in the sweeps.
-      const float w = static_cast<float>(matrix.weights[e] / (roots[k] * roots[to]));
-      const detail::SignedEntry entry{to << 1 | ((column >> 30 ^ column >> 31) & 1), column >> 30 & 1 ? -w : w};
+      // Rounding to float commutes with the sign.
+      const float w = static_cast<float>(matrix.weights[e] / (roots_[k] * roots_[to]));
+      const Entry entry{to, {column >> 30 & 1 ? -w : w, column >> 31 ? -w : w}};
       if (to < earlier)
         lower[lowers++] = entry;
       else
@@ -322,7 +291,7 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix, bool two_level) {
   }
   // Not read beyond here: Q is built without the input beside it.
   matrix = SignedPairMatrix();
-  if (!aggregation.aggregate.empty()) build_coarse_transfer(aggregation, roots);
+  if (!aggregation.aggregate.empty()) build_coarse_transfer(aggregation);
 }
 
 // Symmetric Gauss–Seidel sweeps on Ac (unit diagonal) from y = 0: a fixed
@@ -372,7 +341,7 @@ void SignedPairSolver::coarse_solve(const double* g, double* y) const {
 bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, double tolerance, int max_iterations,
                              const std::function<void(int)>& on_iteration) const {
   const SignedPairMatrix& a = a_;
-  const size_t n = a.rows();
+  const size_t n = roots_.size();
   // xp and rt are written before they are read: not zeroed first
   // (callgrind at 1.1M: 32 bytes a row and solve less to write).
   UninitialisedVector<double> xp(2 * n), rt(2 * n);
@@ -382,10 +351,7 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
     for (int f = 0; f < 2; ++f)
       xp[2 * k + f] = x[2 * size_t{order_[k]} + f], rt[2 * k + f] = b[2 * size_t{order_[k]} + f];
   std::vector<double>& u = b;  // the caller's vector serves as scratch: S⁻¹ x₀ first
-  for (size_t k = 0; k < n; ++k) {
-    const double root = std::sqrt(a.diagonal[k]);
-    u[2 * k] = xp[2 * k] * root, u[2 * k + 1] = xp[2 * k + 1] * root;
-  }
+  for (size_t j = 0; j < 2 * n; ++j) u[j] = xp[j] * roots_[j / 2];
   Sums partial;
   const BlockSums b2 = sum_blocks(n, partial, [&](size_t begin, size_t end, BlockSums& sums) {
     for (size_t j = 2 * begin; j < 2 * end; ++j) sums[j & 1] += rt[j] * rt[j];
@@ -394,20 +360,21 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
   // sweeps of every iteration: a store through Pair may alias anything, so
   // the compiler reloads whatever sits in memory, the closure's copies too,
   // once per row (bunny, solve: 830 M → 737 M instructions).
-  const double* const diagonal = a.diagonal.data();
+  const double *const root = roots_.data(), *const diagonal = a.diagonal.data();
   const uint32_t *const offsets = a.offsets.data(), *const lower = lower_begin_.data();
-  const detail::SignedEntry* const entries = entries_.data();
+  const uint32_t* const columns = a.columns.data();
+  const float* const weights = weights_.data();
   double *const xv = xp.data(), *const rv = rt.data(), *const utv = ut.data(), *const uv = u.data();
   float* const tv = tf.data();
-  const auto row_sum = [entries](const double* v, uint32_t begin, uint32_t end) {
-    return accumulate_signed(entries, v, begin, end);
+  const auto row_sum = [columns, weights](const double* v, uint32_t begin, uint32_t end) {
+    return accumulate(columns, weights, v, begin, end);
   };
   // r = b − A x₀ = b − D x₀ − S⁻¹ N̂ S⁻¹ x₀ and r̂ = S r, then r̃ = (I + L)⁻¹
   // r̂ in place, colour by colour.
   BlockSums rr = sweep(colour_begin_, false, partial, [=](size_t begin, size_t end, BlockSums& sums) {
     Pair rsum = Pair::load(&sums[0]), dsum = Pair::load(&sums[2]);
     for (size_t i = begin; i < end; ++i) {
-      const Pair ri = Pair::both(std::sqrt(diagonal[i]));
+      const Pair ri = Pair::both(root[i]);
       const Pair r = Pair::load(rv + 2 * i) - Pair::both(diagonal[i]) * Pair::load(xv + 2 * i) -
                      ri * row_sum(uv, offsets[i], offsets[i + 1]);
       rsum = rsum + r * r;
@@ -478,8 +445,8 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
     const uint32_t *const q_begin = q_begin_.data(), *const q_columns = q_columns_.data();
     const float* const q_values = q_values_.data();
     const auto first = [=](auto with_coarse, size_t begin, size_t end, BlockSums& sums) {
-      const uint32_t *const offsets_ = offsets, *const lower_ = lower;
-      const detail::SignedEntry* const entries_ = entries;
+      const uint32_t *const offsets_ = offsets, *const lower_ = lower, *const columns_ = columns;
+      const float* const weights_ = weights;
       double *const rv_ = rv, *const utv_ = utv;
       float* const tv_ = tv;
       const Pair keep_ = keep, beta_ = beta_pair;
@@ -490,7 +457,7 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
         if constexpr (decltype(with_coarse)::value)
           zi = zi + accumulate(q_columns, q_values, yv, q_begin[i], q_begin[i + 1]);
         const Pair pi = keep_ * (zi + beta_ * q);
-        const Pair uti = accumulate_signed(entries_, tv_, offsets_[i], lower_[i]);
+        const Pair uti = accumulate(columns_, weights_, tv_, offsets_[i], lower_[i]);
         (pi - uti).store(tv_ + 2 * i);
         uti.store(utv_ + 2 * i);
         const Pair ti = Pair::load(tv_ + 2 * i);
@@ -511,9 +478,9 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
     // residual r = (D + L) r̃, whose L part reads rows of earlier colours,
     // updated already, over the entries that u reads.
     const auto second = [=](auto form_residual, size_t begin, size_t end, BlockSums& s) {
-      const double* const diagonal_ = diagonal;
-      const uint32_t *const offsets_ = offsets, *const lower_ = lower;
-      const detail::SignedEntry* const entries_ = entries;
+      const double* const root_ = root;
+      const uint32_t *const offsets_ = offsets, *const lower_ = lower, *const columns_ = columns;
+      const float* const weights_ = weights;
       double *const xv_ = xv, *const rv_ = rv, *const utv_ = utv, *const uv_ = uv;
       const float* const tv_ = tv;
       const Pair alpha_ = alpha_pair;
@@ -521,16 +488,16 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
       for (size_t i = begin; i < end; ++i) {
         Pair lu, lr;
         if constexpr (decltype(form_residual)::value)
-          accumulate2(entries_, uv_, rv_, lower_[i], offsets_[i + 1], lu, lr);
+          accumulate2(columns_, weights_, uv_, rv_, lower_[i], offsets_[i + 1], lu, lr);
         else
-          lu = accumulate_signed(entries_, uv_, lower_[i], offsets_[i + 1]);
+          lu = accumulate(columns_, weights_, uv_, lower_[i], offsets_[i + 1]);
         const Pair ti = Pair::load(tv_ + 2 * i), ui = Pair::load(utv_ + 2 * i) - lu;
         ui.store(uv_ + 2 * i);
         (Pair::load(xv_ + 2 * i) + alpha_ * ti).store(xv_ + 2 * i);
         const Pair ri = Pair::load(rv_ + 2 * i) - alpha_ * (ti + ui);
         ri.store(rv_ + 2 * i);
         if constexpr (decltype(form_residual)::value) {
-          const Pair r = (ri + lr) * Pair::both(std::sqrt(diagonal_[i]));
+          const Pair r = (ri + lr) * Pair::both(root_[i]);
           norm = norm + r * r;
         }
         dot = dot + ri * ri;
@@ -565,7 +532,7 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
   }
   for (size_t k = 0; k < n; ++k)
     for (int f = 0; f < 2; ++f)
-      if (b2[f] != 0) x[2 * size_t{order_[k]} + f] += xp[2 * k + f] / std::sqrt(a.diagonal[k]);
+      if (b2[f] != 0) x[2 * size_t{order_[k]} + f] += xp[2 * k + f] / roots_[k];
   for (double v : x)
     if (!std::isfinite(v)) return false;
   return !active[0] && !active[1];

@@ -33,14 +33,16 @@ uint32_t sign_change(const SignedPairMatrix& a, uint32_t e) {
 // Each aggregate is a tree of its rows' joins, and P's column for it is the
 // mode smooth along that tree, ±1 in each field by the signs of the entries
 // crossed (±√a_ii in the scaled variables).
-SignedPairSolver::Aggregation SignedPairSolver::build_coarse_matrix(const SignedPairMatrix& a, const CoarseInput& in) {
+SignedPairSolver::Aggregation SignedPairSolver::build_coarse_matrix(const SignedPairMatrix& a,
+                                                                    const std::vector<double>& excess,
+                                                                    const std::vector<uint32_t>& bfs_order,
+                                                                    const std::vector<uint32_t>& position) {
   const size_t n = a.rows();
-  const std::vector<double>& excess = in.excess;
-  const std::vector<uint8_t>& slow = in.slow;
-  const std::vector<uint32_t>&bfs_order = in.bfs_order, &position = in.position;
+  std::vector<uint8_t> slow(n);
+  for (size_t i = 0; i < n; ++i) slow[i] = detail::is_slow(a.diagonal[i], excess[i], a.offsets[i + 1] > a.offsets[i]);
 
-  std::vector<double> inverse_root(n);  // 1 / √a_ii, by input row (roots are by the solver's)
-  for (size_t i = 0; i < n; ++i) inverse_root[i] = 1 / in.roots[position[i]];
+  std::vector<double> inverse_root(n);  // 1 / √a_ii, by input row (roots_ are by the solver's)
+  for (size_t i = 0; i < n; ++i) inverse_root[i] = 1 / roots_[position[i]];
   const auto column = [&](uint32_t e) { return a.columns[e] & SignedPairMatrix::kColumnMask; };
   const auto strength = [&](uint32_t i, uint32_t e) {  // |a_ij| / √(a_ii a_jj)
     return std::abs(a.weights[e]) * inverse_root[i] * inverse_root[column(e)];
@@ -180,12 +182,12 @@ SignedPairSolver::Aggregation SignedPairSolver::build_coarse_matrix(const Signed
 
 // P in the solver's rows and scaled variables, s_i √a_ii / √Ac_cc, formed
 // where Q reads it (not stored: 16 bytes a row).
-void SignedPairSolver::build_coarse_transfer(const Aggregation& aggregation, const std::vector<double>& roots) {
-  const size_t n = roots.size();
+void SignedPairSolver::build_coarse_transfer(const Aggregation& aggregation) {
+  const size_t n = roots_.size();
   const uint32_t aggregates = static_cast<uint32_t>(coarse_begin_.size() - 1);
   const std::vector<uint32_t>& fine_aggregate = aggregation.aggregate;
   const auto p = [&](uint32_t j, int k) {
-    const double s = aggregation.flips[j] >> k & 1 ? -roots[j] : roots[j];
+    const double s = aggregation.flips[j] >> k & 1 ? -roots_[j] : roots_[j];
     return s / aggregation.coarse_root[2 * size_t{fine_aggregate[j]} + k];
   };
   std::vector<uint32_t> slot(aggregates, kNone), row_columns;
@@ -195,16 +197,13 @@ void SignedPairSolver::build_coarse_transfer(const Aggregation& aggregation, con
   for (size_t r = 0; r < n; ++r) {
     row_columns.clear(), row_values.clear();
     for (uint32_t e = lower_begin_[r]; e < a_.offsets[r + 1]; ++e) {
-      const uint32_t j = entries_[e].word >> 1, c = fine_aggregate[j];
+      const uint32_t j = a_.columns[e], c = fine_aggregate[j];
       if (c == kNone) continue;
       if (slot[c] == kNone) {
         slot[c] = static_cast<uint32_t>(row_columns.size());
         row_columns.push_back(c), row_values.resize(row_values.size() + 2, 0.0);
       }
-      // The sweeps' entry, field 1's flip applied as they do.
-      const double w = entries_[e].weight, w1 = entries_[e].word & 1 ? -w : w;
-      row_values[2 * size_t{slot[c]}] += w * p(j, 0);
-      row_values[2 * size_t{slot[c]} + 1] += w1 * p(j, 1);
+      for (int k = 0; k < 2; ++k) row_values[2 * slot[c] + k] += double{weights_[2 * size_t{e} + k]} * p(j, k);
     }
     for (const uint32_t c : row_columns) slot[c] = kNone;
     q_columns_.insert(q_columns_.end(), row_columns.begin(), row_columns.end());

@@ -4,15 +4,10 @@
 // and the cotan weights, and their matrices differ only in the signs σ_pq of
 // off-diagonal entries. Conjugate gradients on both in lockstep read each
 // matrix entry once for both fields, which is what a sparse matrix-vector
-// product is limited by. The solver stores an entry as its column and
-// σ_1's flip against σ_0 in one word, σ_0 w / √(a_ii a_jj) in float beside
-// it (detail::SignedEntry: 8 bytes, one load; as the pair (σ_0 w, σ_1 w)
-// and the column apart in 12 bytes, the same values, the smoothing's peak
-// memory at 1.1M 11.4 bytes a triangle less, its instructions on the bunny
-// +11 %: 3 more an entry to widen the float to both lanes and flip lane
-// 1; the system scaled to a unit diagonal, so
-// that no sweep reads a diagonal or its inverse: 32 of ≈ 340 bytes per row
-// and iteration, and
+// product is limited by. The solver stores an entry as its column and the
+// pair (σ_0 w, σ_1 w) / √(a_ii a_jj) in float (12 bytes, no sign to apply
+// per product; the system scaled to a unit diagonal, so that no sweep reads
+// a diagonal or its inverse: 32 of ≈ 340 bytes per row and iteration, and
 // bunny 397 M → 379 M instructions, last-level misses −18 %, the same
 // iterations on the bunny, 1.1M and the dragon): the
 // system it solves differs from the double one by 2⁻²⁴ relative per entry,
@@ -187,14 +182,6 @@ inline bool is_slow(double diagonal, double excess, bool has_entries) { return h
 /// The fewest aggregated rows of `rows` for which there is a coarse level (1 %).
 inline size_t min_aggregated(size_t rows) { return (rows + 99) / 100; }
 
-/// An entry of the solver's scaled matrix Â, both fields: its pair is (w,
-/// ±w), w = σ_0 w_ij / √(a_ii a_jj) rounded to float, negated in field 1
-/// where σ_1 ≠ σ_0. One 8-byte load an entry in the sweeps.
-struct SignedEntry {
-  uint32_t word;  // column << 1 | (σ_1 ≠ σ_0): the low bit masked off is the column's offset in a vector of pairs
-  float weight;
-};
-
 /// Greedy colouring in row order: each row takes the least colour that none
 /// of its earlier neighbours (columns below its row) has.
 std::vector<uint32_t> greedy_colours(const SignedPairMatrix& a);
@@ -233,33 +220,22 @@ class SignedPairSolver {
     std::vector<uint8_t> flips;       // bit k: the row's value in field k's column of P is negative
     std::vector<double> coarse_root;  // √Ac_cc per field
   };
-  // What the constructor has found for the coarse level: by input row, each
-  // row's excess (diagonal − Σ|a_ij|) and detail::is_slow; the rows in
-  // breadth-first order; the solver's row of each; √A(i,i) by solver row.
-  struct CoarseInput {
-    const std::vector<double>& excess;
-    const std::vector<uint8_t>& slow;
-    const std::vector<uint32_t>&bfs_order, &position;
-    const std::vector<double>& roots;
-  };
   // Aggregates the slow rows and builds Ac from the input matrix (by input
   // row), before the permuted matrix exists: the two are never held beside
   // the aggregation's work (paired_cg_coarse.cpp).
-  Aggregation build_coarse_matrix(const SignedPairMatrix& matrix, const CoarseInput& in);
+  Aggregation build_coarse_matrix(const SignedPairMatrix& matrix, const std::vector<double>& excess,
+                                  const std::vector<uint32_t>& bfs_order, const std::vector<uint32_t>& position);
   // Q = L P and Qᵀ from the permuted float matrix, once the input is released.
-  void build_coarse_transfer(const Aggregation& aggregation, const std::vector<double>& roots);
+  void build_coarse_transfer(const Aggregation& aggregation);
   // y ≈ Ac⁻¹ g, both fields, by the coarse sweeps (paired_cg.cpp).
   void coarse_solve(const double* g, double* y) const;
 
-  // Â = S A S, S = diag(1 / √A(i,i)), with rows in colour order; a_.diagonal
-  // holds A(i,i), whose roots are taken where needed (correctly rounded: the
-  // same each time); a row's entries, later colours | earlier ones, are in
-  // entries_ (a_'s columns and weights empty; one float an entry, not two:
-  // 4 bytes an entry less, the same values).
-  SignedPairMatrix a_;
-  std::vector<detail::SignedEntry> entries_;
+  SignedPairMatrix a_;           // rows in colour order; entries: later colours | earlier ones;
+                                 // columns without sign bits, weights empty:
+  std::vector<float> weights_;   // (σ_0 w, σ_1 w) / √(a_ii a_jj) per entry, rounded to float
   std::vector<uint32_t> order_;  // the input row of each row of a_
   std::vector<uint32_t> colour_begin_, lower_begin_;
+  std::vector<double> roots_;  // √A(i,i): the solver works on the system scaled to a unit diagonal
   // The coarse level (empty without one), scaled to a unit diagonal per field:
   // Q = L P by fine row (q_begin_, n + 1 offsets) and by coarse row
   // (qt_begin_), entries (column, field 0, field 1); Ac by coarse row,
