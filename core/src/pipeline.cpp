@@ -185,17 +185,15 @@ Pipeline::BoundarySelection Pipeline::select_boundaries() {
   return out;
 }
 
-void Pipeline::measure_boundary_edges(const Topology& topology, const Mesh& local) {
-  boundary_ends_.clear();
-  for (uint32_t e : boundary_edges_) boundary_ends_.push_back(topology.edges[e]);
+void Pipeline::measure_boundary_segments(const Topology& topology, const Mesh& local) {
   // The mean length of the edges at each end vertex, over both ends
   // (a slot per crease vertex: they are few).
   constexpr uint32_t kNone = ~0u;
   std::vector<uint32_t> slot(local.positions.size(), kNone);
   std::vector<double> sum;
   std::vector<uint32_t> count;
-  for (const auto& ends : boundary_ends_)
-    for (uint32_t v : ends)
+  for (uint32_t e : boundary_edges_)
+    for (uint32_t v : topology.edges[e])
       if (slot[v] == kNone) slot[v] = static_cast<uint32_t>(sum.size()), sum.push_back(0), count.push_back(0);
   for (const auto& [a, b] : topology.edges) {
     if (slot[a] == kNone && slot[b] == kNone) continue;
@@ -205,9 +203,12 @@ void Pipeline::measure_boundary_edges(const Topology& topology, const Mesh& loca
   }
   // At most the component's mean edge (1 in the working frame): the long
   // fans of a CAD tessellation's flat faces would push lines off whole faces.
-  boundary_edge_lengths_.clear();
-  for (const auto& [a, b] : boundary_ends_)
-    boundary_edge_lengths_.push_back(std::min(1.0, (sum[slot[a]] + sum[slot[b]]) / (count[slot[a]] + count[slot[b]])));
+  boundary_segments_.clear();
+  for (uint32_t e : boundary_edges_) {
+    const auto [a, b] = topology.edges[e];
+    const double edge = std::min(1.0, (sum[slot[a]] + sum[slot[b]]) / (count[slot[a]] + count[slot[b]]));
+    boundary_segments_.push_back({{local.positions[a], local.positions[b]}, frames_.vertex_component[a], edge});
+  }
 }
 
 void Pipeline::cut_along_boundaries(std::vector<uint32_t> edges) {
@@ -219,7 +220,7 @@ void Pipeline::cut_along_boundaries(std::vector<uint32_t> edges) {
   // adjacency (no copy of either: at 1.1M triangles 24 and 50 bytes per
   // triangle); they are rebuilt, the same, when asked for again.
   const Topology& topology = this->topology();
-  measure_boundary_edges(topology, local_input());
+  measure_boundary_segments(topology, local_input());
   local_input_valid_ = false;
   cut_ = cut_along_edges(std::move(local_input_), topology, boundary_edges_);
   // Without copies the cut changed nothing: the input's mesh and adjacency
@@ -402,14 +403,8 @@ void Pipeline::run(const ProgressCallback& progress) {
     input.components = frames_.count();
     PolylinesResult joined = build_polylines(singular_.lines.ridges, singular_.lines.valleys, surface, topology, input);
     if (cut_active_ && options_.clearance.distance > 0) {
-      // On the mesh the lines are placed on; copies sit at their vertex.
-      const std::vector<Vec3>& x = smooth_input().positions;
-      std::vector<CreaseSegment> segments(boundary_ends_.size());
-      for (size_t i = 0; i < segments.size(); ++i) {
-        const auto [a, b] = boundary_ends_[i];
-        segments[i] = {{x[a], x[b]}, frames_.vertex_component[a], boundary_edge_lengths_[i]};
-      }
-      ClearanceResult clear = clear_of_creases(std::move(joined.lines), joined.component, segments, options_.clearance);
+      ClearanceResult clear =
+          clear_of_creases(std::move(joined.lines), joined.component, boundary_segments_, options_.clearance);
       for (uint32_t& source : clear.source) source = joined.component[source];
       joined.lines = std::move(clear.lines), joined.component = std::move(clear.source);
     }

@@ -22,7 +22,6 @@
 // input's coordinates; the per-stage fields (curvature(), extremality(),
 // segments(), …) stay in the working frame (lengths in mean edges of their
 // component, curvatures in 1 / mean edge).
-#include <array>
 #include <functional>
 #include <optional>
 #include <string>
@@ -181,7 +180,7 @@ class Pipeline {
   BoundarySelection select_boundaries();
   // Cuts the input along the boundary creases; takes over its working-frame
   // mesh and adjacency when the cut splits any vertex.
-  void measure_boundary_edges(const Topology& topology, const Mesh& local);
+  void measure_boundary_segments(const Topology& topology, const Mesh& local);
   void cut_along_boundaries(std::vector<uint32_t> edges);
   // The creases stage's work; returns its seconds.
   double select_crease_lines(std::optional<CreaseResult> automatic);
@@ -219,10 +218,10 @@ class Pipeline {
   bool crease_angles_valid_ = false;
   bool boundaries_dirty_ = true;
   std::vector<uint32_t> boundary_edges_;
-  // The ends of boundary_edges_ (input vertices; the cut renumbers the
-  // edges) and the mean edge at them in the working frame: the clearance's.
-  std::vector<std::array<uint32_t, 2>> boundary_ends_;
-  std::vector<double> boundary_edge_lengths_;
+  // boundary_edges_ in the working frame, with the mean edge at their ends,
+  // for the clearance (the cut renumbers the edges; its mesh keeps the
+  // input's positions, which the lines are placed on).
+  std::vector<CreaseSegment> boundary_segments_;
   bool cut_active_ = false;
   CutMesh cut_;  // of local_input_, in the working frame
   Topology cut_topology_;

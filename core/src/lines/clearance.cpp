@@ -101,13 +101,12 @@ struct Sample {
   double curvature;
 };
 
-// Cuts one line (its points as a sequence; a closed line is passed opened at
-// a point inside the band, that point repeated at the end) into the runs of
-// points clear of the band, each run extended to where its segment enters it.
-void clear_runs(const std::vector<Sample>& samples, LineType type, uint32_t source, const SegmentGrid& grid,
-                uint32_t component, ClearanceResult& out) {
-  std::vector<uint8_t> clear(samples.size());
-  for (size_t i = 0; i < samples.size(); ++i) clear[i] = grid.clearance(samples[i].point, component) >= 0;
+// Cuts one line (its points as a sequence with whether each is clear of
+// the band; a closed line is passed opened at a point inside the band, that
+// point repeated at the end) into the runs of clear points, each run
+// extended to where its segment enters the band.
+void clear_runs(const std::vector<Sample>& samples, const std::vector<uint8_t>& clear, LineType type, uint32_t source,
+                const SegmentGrid& grid, uint32_t component, ClearanceResult& out) {
   // Where the segment from a clear point to one in the band reaches the band.
   auto crossing = [&](const Sample& outside, const Sample& inside) {
     double lo = 0, hi = 1;  // clear at lo, in the band at hi
@@ -146,39 +145,37 @@ void clear_runs(const std::vector<Sample>& samples, LineType type, uint32_t sour
 ClearanceResult clear_of_creases(std::vector<Polyline> lines, const std::vector<uint32_t>& line_component,
                                  const std::vector<CreaseSegment>& segments, const ClearanceOptions& options) {
   ClearanceResult out;
-  out.source.resize(lines.size());
-  for (uint32_t i = 0; i < lines.size(); ++i) out.source[i] = i;
   if (!(options.distance > 0) || segments.empty()) {
+    out.source.resize(lines.size());
+    for (uint32_t i = 0; i < lines.size(); ++i) out.source[i] = i;
     out.lines = std::move(lines);
     return out;
   }
-  out.source.clear();
   out.lines.reserve(lines.size());
   const SegmentGrid grid(segments, std::min(options.distance, kMaxDistance));
+  std::vector<uint8_t> point_clear, clear;
   std::vector<Sample> samples;
   for (uint32_t i = 0; i < lines.size(); ++i) {
     Polyline& line = lines[i];
     const uint32_t component = line_component[i];
-    size_t first_in_band = line.points.size();
-    for (size_t k = 0; k < line.points.size(); ++k)
-      if (grid.clearance(line.points[k], component) < 0) {
-        first_in_band = k;
-        break;
-      }
-    if (first_in_band == line.points.size()) {
+    const size_t n = line.points.size();
+    point_clear.resize(n);
+    for (size_t k = 0; k < n; ++k) point_clear[k] = grid.clearance(line.points[k], component) >= 0;
+    const size_t first_in_band = std::find(point_clear.begin(), point_clear.end(), 0) - point_clear.begin();
+    if (first_in_band == n) {
       out.lines.push_back(std::move(line));
       out.source.push_back(i);
       continue;
     }
-    const size_t n = line.points.size();
-    samples.clear();
+    samples.clear(), clear.clear();
     const size_t start = line.closed ? first_in_band : 0;
     const size_t count = line.closed ? n + 1 : n;
     for (size_t k = 0; k < count; ++k) {
       const size_t j = (start + k) % n;
       samples.push_back({line.points[j], line.curvature[j]});
+      clear.push_back(point_clear[j]);
     }
-    clear_runs(samples, line.type, i, grid, component, out);
+    clear_runs(samples, clear, line.type, i, grid, component, out);
   }
   return out;
 }
