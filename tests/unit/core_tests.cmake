@@ -1,4 +1,5 @@
 target_sources(crestline_tests PRIVATE
+  ${CMAKE_CURRENT_LIST_DIR}/mesh/mesh_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/mesh/repair_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/mesh/topology_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/mesh/frame_test.cpp

@@ -27,14 +27,25 @@ constexpr int kPairedBudget = 150;
 constexpr double kTypicalIterations = 10;
 
 // Both fields' matrices M − t L_σ in one pattern (numerics/paired_cg.h); the
-// diagonal sums in edge order exactly as smooth_field's does.
+// diagonal sums in edge order exactly as smooth_field's does. Each edge's
+// signs (two dot products) are found on every thread first; the additions
+// to its two rows stay in edge order on the calling thread.
 SignedPairMatrix signed_pair_matrix(const Topology& topology, const CotanWeights& cotan,
                                     const std::vector<double>& edge_strength, const Curvature& curvature) {
-  const size_t nv = cotan.vertex_mass.size();
+  const size_t nv = cotan.vertex_mass.size(), ne = topology.edges.size();
   SignedPairMatrix a;
   a.diagonal = cotan.vertex_mass;
   a.offsets.assign(nv + 1, 0);
-  for (size_t e = 0; e < topology.edges.size(); ++e) {
+  // Bit k of an edge's mask: σ = −1 in field k.
+  std::vector<uint8_t> mask(ne);
+  parallel_for(ne, [&](size_t begin, size_t end) {
+    for (size_t e = begin; e < end; ++e) {
+      const uint32_t p = topology.edges[e][0], q = topology.edges[e][1];
+      mask[e] = static_cast<uint8_t>((direction_sign(curvature.dir_max[p], curvature.dir_max[q]) > 0 ? 0u : 1u) |
+                                     (direction_sign(curvature.dir_min[p], curvature.dir_min[q]) > 0 ? 0u : 2u));
+    }
+  });
+  for (size_t e = 0; e < ne; ++e) {
     const double w = edge_strength[e];
     if (w == 0) continue;
     const uint32_t p = topology.edges[e][0], q = topology.edges[e][1];
@@ -46,15 +57,13 @@ SignedPairMatrix signed_pair_matrix(const Topology& topology, const CotanWeights
   a.columns.resize(a.offsets[nv]);
   a.weights.resize(a.offsets[nv]);
   std::vector<uint32_t> fill(a.offsets.begin(), a.offsets.end() - 1);
-  for (size_t e = 0; e < topology.edges.size(); ++e) {
+  for (size_t e = 0; e < ne; ++e) {
     const double w = edge_strength[e];
     if (w == 0) continue;
     const uint32_t p = topology.edges[e][0], q = topology.edges[e][1];
     // The entry is −σ w: stored as −w, negated where σ = −1.
-    const uint32_t mask = (direction_sign(curvature.dir_max[p], curvature.dir_max[q]) > 0 ? 0u : 1u) |
-                          (direction_sign(curvature.dir_min[p], curvature.dir_min[q]) > 0 ? 0u : 2u);
-    a.columns[fill[p]] = q | mask << 30, a.weights[fill[p]++] = -w;
-    a.columns[fill[q]] = p | mask << 30, a.weights[fill[q]++] = -w;
+    a.columns[fill[p]] = q | uint32_t{mask[e]} << 30, a.weights[fill[p]++] = -w;
+    a.columns[fill[q]] = p | uint32_t{mask[e]} << 30, a.weights[fill[q]++] = -w;
   }
   return a;
 }
@@ -70,12 +79,16 @@ bool smooth_fields_paired(const Topology& topology, const CotanWeights& cotan, s
   std::vector<double>().swap(edge_strength);  // before the solver copies the matrix
   const SignedPairSolver solver(std::move(matrix));
   std::vector<double> x(2 * nv), b(2 * nv);
-  for (size_t v = 0; v < nv; ++v) x[2 * v] = in.e_max[v], x[2 * v + 1] = in.e_min[v];
+  parallel_for(nv, [&](size_t begin, size_t end) {
+    for (size_t v = begin; v < end; ++v) x[2 * v] = in.e_max[v], x[2 * v + 1] = in.e_min[v];
+  });
   for (int step = 0; step < steps; ++step) {
-    for (size_t v = 0; v < nv; ++v) {
-      const double m = cotan.vertex_mass[v];
-      b[2 * v] = m * x[2 * v], b[2 * v + 1] = m * x[2 * v + 1];
-    }
+    parallel_for(nv, [&](size_t begin, size_t end) {
+      for (size_t v = begin; v < end; ++v) {
+        const double m = cotan.vertex_mass[v];
+        b[2 * v] = m * x[2 * v], b[2 * v + 1] = m * x[2 * v + 1];
+      }
+    });
     const size_t before = out.solver_iterations;
     const auto on_iteration = [&](int iteration) {
       out.solver_iterations = before + static_cast<size_t>(iteration);
@@ -86,7 +99,9 @@ bool smooth_fields_paired(const Topology& topology, const CotanWeights& cotan, s
   }
   out.e_max.resize(nv);
   out.e_min.resize(nv);
-  for (size_t v = 0; v < nv; ++v) out.e_max[v] = x[2 * v], out.e_min[v] = x[2 * v + 1];
+  parallel_for(nv, [&](size_t begin, size_t end) {
+    for (size_t v = begin; v < end; ++v) out.e_max[v] = x[2 * v], out.e_min[v] = x[2 * v + 1];
+  });
   return true;
 }
 
@@ -157,10 +172,12 @@ SmoothedExtremality smooth_extremality(const Mesh& mesh, const Topology& topolog
   // weight 0 is frozen and exchanges nothing with its surroundings. Scaled
   // in place: the cotan weights are not needed apart from it.
   auto strengths = [&](std::vector<double> cotan_weight) {
-    for (size_t e = 0; e < topology.edges.size(); ++e) {
-      const double s = weights.empty() ? 1.0 : std::min(weights[topology.edges[e][0]], weights[topology.edges[e][1]]);
-      cotan_weight[e] = t * s * cotan_weight[e];
-    }
+    parallel_for(topology.edges.size(), [&](size_t begin, size_t end) {
+      for (size_t e = begin; e < end; ++e) {
+        const double s = weights.empty() ? 1.0 : std::min(weights[topology.edges[e][0]], weights[topology.edges[e][1]]);
+        cotan_weight[e] = t * s * cotan_weight[e];
+      }
+    });
     return cotan_weight;
   };
   std::vector<double> edge_strength = strengths(std::move(cotan.edge_weight));

@@ -6,6 +6,7 @@
 
 #include "crestline/mesh/presmooth.h"
 #include "crestline/numerics/constants.h"
+#include "crestline/numerics/parallel.h"
 
 namespace crestline {
 namespace {
@@ -286,13 +287,15 @@ FaceNormals face_normals(const Mesh& mesh) {
   const size_t nt = mesh.triangles.size();
   out.normal.resize(nt);
   out.area.resize(nt);
-  for (size_t f = 0; f < nt; ++f) {
-    const Triangle& t = mesh.triangles[f];
-    const Vec3 n = (mesh.positions[t[1]] - mesh.positions[t[0]]).cross(mesh.positions[t[2]] - mesh.positions[t[0]]);
-    const double len = n.norm();
-    out.area[f] = 0.5 * len;
-    out.normal[f] = len > 0 ? Vec3(n / len) : Vec3::Zero();
-  }
+  parallel_for(nt, [&](size_t begin, size_t end) {
+    for (size_t f = begin; f < end; ++f) {
+      const Triangle& t = mesh.triangles[f];
+      const Vec3 n = (mesh.positions[t[1]] - mesh.positions[t[0]]).cross(mesh.positions[t[2]] - mesh.positions[t[0]]);
+      const double len = n.norm();
+      out.area[f] = 0.5 * len;
+      out.normal[f] = len > 0 ? Vec3(n / len) : Vec3::Zero();
+    }
+  });
   return out;
 }
 
@@ -991,40 +994,48 @@ CreaseAngles measure_crease_angles(const Mesh& mesh, const Topology& topology, c
   const size_t ne = topology.edges.size();
   out.angle.assign(ne, 0.0);
   out.support.assign(ne, 0.0);
-  std::vector<uint32_t> scratch;
   const bool very_noisy = out.normal_filter_steps > 0 && out.noise_level > kVeryNoisyCreaseLevel;
   const int rings = very_noisy ? kVeryNoisySupportRings : out.normal_filter_steps > 0 ? kNoisySupportRings : 1;
-  // 1 − cos of every fourth interior edge's angle, for the median (monotonic in the angle).
+  const double candidate = std::cos(kCandidateAngle * kDegree);
+  // Each edge alone, on every thread. 1 − cos of every fourth edge's angle
+  // (NaN on boundary edges, which are left out) is kept by its index for the
+  // median (monotonic in the angle), gathered in edge order below.
+  std::vector<double> quarter(ne / 4 + 1, std::numeric_limits<double>::quiet_NaN());
+  parallel_for(ne, [&](size_t begin, size_t end) {
+    std::vector<uint32_t> scratch;
+    for (size_t e = begin; e < end; ++e) {
+      if (topology.is_boundary_edge(static_cast<uint32_t>(e))) continue;
+      const uint32_t f0 = topology.edge_triangles[e][0], f1 = topology.edge_triangles[e][1];
+      const Vec3 &n0 = normal[f0], &n1 = normal[f1];
+      const double cosine = n0.dot(n1);
+      if (e % 4 == 0) quarter[e / 4] = 1.0 - cosine;
+      if (cosine > candidate) continue;  // below kCandidateAngle: never a crease, left 0
+      // The edge as f0 runs along it (counter-clockwise seen from outside):
+      // (n0 × n1)·d > 0 where the surface folds away below f0's plane.
+      const Triangle& t = mesh.triangles[f0];
+      int k = 0;
+      while (k < 2 && topology.triangle_edges[f0][k] != e) ++k;
+      const Vec3 d = mesh.positions[t[(k + 1) % 3]] - mesh.positions[t[k]];
+      const Vec3 cross = n0.cross(n1);
+      const double a = portable_angle(cross.norm(), cosine);
+      out.angle[e] = cross.dot(d) >= 0 ? a : -a;
+      if (a < kCandidateAngle * kDegree) continue;
+      if (!very_noisy) {
+        out.support[e] = std::abs(side_support(mesh, topology, faces, e, n0 + n1, rings, scratch));
+        continue;
+      }
+      // Very noisy: only where the support is a local maximum across the edge.
+      double shifted[2];
+      const double s = std::abs(
+          side_support(mesh, topology, faces, e, n0 + n1, rings, scratch, kSuppressionShift * d.norm(), shifted));
+      if (s >= std::max(std::abs(shifted[0]), std::abs(shifted[1]))) out.support[e] = s;
+    }
+  });
   std::vector<double> sample;
   sample.reserve(ne / 4 + 1);
-  const double candidate = std::cos(kCandidateAngle * kDegree);
-  for (size_t e = 0; e < ne; ++e) {
-    if (topology.is_boundary_edge(static_cast<uint32_t>(e))) continue;
-    const uint32_t f0 = topology.edge_triangles[e][0], f1 = topology.edge_triangles[e][1];
-    const Vec3 &n0 = normal[f0], &n1 = normal[f1];
-    const double cosine = n0.dot(n1);
-    if (e % 4 == 0) sample.push_back(1.0 - cosine);
-    if (cosine > candidate) continue;  // below kCandidateAngle: never a crease, left 0
-    // The edge as f0 runs along it (counter-clockwise seen from outside):
-    // (n0 × n1)·d > 0 where the surface folds away below f0's plane.
-    const Triangle& t = mesh.triangles[f0];
-    int k = 0;
-    while (k < 2 && topology.triangle_edges[f0][k] != e) ++k;
-    const Vec3 d = mesh.positions[t[(k + 1) % 3]] - mesh.positions[t[k]];
-    const Vec3 cross = n0.cross(n1);
-    const double a = portable_angle(cross.norm(), cosine);
-    out.angle[e] = cross.dot(d) >= 0 ? a : -a;
-    if (a < kCandidateAngle * kDegree) continue;
-    if (!very_noisy) {
-      out.support[e] = std::abs(side_support(mesh, topology, faces, e, n0 + n1, rings, scratch));
-      continue;
-    }
-    // Very noisy: only where the support is a local maximum across the edge.
-    double shifted[2];
-    const double s = std::abs(
-        side_support(mesh, topology, faces, e, n0 + n1, rings, scratch, kSuppressionShift * d.norm(), shifted));
-    if (s >= std::max(std::abs(shifted[0]), std::abs(shifted[1]))) out.support[e] = s;
-  }
+  for (size_t e = 0; e < ne; e += 4)
+    if (!topology.is_boundary_edge(static_cast<uint32_t>(e))) sample.push_back(quarter[e / 4]);
+  std::vector<double>().swap(quarter);
   if (!sample.empty()) out.median = std::acos(std::clamp(1.0 - upper_median(sample), -1.0, 1.0)) / kDegree;
   // The same edges' median length, for the spur rule's scale.
   sample.clear();

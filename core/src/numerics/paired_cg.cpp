@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <type_traits>
@@ -220,10 +221,12 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix, bool two_level) {
   }
   a_.diagonal.resize(n);
   roots_.resize(n);
-  for (size_t k = 0; k < n; ++k) {
-    a_.diagonal[k] = matrix.diagonal[order_[k]];
-    roots_[k] = std::sqrt(a_.diagonal[k]);
-  }
+  parallel_for(n, [&](size_t begin, size_t end) {
+    for (size_t k = begin; k < end; ++k) {
+      a_.diagonal[k] = matrix.diagonal[order_[k]];
+      roots_[k] = std::sqrt(a_.diagonal[k]);
+    }
+  });
   // The coarse level's test, what each row's diagonal exceeds its
   // off-diagonal magnitudes by, and with it Ac, from the input matrix
   // before the permuted one is made: the two matrices are held together
@@ -232,23 +235,29 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix, bool two_level) {
   Aggregation aggregation;
   if (two_level) {
     std::vector<double> excess(n);
-    size_t slow_rows = 0;
-    for (size_t i = 0; i < n; ++i) {
-      double off = 0;
-      for (uint32_t e = matrix.offsets[i]; e < matrix.offsets[i + 1]; ++e) off += std::abs(matrix.weights[e]);
-      excess[i] = std::max(0.0, matrix.diagonal[i] - off);
-      slow_rows += detail::is_slow(matrix.diagonal[i], excess[i], matrix.offsets[i + 1] > matrix.offsets[i]);
-    }
+    std::atomic<size_t> slow_rows{0};
+    parallel_for(n, [&](size_t begin, size_t end) {
+      size_t slow = 0;
+      for (size_t i = begin; i < end; ++i) {
+        double off = 0;
+        for (uint32_t e = matrix.offsets[i]; e < matrix.offsets[i + 1]; ++e) off += std::abs(matrix.weights[e]);
+        excess[i] = std::max(0.0, matrix.diagonal[i] - off);
+        slow += detail::is_slow(matrix.diagonal[i], excess[i], matrix.offsets[i + 1] > matrix.offsets[i]);
+      }
+      slow_rows += slow;
+    });
     if (slow_rows >= detail::min_aggregated(n)) aggregation = build_coarse_matrix(matrix, excess, bfs_order, position);
   }
   std::vector<uint32_t>().swap(bfs_order);
-  // The permuted matrix in one pass over its rows: each row's entries to
-  // later colours (upper) in input order, then those to earlier colours
-  // (lower, set aside meanwhile) in input order. A neighbour's colour is
-  // earlier exactly when its row comes before the first of this row's colour.
-  // Input and output are held together, 24 bytes per entry: the peak of the
-  // passes this replaces (input, float weights and each entry's output row).
-  // Those passes read both ends' colours of every entry four times; with the
+  // The permuted matrix: each row's entries to later colours (upper) in
+  // input order, then those to earlier colours (lower) in input order. A
+  // neighbour's colour is earlier exactly when its row comes before the
+  // first of this row's colour. A row keeps its input row's entry count, so
+  // the offsets are known first and the rows filled on every thread (the
+  // same bits for any number: each entry is computed alone). Input and
+  // output are held together, 24 bytes per entry: the peak of the passes
+  // this replaces (input, float weights and each entry's output row). Those
+  // passes read both ends' colours of every entry four times; with the
   // colouring's bit words, the set-up went from ≈ 1,100 to ≈ 570
   // instructions a row (callgrind, CLI defaults: bunny, 1.1M, dragon).
   const size_t entries = matrix.columns.size();
@@ -256,39 +265,44 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix, bool two_level) {
   weights_.resize(2 * entries);
   a_.offsets.resize(n + 1);
   lower_begin_.resize(n);
+  a_.offsets[0] = 0;
   uint32_t widest = 0;
-  for (size_t i = 0; i < n; ++i) widest = std::max(widest, matrix.offsets[i + 1] - matrix.offsets[i]);
+  for (size_t k = 0; k < n; ++k) {
+    const uint32_t count = matrix.offsets[order_[k] + 1] - matrix.offsets[order_[k]];
+    widest = std::max(widest, count);
+    a_.offsets[k + 1] = a_.offsets[k] + count;
+  }
   struct Entry {
     uint32_t column;
     float weight[2];
   };
-  std::vector<Entry> lower(widest);
-  uint32_t next = 0;
-  const auto put = [&](const Entry& entry) {
-    a_.columns[next] = entry.column;
-    weights_[2 * size_t{next}] = entry.weight[0], weights_[2 * size_t{next} + 1] = entry.weight[1];
-    ++next;
-  };
-  a_.offsets[0] = 0;
-  for (size_t k = 0; k < n; ++k) {
-    const size_t i = order_[k];
-    const uint32_t earlier = colour_begin_[colour[i]];
-    size_t lowers = 0;
-    for (uint32_t e = matrix.offsets[i]; e < matrix.offsets[i + 1]; ++e) {
-      const uint32_t column = matrix.columns[e], to = position[column & SignedPairMatrix::kColumnMask];
-      // The product of the roots is the same both ways: A stays symmetric.
-      // Rounding to float commutes with the sign.
-      const float w = static_cast<float>(matrix.weights[e] / (roots_[k] * roots_[to]));
-      const Entry entry{to, {column >> 30 & 1 ? -w : w, column >> 31 ? -w : w}};
-      if (to < earlier)
-        lower[lowers++] = entry;
-      else
-        put(entry);
+  parallel_for(n, [&](size_t begin, size_t end) {
+    std::vector<Entry> lower(widest);
+    for (size_t k = begin; k < end; ++k) {
+      const size_t i = order_[k];
+      const uint32_t earlier = colour_begin_[colour[i]];
+      uint32_t next = a_.offsets[k];
+      size_t lowers = 0;
+      const auto put = [&](const Entry& entry) {
+        a_.columns[next] = entry.column;
+        weights_[2 * size_t{next}] = entry.weight[0], weights_[2 * size_t{next} + 1] = entry.weight[1];
+        ++next;
+      };
+      for (uint32_t e = matrix.offsets[i]; e < matrix.offsets[i + 1]; ++e) {
+        const uint32_t column = matrix.columns[e], to = position[column & SignedPairMatrix::kColumnMask];
+        // The product of the roots is the same both ways: A stays symmetric.
+        // Rounding to float commutes with the sign.
+        const float w = static_cast<float>(matrix.weights[e] / (roots_[k] * roots_[to]));
+        const Entry entry{to, {column >> 30 & 1 ? -w : w, column >> 31 ? -w : w}};
+        if (to < earlier)
+          lower[lowers++] = entry;
+        else
+          put(entry);
+      }
+      lower_begin_[k] = next;
+      for (size_t l = 0; l < lowers; ++l) put(lower[l]);
     }
-    lower_begin_[k] = next;
-    for (size_t l = 0; l < lowers; ++l) put(lower[l]);
-    a_.offsets[k + 1] = next;
-  }
+  });
   // Not read beyond here: Q is built without the input beside it.
   matrix = SignedPairMatrix();
   if (!aggregation.aggregate.empty()) build_coarse_transfer(aggregation);
@@ -347,11 +361,15 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
   UninitialisedVector<double> xp(2 * n), rt(2 * n);
   std::vector<double> ut(2 * n, 0.0);  // ut: U t
   std::vector<float> tf(2 * n, 0.0f);
-  for (size_t k = 0; k < n; ++k)
-    for (int f = 0; f < 2; ++f)
-      xp[2 * k + f] = x[2 * size_t{order_[k]} + f], rt[2 * k + f] = b[2 * size_t{order_[k]} + f];
   std::vector<double>& u = b;  // the caller's vector serves as scratch: S⁻¹ x₀ first
-  for (size_t j = 0; j < 2 * n; ++j) u[j] = xp[j] * roots_[j / 2];
+  parallel_for(n, [&](size_t begin, size_t end) {
+    for (size_t k = begin; k < end; ++k)
+      for (int f = 0; f < 2; ++f)
+        xp[2 * k + f] = x[2 * size_t{order_[k]} + f], rt[2 * k + f] = b[2 * size_t{order_[k]} + f];
+  });
+  parallel_for(n, [&](size_t begin, size_t end) {
+    for (size_t j = 2 * begin; j < 2 * end; ++j) u[j] = xp[j] * roots_[j / 2];
+  });
   Sums partial;
   const BlockSums b2 = sum_blocks(n, partial, [&](size_t begin, size_t end, BlockSums& sums) {
     for (size_t j = 2 * begin; j < 2 * end; ++j) sums[j & 1] += rt[j] * rt[j];
@@ -530,11 +548,18 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
     check = check || near;
     if (on_iteration) on_iteration(it + 1);
   }
-  for (size_t k = 0; k < n; ++k)
-    for (int f = 0; f < 2; ++f)
-      if (b2[f] != 0) x[2 * size_t{order_[k]} + f] += xp[2 * k + f] / roots_[k];
-  for (double v : x)
-    if (!std::isfinite(v)) return false;
+  std::atomic<bool> finite{true};
+  parallel_for(n, [&](size_t begin, size_t end) {
+    bool part_finite = true;
+    for (size_t k = begin; k < end; ++k)
+      for (int f = 0; f < 2; ++f) {
+        double& v = x[2 * size_t{order_[k]} + f];
+        if (b2[f] != 0) v += xp[2 * k + f] / roots_[k];
+        part_finite = part_finite && std::isfinite(v);
+      }
+    if (!part_finite) finite = false;
+  });
+  if (!finite) return false;
   return !active[0] && !active[1];
 }
 

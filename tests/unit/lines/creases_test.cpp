@@ -7,6 +7,7 @@
 #include <cmath>
 #include <random>
 
+#include "../mesh/on_threads.h"
 #include "../mesh/same_topology.h"
 #include "analytic_meshes.h"
 #include "crestline/mesh/cut.h"
@@ -196,6 +197,37 @@ TEST_CASE("under noise the filtered normals keep a cube's creases, one line each
   CHECK(from_raw.lines.size() >= 12);
   // And the automatic angle, from the raw normals' median, rises above 90°.
   CHECK(automatic_crease_angle(raw.angles) > 90);
+}
+
+TEST_CASE("the crease angles, supports and medians are the same on 1, 2 and 3 threads", "[creases][threads]") {
+  // 6 × 2 × 40² triangles: the edge loop splits over the threads. Raw normals
+  // with a 1-ring support, filtered ones with the wider rings, and a very
+  // noisy cube whose supports are suppressed off their local maxima.
+  Mesh mesh = repair_mesh(cube(40)).mesh;
+  const double h = mean_edge_length(mesh);
+  for (double noise : {0.0, 0.1, 0.6}) {
+    Mesh noisy = mesh;
+    testing::add_normal_noise(noisy, noise * h, 11);
+    const Topology topology = build_topology(noisy);
+    const auto angles = [&](int threads) {
+      return testing::on_threads(threads, [&] { return measure_crease_angles(noisy, topology, {-1}); });
+    };
+    const CreaseAngles one = angles(1);
+    INFO("noise " << noise << ", filter steps " << one.normal_filter_steps);
+    if (noise > 0) CHECK(one.normal_filter_steps > 0);
+    size_t supported = 0;
+    for (double s : one.support) supported += s > 0;
+    CHECK(supported >= 10 * 40);  // most of the cube's 12 × 40 edges
+    if (noise > 0.5) CHECK(one.noise_level > kVeryNoisyCreaseLevel);
+    for (int threads : {2, 3}) {
+      const CreaseAngles many = angles(threads);
+      CHECK(many.angle == one.angle);
+      CHECK(many.support == one.support);
+      CHECK(many.median == one.median);
+      CHECK(many.median_edge_length == one.median_edge_length);
+      CHECK(many.noise_level == one.noise_level);
+    }
+  }
 }
 
 TEST_CASE("a sphere has no creases, also under noise", "[creases]") {
