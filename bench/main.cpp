@@ -160,7 +160,17 @@ MeshResult measure(const MeshSpec& spec, const Args& args) {
     Pipeline pipeline(std::move(repaired.mesh));
     topology.push_back(now() - t);
     pipeline.set_options(settings.pipeline);
-    pipeline.run();
+    double last_call = now();
+    const auto gap_until = [&](int stage) {
+      const double at = now();
+      if (at - last_call > r.longest_gap) r.longest_gap = at - last_call, r.gap_stage = stage;
+      last_call = at;
+    };
+    pipeline.run([&](Stage stage, double) {
+      gap_until(static_cast<int>(stage));
+      return true;
+    });
+    gap_until(kStages);
     const PipelineStats stats = pipeline.stats();
     double sum = repair.back() + topology.back();
     for (int s = 0; s < kStages; ++s) stages[s].push_back(stats.seconds[s]), sum += stats.seconds[s];

@@ -31,6 +31,11 @@ std::string json_number(double v) {
   return buffer;
 }
 
+// The stage whose progress call ended the longest gap ("end": run() returned).
+const char* gap_stage_name(int stage) {
+  return stage >= 0 && stage < kStages ? stage_name(static_cast<Stage>(stage)) : "end";
+}
+
 double bytes_per_triangle(const MeshResult& r) {
   return r.triangles && r.peak_rss >= r.input_rss ? double(r.peak_rss - r.input_rss) / double(r.triangles) : NAN;
 }
@@ -41,7 +46,8 @@ void print_table(const std::vector<MeshResult>& results) {
   std::vector<std::string> header = {"mesh", "triangles", "read", "repair", "topology"};
   for (int s = 0; s < kStages; ++s) header.push_back(stage_name(static_cast<Stage>(s)));
   header.push_back("write");
-  for (const char* h : {"total", "cpu", "re-thr", "re-smooth", "peak MB", "B/tri", "iterations"}) header.push_back(h);
+  for (const char* h : {"total", "cpu", "re-thr", "re-smooth", "cancel wait", "peak MB", "B/tri", "iterations"})
+    header.push_back(h);
 
   std::vector<std::vector<std::string>> rows;
   for (const MeshResult& r : results) {
@@ -55,6 +61,7 @@ void print_table(const std::vector<MeshResult>& results) {
     for (double s : r.stages) row.push_back(seconds_cell(s));
     row.push_back(seconds_cell(r.write));
     for (double s : {r.total, r.cpu, r.rethreshold, r.resmooth}) row.push_back(seconds_cell(s));
+    row.push_back(seconds_cell(r.longest_gap) + " " + gap_stage_name(r.gap_stage));
     char buffer[32];
     std::snprintf(buffer, sizeof buffer, "%.0f", r.peak_rss / 1048576.0);
     row.push_back(buffer);
@@ -109,8 +116,9 @@ std::string to_json(const std::vector<MeshResult>& results, const BenchSettings&
       out << ", \"" << stage_name(static_cast<Stage>(s)) << "\": " << json_number(r.stages[s]);
     out << ", \"write\": " << json_number(r.write) << ", \"total\": " << json_number(r.total)
         << ", \"total_cpu\": " << json_number(r.cpu) << ", \"rethreshold\": " << json_number(r.rethreshold)
-        << ", \"resmooth\": " << json_number(r.resmooth) << "},\n     \"input_rss_bytes\": " << r.input_rss
-        << ", \"peak_rss_bytes\": " << r.peak_rss
+        << ", \"resmooth\": " << json_number(r.resmooth) << ", \"longest_progress_gap\": " << json_number(r.longest_gap)
+        << "}, \"longest_progress_gap_before\": " << json_string(gap_stage_name(r.gap_stage))
+        << ",\n     \"input_rss_bytes\": " << r.input_rss << ", \"peak_rss_bytes\": " << r.peak_rss
         << ", \"peak_bytes_per_triangle_above_input\": " << json_number(bytes_per_triangle(r))
         << ", \"smoothing_iterations\": " << r.smoothing_iterations << ",\n     \"lines\": {\"ridges\": " << r.ridges
         << ", \"valleys\": " << r.valleys << ", \"ridge_length\": " << json_number(r.ridge_length)

@@ -23,9 +23,15 @@ struct MeshResult {
   // text (no file).
   double read = 0, repair = 0, topology = 0, stages[kStages] = {}, write = 0, total = 0;
   double rethreshold = 0, resmooth = 0;  // re-runs after changing only the threshold / the smoothing
-  double cpu = 0;        // CPU seconds (user + system, all threads) of `total`: less sensitive to a busy machine
-  size_t input_rss = 0;  // bytes resident with the reader's soup in memory
-  size_t peak_rss = 0;   // highest resident bytes from repair to the last re-run
+  double cpu = 0;  // CPU seconds (user + system, all threads) of `total`: less sensitive to a busy machine
+  // The longest time in a run without a progress call (from run() to the
+  // first, between two, from the last to the return; largest over the
+  // runs): how long a cancel can wait. gap_stage: the stage of the call
+  // that ended it (Stage::Count for the return).
+  double longest_gap = 0;
+  int gap_stage = 0;
+  size_t input_rss = 0;             // bytes resident with the reader's soup in memory
+  size_t peak_rss = 0;              // highest resident bytes from repair to the last re-run
   size_t smoothing_iterations = 0;  // the smoothing's solver iterations, all steps (the same every run)
   size_t ridges = 0, valleys = 0;
   double ridge_length = 0, valley_length = 0;

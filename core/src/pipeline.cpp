@@ -357,12 +357,12 @@ void Pipeline::run(const ProgressCallback& progress) {
   const Mesh& surface = working_surface();
   const Topology& topology = working_topology();
   step(Stage::Curvature, [&] {
-    curvature_ = compute_curvature(surface, topology);
+    curvature_ = compute_curvature(surface, topology, within(Stage::Curvature));
     if (options_.averaging.rings > 0)
       curvature_ = average_shape_operator(surface, topology, curvature_, options_.averaging.rings);
   });
   step(Stage::Extremality, [&] {
-    raw_extremality_ = compute_extremality(surface, curvature_);
+    raw_extremality_ = compute_extremality(surface, curvature_, within(Stage::Extremality));
     // No later stage reads the normals or star areas, and no option re-runs
     // this stage without the curvature one: released (16 bytes per triangle).
     // Assigning a new vector frees; `= {}` would only clear (it keeps the capacity).

@@ -7,7 +7,8 @@
 
 namespace crestline {
 
-Extremality compute_extremality(const Mesh& mesh, const Curvature& curvature) {
+Extremality compute_extremality(const Mesh& mesh, const Curvature& curvature,
+                                const std::function<void(double)>& progress) {
   const size_t nv = mesh.positions.size(), nt = mesh.triangles.size();
   const std::vector<Vec3>& x = mesh.positions;
   Extremality out;
@@ -53,6 +54,7 @@ Extremality compute_extremality(const Mesh& mesh, const Curvature& curvature) {
         out.e_min[f[k]] += term_min[i + k];
       }
     }
+    if (progress) progress(double(end) / double(nt));
   }
   for (size_t v = 0; v < nv; ++v) {
     const double star = curvature.star_area[v];

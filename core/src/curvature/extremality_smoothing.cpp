@@ -25,6 +25,9 @@ constexpr double kTolerance = 1e-6;
 constexpr int kPairedBudget = 150;
 // Progress within a step: i iterations count as i / (i + this) of the step.
 constexpr double kTypicalIterations = 10;
+// The set-up's share of the stage's progress: below the first iteration's
+// fraction, 1 / (1 + kTypicalIterations) of one step of at most 16.
+constexpr double kSetupShare = 0.005;
 
 // Both fields' matrices M − t L_σ in one pattern (numerics/paired_cg.h); the
 // diagonal sums in edge order exactly as smooth_field's does. Each edge's
@@ -75,9 +78,18 @@ bool smooth_fields_paired(const Topology& topology, const CotanWeights& cotan, s
                           const Curvature& curvature, const Extremality& in, int steps,
                           const std::function<void(double)>& progress, SmoothedExtremality& out) {
   const size_t nv = cotan.vertex_mass.size();
+  // The set-up's parts report fractions rising towards kSetupShare, below
+  // the first iteration's (1/11 of a step): a chance to cancel each.
+  double setup = 0.5 * kSetupShare;
+  const auto pause = [&] {
+    setup = 0.5 * (setup + kSetupShare);
+    if (progress) progress(setup);
+  };
   SignedPairMatrix matrix = signed_pair_matrix(topology, cotan, edge_strength, curvature);
   std::vector<double>().swap(edge_strength);  // before the solver copies the matrix
-  const SignedPairSolver solver(std::move(matrix));
+  pause();
+  const SignedPairSolver solver(std::move(matrix), true, pause);
+  pause();
   std::vector<double> x(2 * nv), b(2 * nv);
   parallel_for(nv, [&](size_t begin, size_t end) {
     for (size_t v = begin; v < end; ++v) x[2 * v] = in.e_max[v], x[2 * v + 1] = in.e_min[v];
@@ -166,6 +178,8 @@ SmoothedExtremality smooth_extremality(const Mesh& mesh, const Topology& topolog
       throw Error(ErrorKind::InvalidInput, "smoothing weights must be finite and not negative.");
 
   CotanWeights cotan = cotan_weights(mesh.positions, mesh, topology);
+  // A chance to cancel before the set-up's other parts (smooth_fields_paired).
+  if (progress) progress(0.5 * kSetupShare);
   const double h = mean_edge_length(mesh);
   const double t = options.time_step * h * h;
   // An edge is smoothed as strongly as its weaker end, so a region with

@@ -10,7 +10,13 @@
 
 namespace crestline {
 
-Curvature compute_curvature(const Mesh& mesh, const Topology& topology) {
+Curvature compute_curvature(const Mesh& mesh, const Topology& topology, const std::function<void(double)>& progress) {
+  // The stage's parts by share of its time (1.1M triangles): normals, edge
+  // terms, eigen-decompositions.
+  constexpr double kNormalsDone = 0.1, kEdgesDone = 0.55;
+  const auto report = [&](double fraction) {
+    if (progress) progress(fraction);
+  };
   const size_t nv = mesh.positions.size();
   const std::vector<Vec3>& x = mesh.positions;
   std::vector<double> areas;
@@ -37,6 +43,7 @@ Curvature compute_curvature(const Mesh& mesh, const Topology& topology) {
       c.star_area[v] = star;
     }
   });
+  report(kNormalsDone);
 
   // S(p) = ½ Σ_{e∋p} ⟨N_p, N_e⟩ S(e), S(e) = H_e (ē×N_e)(ē×N_e)^T.
   // Each edge's S(e) and its two weights ½⟨N_p, N_e⟩ are computed on every
@@ -103,6 +110,7 @@ Curvature compute_curvature(const Mesh& mesh, const Topology& topology) {
             }
         },
         1);
+    report(kNormalsDone + (kEdgesDone - kNormalsDone) * double(end) / double(ne));
   }
 
   c.kappa_max.resize(nv);
@@ -110,35 +118,40 @@ Curvature compute_curvature(const Mesh& mesh, const Topology& topology) {
   c.dir_max.resize(nv);
   c.dir_min.resize(nv);
   // One eigen-decomposition per vertex, each writing only its own vertex:
-  // the same results on any number of threads.
-  parallel_for(nv, [&](size_t begin, size_t end) {
-    Eigen::Matrix3d s;
-    for (size_t v = begin; v < end; ++v) {
-      const Lower& l = shape[v];
-      s(0, 0) = l[0], s(1, 0) = l[1], s(2, 0) = l[2], s(1, 1) = l[3], s(2, 1) = l[4], s(2, 2) = l[5];
-      s(0, 1) = l[1], s(0, 2) = l[2], s(1, 2) = l[4];
-      const SymmetricEigen3 eigen = symmetric_eigen3(s);
-      const Eigen::Vector3d& lambda = eigen.values;  // ascending
-      const Eigen::Matrix3d& vectors = eigen.vectors;
-      // The paper keeps the two eigenvalues of largest magnitude; the third
-      // belongs (up to noise) to the normal. On a flat patch all three vanish
-      // and "largest" is noise, so we drop the eigenvector closest to the
-      // vertex normal instead: the same choice on curved surfaces, and the
-      // directions stay tangent on flat ones.
-      int drop = 0;
-      double best = -1;
-      for (int i = 0; i < 3; ++i) {
-        const double along = std::abs(vectors.col(i).dot(c.vertex_normals[v]));
-        if (along > best) best = along, drop = i;
+  // the same results on any number of threads. In blocks, for progress.
+  constexpr size_t kVertexBlock = size_t{1} << 16;
+  for (size_t block = 0; block < nv; block += kVertexBlock) {
+    const size_t block_end = std::min(nv, block + kVertexBlock);
+    parallel_for(block_end - block, [&](size_t first, size_t last) {
+      Eigen::Matrix3d s;
+      for (size_t v = block + first; v < block + last; ++v) {
+        const Lower& l = shape[v];
+        s(0, 0) = l[0], s(1, 0) = l[1], s(2, 0) = l[2], s(1, 1) = l[3], s(2, 1) = l[4], s(2, 2) = l[5];
+        s(0, 1) = l[1], s(0, 2) = l[2], s(1, 2) = l[4];
+        const SymmetricEigen3 eigen = symmetric_eigen3(s);
+        const Eigen::Vector3d& lambda = eigen.values;  // ascending
+        const Eigen::Matrix3d& vectors = eigen.vectors;
+        // The paper keeps the two eigenvalues of largest magnitude; the third
+        // belongs (up to noise) to the normal. On a flat patch all three vanish
+        // and "largest" is noise, so we drop the eigenvector closest to the
+        // vertex normal instead: the same choice on curved surfaces, and the
+        // directions stay tangent on flat ones.
+        int drop = 0;
+        double best = -1;
+        for (int i = 0; i < 3; ++i) {
+          const double along = std::abs(vectors.col(i).dot(c.vertex_normals[v]));
+          if (along > best) best = along, drop = i;
+        }
+        const int i_min = drop == 0 ? 1 : 0, i_max = drop == 2 ? 1 : 2;
+        const double scale = c.star_area[v] > 0 ? 3.0 / c.star_area[v] : 0.0;
+        c.kappa_max[v] = scale * lambda[i_max];
+        c.kappa_min[v] = scale * lambda[i_min];
+        c.dir_max[v] = vectors.col(i_max);
+        c.dir_min[v] = vectors.col(i_min);
       }
-      const int i_min = drop == 0 ? 1 : 0, i_max = drop == 2 ? 1 : 2;
-      const double scale = c.star_area[v] > 0 ? 3.0 / c.star_area[v] : 0.0;
-      c.kappa_max[v] = scale * lambda[i_max];
-      c.kappa_min[v] = scale * lambda[i_min];
-      c.dir_max[v] = vectors.col(i_max);
-      c.dir_min[v] = vectors.col(i_min);
-    }
-  });
+    });
+    report(kEdgesDone + (1 - kEdgesDone) * double(block_end) / double(nv));
+  }
   return c;
 }
 

@@ -204,7 +204,10 @@ std::vector<uint32_t> detail::greedy_colours(const SignedPairMatrix& a) {
   return colour;
 }
 
-SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix, bool two_level) {
+SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix, bool two_level, const std::function<void()>& checkpoint) {
+  const auto pause = [&] {
+    if (checkpoint) checkpoint();
+  };
   const size_t n = matrix.rows();
   const std::vector<uint32_t> colour = detail::greedy_colours(matrix);
   const uint32_t colours = n == 0 ? 0 : *std::max_element(colour.begin(), colour.end()) + 1;
@@ -214,6 +217,7 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix, bool two_level) {
   for (uint32_t c = 0; c < colours; ++c) colour_begin_[c + 1] += colour_begin_[c];
   order_.resize(n);
   std::vector<uint32_t> position(n);
+  pause();
   std::vector<uint32_t> bfs_order = locality_order(matrix);
   {
     std::vector<uint32_t> fill(colour_begin_.begin(), colour_begin_.end() - 1);
@@ -247,6 +251,7 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix, bool two_level) {
       slow_rows += slow;
     });
     if (slow_rows >= detail::min_aggregated(n)) aggregation = build_coarse_matrix(matrix, excess, bfs_order, position);
+    pause();
   }
   std::vector<uint32_t>().swap(bfs_order);
   // The permuted matrix: each row's entries to later colours (upper) in
@@ -305,7 +310,10 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix, bool two_level) {
   });
   // Not read beyond here: Q is built without the input beside it.
   matrix = SignedPairMatrix();
-  if (!aggregation.aggregate.empty()) build_coarse_transfer(aggregation);
+  if (!aggregation.aggregate.empty()) {
+    pause();
+    build_coarse_transfer(aggregation);
+  }
 }
 
 // Symmetric Gauss–Seidel sweeps on Ac (unit diagonal) from y = 0: a fixed

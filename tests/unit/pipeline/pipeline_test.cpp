@@ -202,6 +202,59 @@ TEST_CASE("progress moves inside smoothing and tracing, and a cancel there stops
   for (size_t i = 0; i < again.size(); ++i) CHECK(again[i].points == reference[i].points);
 }
 
+TEST_CASE("curvature, extremality and the smoothing's set-up report progress, and a cancel there keeps nothing",
+          "[pipeline]") {
+  // 45,000 triangles, ≈ 67,000 edges: the curvature's edge terms come in
+  // five blocks (numbers the test asserts, so it fails where a block
+  // reports nothing).
+  testing::GridOptions grid;
+  grid.nu = grid.nv = 150;
+  grid.jitter = 0.2;
+  const Mesh mesh =
+      repair_mesh(
+          testing::height_field([](double x, double y) { return 0.1 * std::sin(3 * x) * std::cos(2 * y); }, 2, 2, grid))
+          .mesh;
+  REQUIRE(mesh.triangle_count() == 2 * 150 * 150);
+  Pipeline reference(mesh);
+  std::vector<double> curvature, extremality;
+  int setup = 0, iterations = 0;  // the smoothing's calls in its set-up, and after iterations
+  reference.run([&](Stage s, double fraction) {
+    if (s == Stage::Curvature && fraction > 0) curvature.push_back(fraction);
+    if (s == Stage::Extremality && fraction > 0) extremality.push_back(fraction);
+    if (s == Stage::Smoothing && fraction > 0) (fraction < 0.005 ? setup : iterations) += 1;
+    return true;
+  });
+  // Normals, five blocks of edges, one block of vertices.
+  REQUIRE(curvature.size() == 7);
+  for (size_t i = 1; i < curvature.size(); ++i) CHECK(curvature[i] > curvature[i - 1]);
+  CHECK(curvature.back() == 1.0);
+  CHECK(extremality == std::vector<double>{1.0});
+  // After the cotan weights, after the matrix, in the solver's set-up (two
+  // points without a coarse level, as here), after it.
+  CHECK(setup == 5);
+  CHECK(iterations > 3);
+
+  // A cancel inside each: the stage is not kept, and the next run gives the same lines.
+  for (const Stage at : {Stage::Curvature, Stage::Extremality, Stage::Smoothing}) {
+    Pipeline p(mesh);
+    // The smoothing's third call: inside its set-up, before any iteration.
+    const int wanted = at == Stage::Smoothing ? 3 : 1;
+    int calls = 0, after = 0;
+    CHECK_THROWS_AS(p.run([&](Stage s, double fraction) {
+      if (calls == wanted) ++after;
+      if (s == at && fraction > 0 && ++calls == wanted) return false;
+      return true;
+    }),
+                    Cancelled);
+    INFO("cancelled in " << stage_name(at));
+    CHECK(after == 0);
+    CHECK(stages_run(p).front() == at);
+    p.run();
+    REQUIRE(p.lines().size() == reference.lines().size());
+    for (size_t i = 0; i < p.lines().size(); ++i) CHECK(p.lines()[i].points == reference.lines()[i].points);
+  }
+}
+
 TEST_CASE("the lines are identical for 1 and 2 threads", "[pipeline][threads]") {
   // 10,201 vertices: enough rows for the solver's reductions to split.
   testing::GridOptions grid;

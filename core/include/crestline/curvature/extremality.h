@@ -1,5 +1,6 @@
 #pragma once
 // Paper §3, eq. (4): discrete extremality coefficients.
+#include <functional>
 #include <vector>
 
 #include "crestline/curvature/shape_operator.h"
@@ -15,6 +16,9 @@ struct Extremality {
   std::vector<double> e_min;
 };
 
-Extremality compute_extremality(const Mesh& mesh, const Curvature& curvature);
+/// progress, if set, is called on the calling thread between blocks of
+/// triangles (fractions of the stage) and may throw to abandon it.
+Extremality compute_extremality(const Mesh& mesh, const Curvature& curvature,
+                                const std::function<void(double)>& progress = {});
 
 }  // namespace crestline

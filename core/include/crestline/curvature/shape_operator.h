@@ -10,6 +10,7 @@
 // - The vertex shape operator S(p) is an *integrated* quantity (units of
 //   length). The curvatures stored here are *pointwise* (units 1/length):
 //   κ(p) = 3 / area(star(p)) · λ(p), λ an eigenvalue of S(p).
+#include <functional>
 #include <vector>
 
 #include "crestline/mesh/mesh.h"
@@ -50,7 +51,11 @@ inline double direction_sign(const Vec3& a, const Vec3& b) {
 /// paper's two of largest magnitude on curved surfaces, and tangent on flat
 /// ones), rescaled to pointwise values. Boundary edges contribute nothing
 /// (they have no dihedral angle). The eigen-decompositions run on
-/// max_threads() threads.
-Curvature compute_curvature(const Mesh& mesh, const Topology& topology);
+/// max_threads() threads. progress, if set, is called on the calling thread
+/// between blocks of edges and of vertices (fractions of the stage, in
+/// order; at 1.1M triangles a few hundredths of a second apart) and may throw
+/// to abandon the computation.
+Curvature compute_curvature(const Mesh& mesh, const Topology& topology,
+                            const std::function<void(double)>& progress = {});
 
 }  // namespace crestline

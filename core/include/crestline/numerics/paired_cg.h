@@ -193,7 +193,10 @@ std::vector<uint32_t> greedy_colours(const SignedPairMatrix& a);
 class SignedPairSolver {
  public:
   /// two_level = false leaves the coarse level out (one-level sweeps only).
-  explicit SignedPairSolver(SignedPairMatrix matrix, bool two_level = true);
+  /// checkpoint, if set, is called between the set-up's parts (a tenth of a
+  /// second apart on the dragon's 437k rows) and may throw to abandon it.
+  explicit SignedPairSolver(SignedPairMatrix matrix, bool two_level = true,
+                            const std::function<void()>& checkpoint = {});
 
   /// x (2 values per row, interleaved: x[2i+k]) holds the guess on entry;
   /// b is overwritten (the solver uses it as scratch: one vector less).
