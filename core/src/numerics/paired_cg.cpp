@@ -26,8 +26,6 @@ constexpr size_t kMinBlocksPerThread = 4;
 // The true residual is formed from the iteration whose predicted squared
 // residual is at most this many times the limit.
 constexpr double kNearFactor = 16;
-// Symmetric Gauss–Seidel sweeps of the coarse solve.
-constexpr int kCoarseSweeps = 4;
 
 // Up to two sums per field: sums[k] and sums[2 + k] for field k.
 using BlockSums = std::array<double, 4>;
@@ -316,27 +314,58 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix, bool two_level, cons
   }
 }
 
-// Symmetric Gauss–Seidel sweeps on Ac (unit diagonal) from y = 0: a fixed
-// number of them is a symmetric positive definite approximation of Ac⁻¹, so
-// the preconditioner stays symmetric positive definite. Serial: the coarse
-// level is a few per cent of the rows.
-void SignedPairSolver::coarse_solve(const double* g, double* y) const {
-  const size_t rows = coarse_rows();
-  const uint32_t *const begin = coarse_begin_.data(), *const upper = coarse_upper_begin_.data();
-  const uint32_t* const columns = coarse_columns_.data();
-  const double* const values = coarse_values_.data();
-  const auto relax = [=](size_t c, uint32_t end) {
+namespace {
+
+// y = Lᵀ⁻¹ D⁻¹ L⁻¹ g over rows row(0), …, row(count − 1), ascending, that
+// L joins to no other rows: a gather by row forward, D⁻¹, then the backward
+// solve by the same rows, each row's y scattered to the earlier rows it
+// reaches once final. Each row's sums are in the same order for any such
+// set of rows that holds it.
+template <typename Row>
+void solve_rows(const detail::PairFactor& factor, const Row& row, size_t count, const double* g, double* y) {
+  const uint32_t *const begin = factor.begin.data(), *const columns = factor.columns.data();
+  const double *const values = factor.values.data(), *const inverse_pivot = factor.inverse_pivot.data();
+  for (size_t i = 0; i < count; ++i) {
+    const size_t c = row(i);
     Pair s = Pair::load(g + 2 * c);
-    for (uint32_t e = begin[c]; e < end; ++e)
+    for (uint32_t e = begin[c]; e < begin[c + 1]; ++e)
       s = s - Pair::load(values + 2 * size_t{e}) * Pair::load(y + 2 * size_t{columns[e]});
     s.store(y + 2 * c);
-  };
-  for (int sweep = 0; sweep < kCoarseSweeps; ++sweep) {
-    // The first forward sweep reads only earlier rows: y is 0 beyond (not
-    // stored first: callgrind counts a fill by the byte).
-    for (size_t c = 0; c < rows; ++c) relax(c, sweep == 0 ? upper[c] : begin[c + 1]);
-    for (size_t c = rows; c-- > 0;) relax(c, begin[c + 1]);
   }
+  for (size_t i = 0; i < count; ++i) {
+    const size_t c = row(i);
+    (Pair::load(y + 2 * c) * Pair::load(inverse_pivot + 2 * c)).store(y + 2 * c);
+  }
+  for (size_t i = count; i-- > 0;) {
+    const size_t c = row(i);
+    const Pair yc = Pair::load(y + 2 * c);
+    for (uint32_t e = begin[c]; e < begin[c + 1]; ++e) {
+      double* const to = y + 2 * size_t{columns[e]};
+      (Pair::load(to) - Pair::load(values + 2 * size_t{e}) * yc).store(to);
+    }
+  }
+}
+
+}  // namespace
+
+// All rows in order on one thread (no index to look up); else the groups of
+// whole trees on the threads.
+void detail::PairFactor::solve(const double* g, double* y) const {
+  if (max_threads() <= 1) {
+    solve_rows(
+        *this, [](size_t i) { return i; }, rows(), g, y);
+    return;
+  }
+  parallel_for(
+      kGroups,
+      [&](size_t first, size_t last) {
+        for (size_t k = first; k < last; ++k) {
+          const uint32_t* const rows_of = order.data() + group_begin[k];
+          solve_rows(
+              *this, [rows_of](size_t i) { return rows_of[i]; }, group_begin[k + 1] - group_begin[k], g, y);
+        }
+      },
+      1);
 }
 
 // Conjugate gradients preconditioned by multicolour symmetric Gauss–Seidel,
@@ -412,7 +441,7 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
   });
   std::fill(xv, xv + 2 * n, 0.0);  // the correction S⁻¹ (x − x₀)
   // With a coarse level, z = B̃⁻¹ r̃ = r̃ + Q y, y = Ac⁻¹ Qᵀ r̃ (the coarse
-  // sweeps), and ⟨r̃, z⟩ = ⟨r̃, r̃⟩ + ⟨Qᵀ r̃, y⟩: y is formed after the pass
+  // factor), and ⟨r̃, z⟩ = ⟨r̃, r̃⟩ + ⟨Qᵀ r̃, y⟩: y is formed after the pass
   // that updates r̃ and Q y gathered in the next pass that forms p.
   const size_t coarse = coarse_rows();
   std::vector<double> restricted(2 * coarse), y(2 * coarse);
@@ -424,7 +453,7 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
       for (size_t c = begin; c < end; ++c)
         accumulate(qt_rows, qt_values, rv, qt_begin[c], qt_begin[c + 1]).store(g + 2 * c);
     });
-    coarse_solve(restricted.data(), y.data());
+    coarse_factor_.solve(restricted.data(), y.data());
     Pair dot = Pair::both(0.0);
     for (size_t j = 0; j < 2 * coarse; j += 2) dot = dot + Pair::load(g + j) * Pair::load(y.data() + j);
     BlockSums out{};

@@ -105,9 +105,8 @@ SignedPairSolver::Aggregation SignedPairSolver::build_coarse_matrix(const Signed
   // Its diagonal as a sum of terms ≥ 0 (no cancellation where R is large):
   // sᵀ A s = Σ excess_i + Σ over entries to other rows |a_ij| + Σ over
   // entries inside (|a_ij| + s_i s_j a_ij), the last 0 where the signs follow
-  // the entry. Diagonally dominant, so positive definite. Each row's entries
-  // to earlier aggregates come first: the coarse solve's first sweep reads
-  // only those (the later ones are still 0).
+  // the entry. Diagonally dominant, so positive definite. Only the entries
+  // to earlier aggregates are kept: the factorisation reads no others.
   const auto signed_entry = [&](uint32_t i, uint32_t j, uint32_t e, int k) {  // s_i s_j a_ij in field k
     return (a.columns[e] >> 30 ^ flips[i] ^ flips[j]) >> k & 1 ? -a.weights[e] : a.weights[e];
   };
@@ -115,7 +114,6 @@ SignedPairSolver::Aggregation SignedPairSolver::build_coarse_matrix(const Signed
   std::vector<uint32_t> slot(aggregates, kNone), row_columns;
   std::vector<double> row_values, off_values;
   std::vector<uint32_t> off_begin(aggregates + 1, 0), off_columns;
-  coarse_upper_begin_.resize(aggregates);
   for (uint32_t c = 0; c < aggregates; ++c) {
     row_columns.clear(), row_values.clear();
     for (uint32_t m = member_begin[c]; m < member_begin[c + 1]; ++m) {
@@ -138,15 +136,12 @@ SignedPairSolver::Aggregation SignedPairSolver::build_coarse_matrix(const Signed
       }
       diagonal[2 * size_t{c}] += sum[0], diagonal[2 * size_t{c} + 1] += sum[1];
     }
-    for (const bool earlier : {true, false})
-      for (const uint32_t d : row_columns)
-        if ((d < c) == earlier) {
-          off_columns.push_back(d);
-          off_values.insert(off_values.end(), {row_values[2 * size_t{slot[d]}], row_values[2 * size_t{slot[d]} + 1]});
-        }
+    for (const uint32_t d : row_columns)
+      if (d < c) {
+        off_columns.push_back(d);
+        off_values.insert(off_values.end(), {row_values[2 * size_t{slot[d]}], row_values[2 * size_t{slot[d]} + 1]});
+      }
     for (const uint32_t d : row_columns) slot[d] = kNone;
-    coarse_upper_begin_[c] = off_begin[c] + static_cast<uint32_t>(std::count_if(row_columns.begin(), row_columns.end(),
-                                                                                [c](uint32_t d) { return d < c; }));
     off_begin[c + 1] = static_cast<uint32_t>(off_columns.size());
   }
   // An aggregate without excess or neighbours outside it (Ac_cc = 0: a
@@ -154,22 +149,16 @@ SignedPairSolver::Aggregation SignedPairSolver::build_coarse_matrix(const Signed
   // magnitudes, to rounding) would make Ac singular: no coarse level then,
   // the one-level solve as before.
   for (const double d : diagonal)
-    if (!(d > 0)) {
-      coarse_upper_begin_.clear();
-      return {};
-    }
-  aggregated_ = aggregated;
+    if (!(d > 0)) return {};
   // Scaled to a unit diagonal per field, as the fine level.
   std::vector<double> coarse_root(2 * size_t{aggregates});
   for (size_t j = 0; j < coarse_root.size(); ++j) coarse_root[j] = std::sqrt(diagonal[j]);
-  coarse_begin_ = std::move(off_begin);
-  coarse_columns_ = std::move(off_columns);
-  coarse_values_.resize(off_values.size());
   for (uint32_t c = 0; c < aggregates; ++c)
-    for (uint32_t e = coarse_begin_[c]; e < coarse_begin_[c + 1]; ++e)
+    for (uint32_t e = off_begin[c]; e < off_begin[c + 1]; ++e)
       for (int k = 0; k < 2; ++k)
-        coarse_values_[2 * size_t{e} + k] =
-            off_values[2 * size_t{e} + k] / (coarse_root[2 * c + k] * coarse_root[2 * size_t{coarse_columns_[e]} + k]);
+        off_values[2 * size_t{e} + k] /= coarse_root[2 * size_t{c} + k] * coarse_root[2 * size_t{off_columns[e]} + k];
+  if (!coarse_factor_.factor(off_begin, off_columns, off_values)) return {};
+  aggregated_ = aggregated;
 
   // By the solver's rows, for P (build_coarse_transfer).
   Aggregation out;
@@ -180,11 +169,108 @@ SignedPairSolver::Aggregation SignedPairSolver::build_coarse_matrix(const Signed
   return out;
 }
 
+// Ac = L D Lᵀ, both fields in lockstep (one pattern), by rows: row k of L
+// solves the rows before it against row k of Ac (up-looking, as Davis's LDL
+// package: its pattern is the reach of Ac's entries in the elimination tree).
+// Aggregates in breadth-first order fill in little (the dragon: 55 k entries
+// below Ac's diagonal, 121 k in L). Every operation is one field's alone and
+// in a fixed order: the same bits natively and in WASM.
+bool detail::PairFactor::factor(const std::vector<uint32_t>& row_begin, const std::vector<uint32_t>& row_columns,
+                                const std::vector<double>& row_values) {
+  const uint32_t rows = static_cast<uint32_t>(row_begin.size() - 1);
+  // Symbolic: the elimination tree and the entries of each column of L.
+  std::vector<uint32_t> parent(rows, kNone), flag(rows), column_count(rows, 0);
+  for (uint32_t k = 0; k < rows; ++k) {
+    flag[k] = k;
+    for (uint32_t e = row_begin[k]; e < row_begin[k + 1]; ++e)
+      for (uint32_t i = row_columns[e]; flag[i] != k; i = parent[i]) {
+        if (parent[i] == kNone) parent[i] = k;
+        ++column_count[i], flag[i] = k;
+      }
+  }
+  std::vector<uint32_t> column_begin(rows + 1, 0);
+  for (uint32_t i = 0; i < rows; ++i) column_begin[i + 1] = column_begin[i] + column_count[i];
+  // Numeric, with L by column as the row solves read it.
+  const size_t entries = column_begin[rows];
+  std::vector<uint32_t> column_rows(entries), pattern(rows);
+  std::vector<double> column_values(2 * entries), y(2 * size_t{rows}, 0.0), pivot(2 * size_t{rows});
+  std::fill(column_count.begin(), column_count.end(), 0);
+  for (uint32_t k = 0; k < rows; ++k) {
+    uint32_t top = rows;
+    flag[k] = k;
+    for (uint32_t e = row_begin[k]; e < row_begin[k + 1]; ++e) {
+      uint32_t i = row_columns[e], length = 0;
+      for (int f = 0; f < 2; ++f) y[2 * size_t{i} + f] += row_values[2 * size_t{e} + f];
+      for (; flag[i] != k; i = parent[i]) pattern[length++] = i, flag[i] = k;
+      while (length > 0) pattern[--top] = pattern[--length];
+    }
+    double d[2] = {1.0, 1.0};  // Ac's unit diagonal
+    for (; top < rows; ++top) {
+      const uint32_t i = pattern[top];
+      const double yi[2] = {y[2 * size_t{i}], y[2 * size_t{i} + 1]};
+      y[2 * size_t{i}] = y[2 * size_t{i} + 1] = 0.0;
+      const uint32_t last = column_begin[i] + column_count[i];
+      for (uint32_t p = column_begin[i]; p < last; ++p)
+        for (int f = 0; f < 2; ++f) y[2 * size_t{column_rows[p]} + f] -= column_values[2 * size_t{p} + f] * yi[f];
+      column_rows[last] = k;
+      for (int f = 0; f < 2; ++f) {
+        const double l = yi[f] / pivot[2 * size_t{i} + f];
+        d[f] -= l * yi[f];
+        column_values[2 * size_t{last} + f] = l;
+      }
+      ++column_count[i];
+    }
+    // Ac is positive definite (diagonally dominant); a pivot lost to
+    // rounding would leave the coarse level out.
+    if (!(d[0] > 0) || !(d[1] > 0)) return false;
+    pivot[2 * size_t{k}] = d[0], pivot[2 * size_t{k} + 1] = d[1];
+  }
+  // By row for the forward solve, whose gathers read rows done before.
+  begin.assign(rows + 1, 0);
+  for (const uint32_t r : column_rows) ++begin[r + 1];
+  for (uint32_t r = 0; r < rows; ++r) begin[r + 1] += begin[r];
+  columns.resize(entries);
+  values.resize(2 * entries);
+  std::vector<uint32_t> fill(begin.begin(), begin.end() - 1);
+  for (uint32_t i = 0; i < rows; ++i)
+    for (uint32_t p = column_begin[i]; p < column_begin[i + 1]; ++p) {
+      const uint32_t to = fill[column_rows[p]]++;
+      columns[to] = i;
+      for (int f = 0; f < 2; ++f) values[2 * size_t{to} + f] = column_values[2 * size_t{p} + f];
+    }
+  inverse_pivot.resize(pivot.size());
+  for (size_t j = 0; j < pivot.size(); ++j) inverse_pivot[j] = 1 / pivot[j];
+  // The trees of the elimination forest (Ac's connected components; L joins
+  // no two) dealt into kGroups groups of about equal work (rows and
+  // entries), each tree whole, in order of their first rows.
+  std::vector<uint32_t>& root = parent;  // each row's tree by its root, the tree's last row
+  for (uint32_t k = rows; k-- > 0;) root[k] = parent[k] == kNone ? k : root[parent[k]];
+  std::vector<size_t> tree_work(rows, 0);
+  for (uint32_t k = 0; k < rows; ++k) tree_work[root[k]] += 1 + begin[k + 1] - begin[k];
+  std::vector<uint32_t>& group = flag;  // of each tree, by its root
+  std::fill(group.begin(), group.end(), kNone);
+  const size_t work = size_t{rows} + entries;
+  size_t dealt = 0;
+  uint32_t current = 0;
+  group_begin.assign(kGroups + 1, 0);
+  for (uint32_t k = 0; k < rows; ++k) {
+    if (group[root[k]] != kNone) continue;
+    while (current + 1 < kGroups && dealt * kGroups >= (current + 1) * work) ++current;
+    group[root[k]] = current, dealt += tree_work[root[k]];
+  }
+  for (uint32_t k = 0; k < rows; ++k) ++group_begin[group[root[k]] + 1];
+  for (uint32_t c = 0; c < kGroups; ++c) group_begin[c + 1] += group_begin[c];
+  order.resize(rows);
+  std::vector<uint32_t> next(group_begin.begin(), group_begin.end() - 1);
+  for (uint32_t k = 0; k < rows; ++k) order[next[group[root[k]]]++] = k;
+  return true;
+}
+
 // P in the solver's rows and scaled variables, s_i √a_ii / √Ac_cc, formed
 // where Q reads it (not stored: 16 bytes a row).
 void SignedPairSolver::build_coarse_transfer(const Aggregation& aggregation) {
   const size_t n = roots_.size();
-  const uint32_t aggregates = static_cast<uint32_t>(coarse_begin_.size() - 1);
+  const uint32_t aggregates = static_cast<uint32_t>(coarse_rows());
   const std::vector<uint32_t>& fine_aggregate = aggregation.aggregate;
   const auto p = [&](uint32_t j, int k) {
     const double s = aggregation.flips[j] >> k & 1 ? -roots_[j] : roots_[j];

@@ -104,22 +104,17 @@
 // aggregate; P = ±√d along each aggregate's tree, its sign following the
 // entries σ (so flipping a row's sign flips exactly its value, as the smoothing
 // promises). Ac from the double entries as a sum of terms ≥ 0 (positive
-// definite however large R is), solved by 4 serial symmetric Gauss–Seidel
-// sweeps from 0 (a symmetric positive definite operator, so CG stays CG; 2, 3
-// and 6 sweeps: dragon 70, 62 and 53 iterations against 58, no fewer
-// instructions). No coarse level where under 1 % of the rows are aggregated
-// (the bunny): the iterates there are the one-level ones to the bit (CLI OBJ
-// byte-identical with two_level = false and with main on the 1.1M, the dragon,
-// feline and cessna). CLI defaults, 1 thread, callgrind of smooth_extremality
-// against 2817f06: iterations 1.1M 23/19/18 → 15/12/12, dragon 57/55/47 →
-// 23/19/16, bunny 12/12/11 unchanged; instructions 1.1M 5.68 G → 4.69 G
-// (−17 %), dragon 9.81 G → 6.51 G (−34 %; coarse solve 0.99 G, Qᵀ r̃ 0.31 G,
-// set-up 0.21 G), bunny 243.4 M → 247.4 M (+1.6 %: the test for slow rows, and
-// aggregates too few for a coarse level). Line counts equal to main's on 54
-// meshes (classic, smooth, cad, glb, large and the 1.1M; 38 of them with other
-// iterations, e.g. cad/crank 150 → 74, cgal-blade 105 → 31). Zero crossings
-// against a 10⁻¹² solve (largest and mean move along the edge, in edge lengths,
-// over both fields; crossings appearing or vanishing): 1.1M 0.0068 / 9·10⁻⁷,
+// definite however large R is), first solved by 4 serial symmetric
+// Gauss–Seidel sweeps from 0 (2, 3 and 6 sweeps: dragon 70, 62 and 53
+// iterations against 58, no fewer instructions), now factored (below). No coarse level where under 1 % of the rows are
+// aggregated (the bunny): the iterates there are the one-level ones to the bit (CLI OBJ byte-identical with two_level =
+// false and with main on the 1.1M, the dragon, feline and cessna). CLI defaults, 1 thread, callgrind of
+// smooth_extremality against 2817f06: iterations 1.1M 23/19/18 → 15/12/12, dragon 57/55/47 → 23/19/16, bunny 12/12/11
+// unchanged; instructions 1.1M 5.68 G → 4.69 G (−17 %), dragon 9.81 G → 6.51 G (−34 %; coarse solve 0.99 G, Qᵀ r̃ 0.31
+// G, set-up 0.21 G), bunny 243.4 M → 247.4 M (+1.6 %: the test for slow rows, and aggregates too few for a coarse
+// level). Line counts equal to main's on 54 meshes (classic, smooth, cad, glb, large and the 1.1M; 38 of them with
+// other iterations, e.g. cad/crank 150 → 74, cgal-blade 105 → 31). Zero crossings against a 10⁻¹² solve (largest and
+// mean move along the edge, in edge lengths, over both fields; crossings appearing or vanishing): 1.1M 0.0068 / 9·10⁻⁷,
 // 6 → 0.0018 / 9·10⁻⁷, 0; dragon 0.036 / 2.3·10⁻⁶, 7 → 0.12 / 8.6·10⁻⁷, 4;
 // moves above 0.01 edge 6 → 2 (0.12 where both ends are below 2·10⁻⁷ of the
 // field's RMS, 0.019 below 1.2·10⁻³). Round-off and the discrete thresholds: no
@@ -133,6 +128,33 @@
 // every row aggregated (1.1M 60 → 39 iterations but 5.68 → 6.60 G); smoothed
 // aggregation (Q and Ac 2–4× denser; dragon 8.49 G); and here R > 4 (m <
 // 0.2 d): bunny 35 → 28 iterations but 243 → 429 M.
+//
+// The coarse solve is exact: Ac = L D Lᵀ (detail::PairFactor), both fields
+// in lockstep. Ac is sparse and far from connected (the dragon: 60,930 rows,
+// 55 k entries below the diagonal, 19,334 components of up to 1,048 rows,
+// 11,467 of one row); in the aggregates' breadth-first order L has 121 k
+// (AMD would give 65 k: ≈ 1 % of the smoothing, not worth a permutation). A
+// solve reads 242 k entries where the 4 sweeps read ≈ 825 k, and the
+// preconditioner is the two-level one with an exact coarse solve (symmetric
+// positive definite as before). Callgrind of smooth_extremality, CLI
+// defaults, 1 thread, against 0ed13dc: dragon 6.51 G → 5.19 G (−20 %; coarse
+// solve 0.99 G → 0.23 G, the factorisation 27 M), iterations 23/19/16 →
+// 19/17/14; 1.1M 4.70 G → 4.65 G (15/12/12 both); bunny 248.2 M → 247.8 M
+// (no coarse level). Line counts as before on all 121 outputs of the shared
+// meshes and the 1.1M (iterations 2348 → 2238 in all, fewer on 19, more on
+// glb/VertexColorTest, 56 vertices: 12 → 13). Zero crossings against a
+// 10⁻¹² double solve (largest and mean move, crossings appearing/vanishing):
+// dragon 0.118 → 0.035 edge lengths, 7.8·10⁻⁷ → 7.0·10⁻⁷, 2/2 → 2/2; 1.1M
+// 0.00182 → 0.00183 (one edge, its ends at 2·10⁻⁴ and 9·10⁻⁴ of the field's
+// RMS), 9·10⁻⁷, 0/0 both. The factor's trees (Ac's components, which L
+// never joins) are dealt to groups of equal work that run on the threads,
+// each row's sums as on one thread: the same bits for any thread count; at 2
+// threads the calling thread's share on the dragon 4.26 G → 3.13 G (3.23 G
+// with the factor solved on one thread). WASM CLI, dragon, 1 thread,
+// smoothing seconds in 5 alternated rounds (loaded machine): 2.41, 2.89,
+// 2.90, 2.55, 2.62 → 1.48, 2.10, 2.35, 2.17, 1.91; output identical to native.
+// Not measured: float coarse values, or Ac's columns beside its values (the
+// sweeps are gone), multicolour sweeps (the groups need no colours).
 //
 // Vectors in float beyond t, measured on 2dd3268 and not kept: U t, u and
 // r̃ in float (48 instead of 56 bytes a row of vectors), callgrind of the
@@ -185,6 +207,31 @@ inline size_t min_aggregated(size_t rows) { return (rows + 99) / 100; }
 /// Greedy colouring in row order: each row takes the least colour that none
 /// of its earlier neighbours (columns below its row) has.
 std::vector<uint32_t> greedy_colours(const SignedPairMatrix& a);
+
+/// A = L D Lᵀ for a pair of symmetric positive definite matrices with one
+/// pattern and a unit diagonal (the coarse level's Ac, one per field), both
+/// factored in lockstep. L's entries below the diagonal are kept by row,
+/// (column, field 0, field 1), and D⁻¹ per field.
+struct PairFactor {
+  std::vector<uint32_t> begin, columns;
+  std::vector<double> values, inverse_pivot;
+  // The rows by group (group_begin: kGroups + 1 offsets), ascending within
+  // one: each group whole trees of the elimination forest, which share no
+  // entry of L, so the groups are solved on any threads in any order, each
+  // row's arithmetic the same.
+  static constexpr uint32_t kGroups = 16;
+  std::vector<uint32_t> order, group_begin;
+
+  size_t rows() const { return inverse_pivot.size() / 2; }
+  /// Factors A given by its entries below the diagonal by row (row_begin:
+  /// rows + 1 offsets), each a pair (field 0, field 1). False, and nothing
+  /// kept, if a pivot is not positive.
+  bool factor(const std::vector<uint32_t>& row_begin, const std::vector<uint32_t>& row_columns,
+              const std::vector<double>& row_values);
+  /// y = A⁻¹ g for both fields (pairs interleaved as the solver's vectors);
+  /// the groups in parallel where there are threads, the same bits.
+  void solve(const double* g, double* y) const;
+};
 }  // namespace detail
 
 /// Conjugate gradients on both systems, preconditioned by multicolour
@@ -211,7 +258,7 @@ class SignedPairSolver {
   /// The colours of the Gauss–Seidel sweeps (no two neighbours share one).
   size_t colours() const { return colour_begin_.size() - 1; }
   /// Rows of the coarse level (one per aggregate); 0 without one.
-  size_t coarse_rows() const { return coarse_begin_.empty() ? 0 : coarse_begin_.size() - 1; }
+  size_t coarse_rows() const { return coarse_factor_.rows(); }
   /// Rows of the fine level in some aggregate.
   size_t aggregated_rows() const { return aggregated_; }
 
@@ -230,8 +277,6 @@ class SignedPairSolver {
                                   const std::vector<uint32_t>& bfs_order, const std::vector<uint32_t>& position);
   // Q = L P and Qᵀ from the permuted float matrix, once the input is released.
   void build_coarse_transfer(const Aggregation& aggregation);
-  // y ≈ Ac⁻¹ g, both fields, by the coarse sweeps (paired_cg.cpp).
-  void coarse_solve(const double* g, double* y) const;
 
   SignedPairMatrix a_;           // rows in colour order; entries: later colours | earlier ones;
                                  // columns without sign bits, weights empty:
@@ -241,11 +286,10 @@ class SignedPairSolver {
   std::vector<double> roots_;  // √A(i,i): the solver works on the system scaled to a unit diagonal
   // The coarse level (empty without one), scaled to a unit diagonal per field:
   // Q = L P by fine row (q_begin_, n + 1 offsets) and by coarse row
-  // (qt_begin_), entries (column, field 0, field 1); Ac by coarse row,
-  // off-diagonal entries only, those to later rows from coarse_upper_begin_.
-  std::vector<uint32_t> q_begin_, q_columns_, qt_begin_, qt_rows_, coarse_begin_, coarse_upper_begin_, coarse_columns_;
+  // (qt_begin_), entries (column, field 0, field 1); Ac factored.
+  std::vector<uint32_t> q_begin_, q_columns_, qt_begin_, qt_rows_;
   std::vector<float> q_values_, qt_values_;
-  std::vector<double> coarse_values_;
+  detail::PairFactor coarse_factor_;
   size_t aggregated_ = 0;
 };
 
