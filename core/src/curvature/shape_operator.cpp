@@ -53,7 +53,7 @@ Curvature compute_curvature(const Mesh& mesh, const Topology& topology, const st
   // edges in order: every vertex's sum in edge order, the same for any
   // number of threads. Only the lower triangles are kept, (0,0) (1,0) (2,0)
   // (1,1) (2,1) (2,2): all that the eigen-solver reads.
-  using Lower = std::array<double, 6>;
+  using Lower = SymmetricLower3;
   std::vector<Lower> shape(nv, Lower{});
   struct EdgeTerm {
     Lower s_e;
@@ -118,36 +118,39 @@ Curvature compute_curvature(const Mesh& mesh, const Topology& topology, const st
   c.dir_max.resize(nv);
   c.dir_min.resize(nv);
   // One eigen-decomposition per vertex, each writing only its own vertex:
-  // the same results on any number of threads. In blocks, for progress.
+  // the same results on any number of threads. In blocks, for progress, and
+  // a run of vertices at a time in each, which the solver takes in pairs.
   constexpr size_t kVertexBlock = size_t{1} << 16;
   for (size_t block = 0; block < nv; block += kVertexBlock) {
     const size_t block_end = std::min(nv, block + kVertexBlock);
     parallel_for(block_end - block, [&](size_t first, size_t last) {
-      Eigen::Matrix3d s;
-      for (size_t v = block + first; v < block + last; ++v) {
-        const Lower& l = shape[v];
-        s(0, 0) = l[0], s(1, 0) = l[1], s(2, 0) = l[2], s(1, 1) = l[3], s(2, 1) = l[4], s(2, 2) = l[5];
-        s(0, 1) = l[1], s(0, 2) = l[2], s(1, 2) = l[4];
-        const SymmetricEigen3 eigen = symmetric_eigen3(s);
-        const Eigen::Vector3d& lambda = eigen.values;  // ascending
-        const Eigen::Matrix3d& vectors = eigen.vectors;
-        // The paper keeps the two eigenvalues of largest magnitude; the third
-        // belongs (up to noise) to the normal. On a flat patch all three vanish
-        // and "largest" is noise, so we drop the eigenvector closest to the
-        // vertex normal instead: the same choice on curved surfaces, and the
-        // directions stay tangent on flat ones.
-        int drop = 0;
-        double best = -1;
-        for (int i = 0; i < 3; ++i) {
-          const double along = std::abs(vectors.col(i).dot(c.vertex_normals[v]));
-          if (along > best) best = along, drop = i;
+      constexpr size_t kRun = 64;
+      SymmetricEigen3 run[kRun];
+      for (size_t run_begin = block + first; run_begin < block + last; run_begin += kRun) {
+        const size_t count = std::min(kRun, block + last - run_begin);
+        symmetric_eigen3(&shape[run_begin], count, run);
+        for (size_t i = 0; i < count; ++i) {
+          const size_t v = run_begin + i;
+          const Eigen::Vector3d& lambda = run[i].values;  // ascending
+          const Eigen::Matrix3d& vectors = run[i].vectors;
+          // The paper keeps the two eigenvalues of largest magnitude; the third
+          // belongs (up to noise) to the normal. On a flat patch all three vanish
+          // and "largest" is noise, so we drop the eigenvector closest to the
+          // vertex normal instead: the same choice on curved surfaces, and the
+          // directions stay tangent on flat ones.
+          int drop = 0;
+          double best = -1;
+          for (int k = 0; k < 3; ++k) {
+            const double along = std::abs(vectors.col(k).dot(c.vertex_normals[v]));
+            if (along > best) best = along, drop = k;
+          }
+          const int i_min = drop == 0 ? 1 : 0, i_max = drop == 2 ? 1 : 2;
+          const double scale = c.star_area[v] > 0 ? 3.0 / c.star_area[v] : 0.0;
+          c.kappa_max[v] = scale * lambda[i_max];
+          c.kappa_min[v] = scale * lambda[i_min];
+          c.dir_max[v] = vectors.col(i_max);
+          c.dir_min[v] = vectors.col(i_min);
         }
-        const int i_min = drop == 0 ? 1 : 0, i_max = drop == 2 ? 1 : 2;
-        const double scale = c.star_area[v] > 0 ? 3.0 / c.star_area[v] : 0.0;
-        c.kappa_max[v] = scale * lambda[i_max];
-        c.kappa_min[v] = scale * lambda[i_min];
-        c.dir_max[v] = vectors.col(i_max);
-        c.dir_min[v] = vectors.col(i_min);
       }
     });
     report(kEdgesDone + (1 - kEdgesDone) * double(block_end) / double(nv));
