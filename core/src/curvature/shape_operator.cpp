@@ -77,8 +77,9 @@ Curvature compute_curvature(const Mesh& mesh, const Topology& topology, const st
         const Vec3 edge = x[b] - x[a];
         const double length = edge.norm();
         const Vec3 n_sum = normals[t0] + normals[t1];
-        if (!(length > 0) || !(n_sum.norm() > 0)) continue;
-        const Vec3 n_e = n_sum.normalized();
+        const double n_sum_norm2 = n_sum.squaredNorm();
+        if (!(length > 0) || !(n_sum_norm2 > 0)) continue;
+        const Vec3 n_e = n_sum / std::sqrt(n_sum_norm2);  // normalized(), with its one square root
         // H_e = 2|e| cos(θ_e/2) with θ_e the interior dihedral angle; the angle
         // between the normals is π − θ_e, so cos(θ_e/2) = |N_1 − N_2| / 2.
         // Convex (positive) when t1's far corner lies below t0's plane.
