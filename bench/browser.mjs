@@ -2,9 +2,14 @@
 // The browser row of the benchmark: the built app (web/dist) in headless
 // Chromium (playwright-core, /usr/bin/chromium, a fresh profile per run), a
 // mesh dropped on the page as a user drops it, timed from the drop to the
-// frame that shows its lines, and then a threshold change's main-thread work.
+// frame that shows its lines, then a threshold change's main-thread work, then
+// how soon a Cancel stops the pipeline: the whole pipeline re-run (0
+// pre-smoothing steps, its time step toggled, so every stage is dirty), once
+// to its end, then --cancels times with Cancel pressed at moments spread
+// evenly over that run's time, each timed from the click to the worker's
+// 'cancelled' arriving.
 //   node bench/browser.mjs [--mesh large/dragon.glb] [--runs 3] [--rethresholds 4]
-//                          [--dist web/dist] [--json OUT.json] [--no-isolation]
+//                          [--cancels 8] [--dist web/dist] [--json OUT.json] [--no-isolation]
 // --no-isolation serves the app without COOP/COEP: the plain one-thread WASM
 // module instead of crestline-mt on every core (the table says which ran).
 // The mesh is a path under ../shared/meshes. Without Chromium, the meshes or
@@ -26,12 +31,13 @@ const MESHES = resolve(ROOT, '../shared/meshes');
 const STAGES = ['presmooth', 'curvature', 'extremality', 'regularity', 'smoothing', 'tracing', 'singular', 'polylines', 'fairing', 'filter', 'creases'];
 
 function parseArgs(argv) {
-  const args = { mesh: 'large/dragon.glb', runs: 3, rethresholds: 4, dist: join(ROOT, 'web/dist') };
+  const args = { mesh: 'large/dragon.glb', runs: 3, rethresholds: 4, cancels: 8, dist: join(ROOT, 'web/dist') };
   for (let i = 0; i < argv.length; i++) {
     const value = () => argv[++i];
     if (argv[i] === '--mesh') args.mesh = value();
     else if (argv[i] === '--runs') args.runs = Math.max(1, Number(value()));
     else if (argv[i] === '--rethresholds') args.rethresholds = Math.max(1, Number(value()));
+    else if (argv[i] === '--cancels') args.cancels = Math.max(0, Number(value()));
     else if (argv[i] === '--dist') args.dist = resolve(value());
     else if (argv[i] === '--json') args.json = value();
     else if (argv[i] === '--no-isolation') args.isolation = false;
@@ -129,6 +135,38 @@ function rethresholdAndTime(page, factor) {
   }, factor);
 }
 
+/**
+ * Re-runs the whole pipeline without pre-smoothing (0 steps, its time step
+ * set to `timeStep`, 1 and 1.5 in turn: every stage is dirty, none costs more
+ * than at the drop) and presses Cancel `delay` ms after the change: the ms from the
+ * click to the worker's reply ('cancelled', or 'result' if the run ended
+ * first) and the stage of the last progress message before the click.
+ */
+function cancelAndTime(page, delay, timeStep) {
+  return page.evaluate(
+    async ({ delay, timeStep }) => {
+      const app = window.crestline;
+      const log = window.__bench;
+      log.messages.length = 0;
+      const start = performance.now();
+      app.update({ autoPresmoothSteps: false, presmoothSteps: 0, presmoothTimeStep: timeStep });
+      // Waits `delay` ms, or less if the run ends first.
+      for (const until = start + delay; performance.now() < until && !log.messages.some((m) => m.type === 'result');)
+        await new Promise((resolve) => setTimeout(resolve, Math.min(20, until - performance.now())));
+      const at = performance.now();
+      const stage = log.messages.findLast((m) => m.type === 'progress')?.stage ?? 'none';
+      const done = log.messages.find((m) => m.type === 'result');
+      if (done) return { type: 'result', ms: NaN, stage, runMs: done.at - start };
+      app.cancel();
+      const reply = () => log.messages.find((m) => (m.type === 'cancelled' || m.type === 'result') && m.at >= at);
+      for (const start = performance.now(); !reply(); await new Promise((resolve) => setTimeout(resolve, 5)))
+        if (performance.now() - start > 60000) throw new Error(`no reply to a Cancel in 60 s (${log.messages.map((m) => m.type).join(' ')})`);
+      return { type: reply().type, ms: reply().at - at, stage };
+    },
+    { delay, timeStep },
+  );
+}
+
 /** The drop's timeline as a split of drop-to-lines (ms). */
 function dropSplit(t) {
   const first = (type, stage) => t.messages.find((m) => m.type === type && (!stage || m.stage === stage));
@@ -192,6 +230,8 @@ async function measureRun(args, server) {
     const page = await browser.newPage({ viewport: { width: 1000, height: 750 } });
     const errors = [];
     page.on('pageerror', (error) => errors.push(error.message));
+    page.on('crash', () => process.stderr.write('browser: the page crashed\n'));
+    page.on('console', (m) => m.type() === 'error' && process.stderr.write(`browser: console error: ${m.text().slice(0, 300)}\n`));
     const origin = `http://127.0.0.1:${server.address().port}`;
     await page.goto(`${origin}/`);
     await page.waitForFunction(() => window.crestline?.lastResult && document.body.dataset.state === 'ready', null, { timeout: 120000 });
@@ -200,6 +240,10 @@ async function measureRun(args, server) {
     const drop = await dropAndTime(page, `${origin}/meshes/${args.mesh}`, args.mesh.split('/').pop());
     const rethresholds = [];
     for (let i = 0; i < args.rethresholds; i++) rethresholds.push(rethresholdSplit(await rethresholdAndTime(page, i % 2 ? 1 : 1.5)));
+    // One re-run to its end (no Cancel): how long the cancels' runs take.
+    const rerun = args.cancels ? await cancelAndTime(page, 120000, 1.5) : null;
+    const cancels = [];
+    for (let i = 0; i < args.cancels; i++) cancels.push(await cancelAndTime(page, ((i + 0.5) / args.cancels) * rerun.runMs, i % 2 ? 1.5 : 1));
     if (errors.length) throw new Error(`the page failed: ${errors.join('; ')}`);
     // An idle pthread of crestline-mt waits in Atomics.wait and never answers an evaluate: ask each worker for 2 s at most.
     const within = (promise, ms) => Promise.race([promise, new Promise((resolve) => setTimeout(resolve, ms))]);
@@ -218,6 +262,8 @@ async function measureRun(args, server) {
       lines: drop.result.lineCount,
       drop: dropSplit(drop),
       rethreshold: rethresholds,
+      cancels,
+      rerunMs: rerun?.runMs ?? NaN,
     };
   } finally {
     await browser.close();
@@ -291,4 +337,24 @@ rrows.push(['median', ...RETHR.map(([, k]) => f1(median(all.map((r) => r[k]))))]
 rrows.push(['max', ...RETHR.map(([, k]) => f1(Math.max(...all.map((r) => r[k]))))]);
 console.log(`\nRe-threshold (×1.5 and back, ${all.length} changes): ms; main thread = update() + the result's handling + its render call`);
 console.log(table(rrows));
+const stopped = runs.flatMap((r) => r.cancels).filter((c) => c.type === 'cancelled');
+if (stopped.length) {
+  const slowest = stopped.reduce((a, b) => (b.ms > a.ms ? b : a));
+  console.log(
+    `\nCancel (the whole pipeline re-run without pre-smoothing, Cancel pressed at ${args.cancels} moments spread over it, per run): ms from the click to 'cancelled'; re-run = the run's ms uncancelled`,
+  );
+  console.log(
+    table([
+      ['re-run', 'cancels', 'median', 'max', 'stage at max', 'finished first'],
+      [
+        f(median(runs.map((r) => r.rerunMs))),
+        String(stopped.length),
+        f1(median(stopped.map((c) => c.ms))),
+        f1(slowest.ms),
+        slowest.stage,
+        String(runs.flatMap((r) => r.cancels).length - stopped.length),
+      ],
+    ]),
+  );
+}
 if (args.json) writeFileSync(args.json, JSON.stringify({ runner: 'browser-chromium', chromium: CHROMIUM, mesh: args.mesh, runs }, null, 2) + '\n');

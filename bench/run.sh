@@ -71,7 +71,7 @@ fi
 # The browser row; it says SKIPPED itself without Chromium, the meshes or web/dist.
 echo
 if [[ $smoke == 1 ]]; then
-  node bench/browser.mjs --mesh classic/stanford-bunny.obj --runs 1 --rethresholds 2 --json "$out/browser.json"
+  node bench/browser.mjs --mesh classic/stanford-bunny.obj --runs 1 --rethresholds 2 --cancels 2 --json "$out/browser.json"
 else
   node bench/browser.mjs --runs 3 --json "$out/browser.json"
 fi
