@@ -23,6 +23,8 @@ namespace {
 constexpr size_t kBlock = 1024;
 // Blocks a thread takes at least; smaller systems stay on one thread.
 constexpr size_t kMinBlocksPerThread = 4;
+// Symmetric Gauss–Seidel sweeps of the coarse solve where Ac is not factored.
+constexpr int kCoarseSweeps = 4;
 // The true residual is formed from the iteration whose predicted squared
 // residual is at most this many times the limit.
 constexpr double kNearFactor = 16;
@@ -368,6 +370,29 @@ void detail::PairFactor::solve(const double* g, double* y) const {
       1);
 }
 
+// The factor's solve, or symmetric Gauss–Seidel sweeps on Ac (unit
+// diagonal) from y = 0 where it filled in too much: a fixed number of them
+// is a symmetric positive definite approximation of Ac⁻¹, so the
+// preconditioner stays symmetric positive definite. Serial.
+void SignedPairSolver::coarse_solve(const double* g, double* y) const {
+  if (coarse_factor_.rows() > 0) return coarse_factor_.solve(g, y);
+  const size_t rows = coarse_rows();
+  const uint32_t *const begin = coarse_begin_.data(), *const upper = coarse_upper_begin_.data();
+  const uint32_t* const columns = coarse_columns_.data();
+  const double* const values = coarse_values_.data();
+  const auto relax = [=](size_t c, uint32_t end) {
+    Pair s = Pair::load(g + 2 * c);
+    for (uint32_t e = begin[c]; e < end; ++e)
+      s = s - Pair::load(values + 2 * size_t{e}) * Pair::load(y + 2 * size_t{columns[e]});
+    s.store(y + 2 * c);
+  };
+  for (int sweep = 0; sweep < kCoarseSweeps; ++sweep) {
+    // The first forward sweep reads only earlier rows: y is 0 beyond.
+    for (size_t c = 0; c < rows; ++c) relax(c, sweep == 0 ? upper[c] : begin[c + 1]);
+    for (size_t c = rows; c-- > 0;) relax(c, begin[c + 1]);
+  }
+}
+
 // Conjugate gradients preconditioned by multicolour symmetric Gauss–Seidel,
 // M = (D + L) D⁻¹ (D + U), with the rows ordered by colour (L: entries to
 // earlier colours, U = Lᵀ). Eisenstat's trick: CG on Ã = (D + L)⁻¹ A (D +
@@ -453,7 +478,7 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
       for (size_t c = begin; c < end; ++c)
         accumulate(qt_rows, qt_values, rv, qt_begin[c], qt_begin[c + 1]).store(g + 2 * c);
     });
-    coarse_factor_.solve(restricted.data(), y.data());
+    coarse_solve(restricted.data(), y.data());
     Pair dot = Pair::both(0.0);
     for (size_t j = 0; j < 2 * coarse; j += 2) dot = dot + Pair::load(g + j) * Pair::load(y.data() + j);
     BlockSums out{};

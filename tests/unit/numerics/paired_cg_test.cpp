@@ -102,8 +102,10 @@ TEST_CASE("the paired Gauss-Seidel CG meets its tolerance and gives the same bit
   CHECK(solver.colours() >= 3);
   CHECK(solver.colours() <= 8);
   // Masses ≈ a tenth of the weights' sums: most rows are slow, and the
-  // restriction and the prolongation run on both threads as well.
+  // restriction and the prolongation run on both threads as well. A grid's
+  // aggregates form a grid, whose factor fills in: Ac is swept.
   CHECK(solver.coarse_rows() > 1000);
+  CHECK_FALSE(solver.coarse_factored());
 
   const int before = max_threads();
   std::vector<double> x[2];
@@ -484,7 +486,12 @@ TEST_CASE("the coarse factor is L D Lᵀ of both fields' matrices, and its solve
   const uint32_t rows = 150;
   const PairSystem s = random_pair_system(rows, 3, 43);
   detail::PairFactor factor;
-  REQUIRE(factor.factor(s.begin, s.columns, s.values));
+  // Random couplings fill L in densely: refused by default, factored without the limit.
+  CHECK_FALSE(factor.factor(s.begin, s.columns, s.values));
+  CHECK(factor.refused_for_fill);
+  CHECK(factor.rows() == 0);
+  REQUIRE(factor.factor(s.begin, s.columns, s.values, 0));
+  CHECK_FALSE(factor.refused_for_fill);
   REQUIRE(factor.rows() == rows);
   // Fill-in: L has more entries below the diagonal than A.
   CHECK(factor.columns.size() > s.columns.size());
@@ -531,7 +538,7 @@ TEST_CASE("the coarse solve is a symmetric positive definite operator, to roundi
   const uint32_t rows = 400;
   const PairSystem s = random_pair_system(rows, 4, 53);
   detail::PairFactor factor;
-  REQUIRE(factor.factor(s.begin, s.columns, s.values));
+  REQUIRE(factor.factor(s.begin, s.columns, s.values, 0));
   for (const unsigned seed : {59u, 61u, 67u}) {
     const std::vector<double> u = random_pairs(rows, seed), v = random_pairs(rows, seed + 100);
     std::vector<double> su(2 * rows), sv(2 * rows);
@@ -633,6 +640,7 @@ TEST_CASE("the two-level solve gives the same bits on 1 and 2 threads where the 
       200, [](uint32_t i, uint32_t j) { return i % 12 < 6 && j % 12 < 6 ? 1e-3 : 10.0; }, true);
   const SignedPairSolver solver(a);
   REQUIRE(solver.coarse_rows() > 500);
+  CHECK(solver.coarse_factored());  // many small components: little fill
   const std::vector<double> b = random_pairs(a.rows(), 79);
   const int before = max_threads();
   std::vector<double> x[2];

@@ -153,8 +153,18 @@
 // with the factor solved on one thread). WASM CLI, dragon, 1 thread,
 // smoothing seconds in 5 alternated rounds (loaded machine): 2.41, 2.89,
 // 2.90, 2.55, 2.62 → 1.48, 2.10, 2.35, 2.17, 1.91; output identical to native.
-// Not measured: float coarse values, or Ac's columns beside its values (the
-// sweeps are gone), multicolour sweeps (the groups need no colours).
+// Not measured: float coarse values, or Ac's columns beside its values,
+// multicolour sweeps (the groups need no colours).
+// Where the factor fills in (a coarse level that is one large mesh-like
+// component: even meshes at larger time steps, cad/crank at the default),
+// the sweeps stay (PairFactor::kMaxFill; L over Ac's rows and entries below
+// its diagonal). At 1.5× the default time step, L/Ac was 9.8 at 1.1M (1.35 M
+// entries) and 19 at 4.4M (11.0 M), and the factor made smoothing slower and
+// the run's peak higher: CLI, 1 thread, factor → sweeps, the same 43 and 44
+// iterations: 1.1M 1.33 → 1.15 s, 311 → 288 MB; 4.4M 8.41 → 5.53 s, 1,374 →
+// 1,129 MB (the bench's re-smooth column, and its peak). The dragon at 1.5×
+// (5.9) keeps the factor (1.33 s against 1.71 with no coarse level); crank
+// at the default is swept again: 74 iterations against the factor's 49.
 //
 // Vectors in float beyond t, measured on 2dd3268 and not kept: U t, u and
 // r̃ in float (48 instead of 56 bytes a row of vectors), callgrind of the
@@ -223,11 +233,17 @@ struct PairFactor {
   std::vector<uint32_t> order, group_begin;
 
   size_t rows() const { return inverse_pivot.size() / 2; }
+  /// The most entries L may have, per row and entry of A below the
+  /// diagonal, by default (paired_cg_coarse.cpp says why).
+  static constexpr size_t kMaxFill = 8;
   /// Factors A given by its entries below the diagonal by row (row_begin:
   /// rows + 1 offsets), each a pair (field 0, field 1). False, and nothing
-  /// kept, if a pivot is not positive.
+  /// kept, if a pivot is not positive, or if L would have more than
+  /// max_fill · (rows + A's entries below the diagonal) entries (then
+  /// refused_for_fill is set).
   bool factor(const std::vector<uint32_t>& row_begin, const std::vector<uint32_t>& row_columns,
-              const std::vector<double>& row_values);
+              const std::vector<double>& row_values, size_t max_fill = kMaxFill);
+  bool refused_for_fill = false;
   /// y = A⁻¹ g for both fields (pairs interleaved as the solver's vectors);
   /// the groups in parallel where there are threads, the same bits.
   void solve(const double* g, double* y) const;
@@ -258,7 +274,11 @@ class SignedPairSolver {
   /// The colours of the Gauss–Seidel sweeps (no two neighbours share one).
   size_t colours() const { return colour_begin_.size() - 1; }
   /// Rows of the coarse level (one per aggregate); 0 without one.
-  size_t coarse_rows() const { return coarse_factor_.rows(); }
+  size_t coarse_rows() const {
+    return coarse_factor_.rows() ? coarse_factor_.rows() : coarse_begin_.empty() ? 0 : coarse_begin_.size() - 1;
+  }
+  /// Whether the coarse level is solved exactly (its factor) rather than by sweeps.
+  bool coarse_factored() const { return coarse_factor_.rows() > 0; }
   /// Rows of the fine level in some aggregate.
   size_t aggregated_rows() const { return aggregated_; }
 
@@ -290,6 +310,18 @@ class SignedPairSolver {
   std::vector<uint32_t> q_begin_, q_columns_, qt_begin_, qt_rows_;
   std::vector<float> q_values_, qt_values_;
   detail::PairFactor coarse_factor_;
+  // Where the factor would fill in too much, Ac itself by row instead
+  // (coarse_begin_: rows + 1 offsets; each row's entries to earlier rows
+  // first, up to coarse_upper_begin_[c]), solved by kCoarseSweeps symmetric
+  // Gauss–Seidel sweeps from 0: a fixed symmetric positive definite
+  // approximation of Ac⁻¹.
+  std::vector<uint32_t> coarse_begin_, coarse_upper_begin_, coarse_columns_;
+  std::vector<double> coarse_values_;
+  // Ac's full rows for the sweeps, from its entries below the diagonal.
+  void keep_coarse_rows(const std::vector<uint32_t>& lower_begin, const std::vector<uint32_t>& lower_columns,
+                        const std::vector<double>& lower_values);
+  // y ≈ Ac⁻¹ g, both fields: the factor's solve or the sweeps.
+  void coarse_solve(const double* g, double* y) const;
   size_t aggregated_ = 0;
 };
 
