@@ -345,7 +345,8 @@ void Pipeline::run(const ProgressCallback& progress) {
     std::vector<int> vertex_steps(in.positions.size());
     for (size_t v = 0; v < vertex_steps.size(); ++v) vertex_steps[v] = presmooth_steps_[component[v]];
     working_surface_.triangles = in.triangles;
-    working_surface_.positions = presmooth_surface(in, working_topology(), presmooth.time_step, vertex_steps);
+    working_surface_.positions =
+        presmooth_surface(in, working_topology(), presmooth.time_step, vertex_steps, within(Stage::Presmooth));
     // Each side of a crease smooths its copy of a crease vertex along the
     // crease; they meet again at the mean.
     if (cut_active_) merge_copies(cut_, working_surface_.positions);

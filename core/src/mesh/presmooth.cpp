@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 
 #include "crestline/mesh/cotan.h"
 #include "crestline/numerics/constants.h"
@@ -273,7 +274,9 @@ int automatic_presmooth_steps(double noise_level) {
 
 // Solves the SPD system given by `triplets` for the three coordinates at once
 // (one factorization or preconditioner), starting from and replacing x.
-static void solve_positions(const Triplets& triplets, const Eigen::MatrixXd& rhs, std::vector<Vec3>& x) {
+// after_axis, if set, is called after each coordinate's solve.
+static void solve_positions(const Triplets& triplets, const Eigen::MatrixXd& rhs, std::vector<Vec3>& x,
+                            const std::function<void(int axis)>& after_axis = {}) {
   const size_t nv = x.size();
   SparseMatrix system(nv, nv);
   system.setFromTriplets(triplets.begin(), triplets.end());
@@ -284,6 +287,7 @@ static void solve_positions(const Triplets& triplets, const Eigen::MatrixXd& rhs
     for (size_t v = 0; v < nv; ++v) guess[v] = x[v][axis];
     const Eigen::VectorXd solved = solver.solve(rhs.col(axis), guess);
     for (size_t v = 0; v < nv; ++v) x[v][axis] = solved[v];
+    if (after_axis) after_axis(axis);
   }
 }
 
@@ -386,7 +390,7 @@ std::vector<Vec3> presmooth_surface(const Mesh& mesh, const Topology& topology, 
 }
 
 std::vector<Vec3> presmooth_surface(const Mesh& mesh, const Topology& topology, double time_step,
-                                    const std::vector<int>& vertex_steps) {
+                                    const std::vector<int>& vertex_steps, const std::function<void(double)>& progress) {
   std::vector<Vec3> x = mesh.positions;
   const int steps = vertex_steps.empty() ? 0 : *std::max_element(vertex_steps.begin(), vertex_steps.end());
   if (steps <= 0 || time_step <= 0) return x;
@@ -402,9 +406,14 @@ std::vector<Vec3> presmooth_surface(const Mesh& mesh, const Topology& topology, 
       moving[v] = vertex_steps[v] > step;
       fixed[v] = topology.boundary_vertex[v] || !moving[v];
     }
+    // A step: its set-up and boundary curves, then three solves, a quarter each.
+    const auto report = [&](double quarters) {
+      if (progress) progress((step + quarters / 4) / steps);
+    };
     if (!along.empty()) smooth_boundary_curves(x, mesh, along, moving, t, h);
     // Weights from the current surface: mean-curvature flow, linearised per step.
     const CotanWeights cotan = cotan_weights(x, mesh, topology);
+    report(0.5);
     // (M + tL) x' = M x on interior vertices; boundary ones (just smoothed
     // along their curve) are held and move to the right side.
     std::vector<double> diagonal(cotan.vertex_mass);
@@ -436,7 +445,7 @@ std::vector<Vec3> presmooth_surface(const Mesh& mesh, const Topology& topology, 
         triplets.emplace_back(v, v, diagonal[v]);
       }
     }
-    solve_positions(triplets, rhs, x);
+    solve_positions(triplets, rhs, x, [&](int axis) { report(1 + axis); });
   }
   return x;
 }

@@ -255,6 +255,39 @@ TEST_CASE("curvature, extremality and the smoothing's set-up report progress, an
   }
 }
 
+TEST_CASE(
+    "pre-smoothing reports after each step's set-up and each coordinate's solve, and a cancel there keeps nothing",
+    "[pipeline]") {
+  const Mesh mesh = repair_mesh(bumpy()).mesh;
+  PipelineOptions o;
+  o.presmooth.steps = 2;
+  Pipeline reference(mesh);
+  reference.set_options(o);
+  std::vector<double> fractions;
+  reference.run([&](Stage s, double fraction) {
+    if (s == Stage::Presmooth && fraction > 0) fractions.push_back(fraction);
+    return true;
+  });
+  // Per step: after the set-up (an eighth of it) and after each of x, y, z.
+  const std::vector<double> expected = {0.0625, 0.125, 0.25, 0.375, 0.5625, 0.625, 0.75, 0.875};
+  CHECK(fractions == expected);
+  REQUIRE(!reference.lines().empty());
+
+  Pipeline p(mesh);
+  p.set_options(o);
+  int calls = 0, after = 0;
+  CHECK_THROWS_AS(p.run([&](Stage s, double fraction) {
+    if (calls == 3) ++after;
+    if (s == Stage::Presmooth && fraction > 0 && ++calls == 3) return false;
+    return true;
+  }),
+                  Cancelled);
+  CHECK(after == 0);
+  CHECK(stages_run(p).front() == Stage::Presmooth);
+  REQUIRE(p.lines().size() == reference.lines().size());
+  for (size_t i = 0; i < p.lines().size(); ++i) CHECK(p.lines()[i].points == reference.lines()[i].points);
+}
+
 TEST_CASE("the lines are identical for 1 and 2 threads", "[pipeline][threads]") {
   // 10,201 vertices: enough rows for the solver's reductions to split.
   testing::GridOptions grid;

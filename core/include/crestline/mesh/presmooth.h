@@ -1,6 +1,7 @@
 #pragma once
 // Paper Table 1, step 1 (optional): smooth the surface before computing
 // curvature, by implicit cotan (mean-curvature) flow [DMSB99].
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -73,8 +74,12 @@ int automatic_presmooth_steps(double noise_level);
 std::vector<Vec3> presmooth_surface(const Mesh& mesh, const Topology& topology, const PresmoothOptions& options);
 /// The same with a step count per vertex (the Pipeline's automatic choice,
 /// made per component): vertex v moves in the first vertex_steps[v] steps
-/// and is held afterwards. time_step as in PresmoothOptions.
+/// and is held afterwards. time_step as in PresmoothOptions. progress, if
+/// set, is called on the calling thread after each step's set-up and each
+/// coordinate's solve (fractions of all steps; a solve is not interrupted)
+/// and may throw to abandon the smoothing.
 std::vector<Vec3> presmooth_surface(const Mesh& mesh, const Topology& topology, double time_step,
-                                    const std::vector<int>& vertex_steps);
+                                    const std::vector<int>& vertex_steps,
+                                    const std::function<void(double)>& progress = {});
 
 }  // namespace crestline
