@@ -25,9 +25,10 @@ constexpr double kTolerance = 1e-6;
 constexpr int kPairedBudget = 150;
 // Progress within a step: i iterations count as i / (i + this) of the step.
 constexpr double kTypicalIterations = 10;
-// The set-up's share of the stage's progress: below the first iteration's
-// fraction, 1 / (1 + kTypicalIterations) of one step of at most 16.
-constexpr double kSetupShare = 0.005;
+// The most the set-up reports of the stage's progress: half the first
+// iteration's fraction, 1 / (1 + kTypicalIterations) of one of `steps`, so
+// that the fractions keep rising for any step count.
+double setup_share(int steps) { return 0.5 / ((1 + kTypicalIterations) * steps); }
 
 // Both fields' matrices M − t L_σ in one pattern (numerics/paired_cg.h); the
 // diagonal sums in edge order exactly as smooth_field's does. Each edge's
@@ -78,11 +79,12 @@ bool smooth_fields_paired(const Topology& topology, const CotanWeights& cotan, s
                           const Curvature& curvature, const Extremality& in, int steps,
                           const std::function<void(double)>& progress, SmoothedExtremality& out) {
   const size_t nv = cotan.vertex_mass.size();
-  // The set-up's parts report fractions rising towards kSetupShare, below
-  // the first iteration's (1/11 of a step): a chance to cancel each.
-  double setup = 0.5 * kSetupShare;
+  // The set-up's parts report fractions rising towards setup_share(steps)
+  // from half of it (smooth_extremality's report): a chance to cancel each.
+  const double share = setup_share(steps);
+  double setup = 0.5 * share;
   const auto pause = [&] {
-    setup = 0.5 * (setup + kSetupShare);
+    setup = 0.5 * (setup + share);
     if (progress) progress(setup);
   };
   SignedPairMatrix matrix = signed_pair_matrix(topology, cotan, edge_strength, curvature);
@@ -179,7 +181,7 @@ SmoothedExtremality smooth_extremality(const Mesh& mesh, const Topology& topolog
 
   CotanWeights cotan = cotan_weights(mesh.positions, mesh, topology);
   // A chance to cancel before the set-up's other parts (smooth_fields_paired).
-  if (progress) progress(0.5 * kSetupShare);
+  if (progress) progress(0.5 * setup_share(options.steps));
   const double h = mean_edge_length(mesh);
   const double t = options.time_step * h * h;
   // An edge is smoothed as strongly as its weaker end, so a region with

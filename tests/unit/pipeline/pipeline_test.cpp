@@ -217,11 +217,13 @@ TEST_CASE("curvature, extremality and the smoothing's set-up report progress, an
   REQUIRE(mesh.triangle_count() == 2 * 150 * 150);
   Pipeline reference(mesh);
   std::vector<double> curvature, extremality;
-  int setup = 0, iterations = 0;  // the smoothing's calls in its set-up, and after iterations
+  // The smoothing's calls in its set-up, and after iterations: the first
+  // iteration reports 1/11 of the first of the default 3 steps.
+  int setup = 0, iterations = 0;
   reference.run([&](Stage s, double fraction) {
     if (s == Stage::Curvature && fraction > 0) curvature.push_back(fraction);
     if (s == Stage::Extremality && fraction > 0) extremality.push_back(fraction);
-    if (s == Stage::Smoothing && fraction > 0) (fraction < 0.005 ? setup : iterations) += 1;
+    if (s == Stage::Smoothing && fraction > 0) (fraction < 1.0 / 33 ? setup : iterations) += 1;
     return true;
   });
   // Normals, five blocks of edges, one block of vertices.
@@ -253,6 +255,24 @@ TEST_CASE("curvature, extremality and the smoothing's set-up report progress, an
     REQUIRE(p.lines().size() == reference.lines().size());
     for (size_t i = 0; i < p.lines().size(); ++i) CHECK(p.lines()[i].points == reference.lines()[i].points);
   }
+}
+
+TEST_CASE("the smoothing's progress keeps rising with the most steps the parameters allow", "[pipeline]") {
+  // 50 steps: the first iteration reports 1/550 of the stage, and the
+  // set-up's reports before it must stay below that.
+  Pipeline p(repair_mesh(bumpy()).mesh);
+  PipelineOptions o;
+  o.smoothing.steps = 50;
+  p.set_options(o);
+  std::vector<double> smoothing;
+  p.run([&](Stage s, double fraction) {
+    if (s == Stage::Smoothing && fraction > 0) smoothing.push_back(fraction);
+    return true;
+  });
+  REQUIRE(smoothing.size() > 50);
+  CHECK(smoothing.front() < 1.0 / 550);
+  for (size_t i = 1; i < smoothing.size(); ++i) CHECK(smoothing[i] > smoothing[i - 1]);
+  CHECK(smoothing.back() < 1);
 }
 
 TEST_CASE(
