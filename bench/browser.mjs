@@ -140,7 +140,8 @@ function rethresholdAndTime(page, factor) {
  * set to `timeStep`, 1 and 1.5 in turn: every stage is dirty, none costs more
  * than at the drop) and presses Cancel `delay` ms after the change: the ms from the
  * click to the worker's reply ('cancelled', or 'result' if the run ended
- * first) and the stage of the last progress message before the click.
+ * first; NaN ms and the run's ms if it ended before the click) and the
+ * stage of the last progress message before the click.
  */
 function cancelAndTime(page, delay, timeStep) {
   return page.evaluate(

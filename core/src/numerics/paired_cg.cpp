@@ -466,7 +466,7 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
   });
   std::fill(xv, xv + 2 * n, 0.0);  // the correction S⁻¹ (x − x₀)
   // With a coarse level, z = B̃⁻¹ r̃ = r̃ + Q y, y = Ac⁻¹ Qᵀ r̃ (the coarse
-  // factor), and ⟨r̃, z⟩ = ⟨r̃, r̃⟩ + ⟨Qᵀ r̃, y⟩: y is formed after the pass
+  // solve), and ⟨r̃, z⟩ = ⟨r̃, r̃⟩ + ⟨Qᵀ r̃, y⟩: y is formed after the pass
   // that updates r̃ and Q y gathered in the next pass that forms p.
   const size_t coarse = coarse_rows();
   std::vector<double> restricted(2 * coarse), y(2 * coarse);
