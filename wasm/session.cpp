@@ -169,7 +169,7 @@ val Session::adopt(TriangleSoup soup, const RepairOptions& repair) {
   out.set("triangles", repaired.mesh.triangle_count());
   out.set("report", report_value(repaired.report));
   out.set("notes", notes);
-  pipeline_ = std::make_unique<Pipeline>(std::move(repaired.mesh));
+  pipeline_ = std::make_unique<Pipeline>(std::move(repaired.mesh), std::move(repaired.topology));
   pipeline_->set_options(settings_.pipeline);  // weights belong to the last mesh
   return out;
 }

@@ -39,10 +39,12 @@ const char* stage_name(Stage stage) {
   return i >= 0 && i < static_cast<int>(Stage::Count) ? names[i] : "unknown";
 }
 
-Pipeline::Pipeline(Mesh mesh) : input_(std::move(mesh)) {
+Pipeline::Pipeline(Mesh mesh) : Pipeline(std::move(mesh), Topology()) {}
+
+Pipeline::Pipeline(Mesh mesh, Topology topology) : input_(std::move(mesh)), topology_(std::move(topology)) {
   {
     StageTimer timer(topology_seconds_);
-    topology_ = build_topology(input_);
+    if (topology_.triangle_edges.size() != input_.triangles.size()) topology_ = build_topology(input_);
     topology_valid_ = true;
   }
   frames_ = component_frames(input_);

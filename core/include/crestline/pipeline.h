@@ -95,8 +95,9 @@ struct PipelineStats {
   double mean_edge_length = 0;                          // over the whole input, in its units
   size_t smoothing_iterations = 0;                      // the smoothing's solver iterations, all steps
   double seconds[static_cast<int>(Stage::Count)] = {};  // last run time per stage
-  // Around the stages: the Pipeline constructor times topology; the caller
-  // fills in reading, repair and writing (0 where it did none).
+  // Around the stages: the Pipeline constructor times topology (0 when given
+  // repair_mesh's); the caller fills in reading, repair and writing (0 where
+  // it did none).
   double read_seconds = 0, repair_seconds = 0, topology_seconds = 0, write_seconds = 0;
 };
 
@@ -104,6 +105,9 @@ class Pipeline {
  public:
   /// Takes a repaired mesh (see repair_mesh).
   explicit Pipeline(Mesh mesh);
+  /// The same with the mesh's adjacency, build_topology(mesh), as
+  /// repair_mesh returns it (not built again).
+  Pipeline(Mesh mesh, Topology topology);
 
   /// Stores options and marks the first stage whose options changed (and
   /// everything after it) for recomputation. Cheap.

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "crestline/mesh/mesh.h"
+#include "crestline/mesh/topology.h"
 #include "crestline/numerics/parallel.h"
 #include "crestline/numerics/uninitialised.h"
 #include "parts.h"
@@ -171,5 +172,34 @@ inline HalfEdgeOrder order_half_edges(const std::vector<Triangle>& tris, size_t 
   });
   return order;
 }
+
+/// Topology's edge arrays numbered from order_half_edges' per-vertex edge
+/// counts: sizes them, and turns `first_edge` into each vertex's next edge
+/// number (the sum of the counts before it), for record_edge.
+inline void number_edges(std::vector<uint32_t>& first_edge, size_t triangle_count, Topology& topology) {
+  const size_t nv = first_edge.size() - 1;
+  for (size_t v = 0; v < nv; ++v) first_edge[v + 1] += first_edge[v];
+  topology.edges.resize(first_edge[nv]);
+  topology.edge_triangles.resize(first_edge[nv]);
+  topology.triangle_edges.assign(triangle_count, {kNone, kNone, kNone});
+}
+
+/// Records the edge (near, far) whose half-edges are [first, last) (at most
+/// two, as HalfEdgeOrder::for_each_edge passes them) under the next number
+/// of `near`; returns it.
+inline uint32_t record_edge(std::vector<uint32_t>& first_edge, uint32_t near, uint32_t far, const uint64_t* first,
+                            const uint64_t* last, Topology& topology) {
+  using H = HalfEdgeOrder;
+  const uint32_t e = first_edge[near]++;
+  topology.edges[e] = {near, far};
+  topology.edge_triangles[e] = {H::corner(first[0]) / 3, last - first == 2 ? H::corner(first[1]) / 3 : kNone};
+  for (const uint64_t* h = first; h < last; ++h) topology.triangle_edges[H::corner(*h) / 3][H::corner(*h) % 3] = e;
+  return e;
+}
+
+/// The rest of build_topology once the edges are recorded: the triangles
+/// around each vertex and the boundary vertices. Shared with repair_mesh,
+/// which records the edges while it pairs the half-edges.
+void add_vertex_triangles(const std::vector<Triangle>& tris, size_t vertex_count, Topology& topology);
 
 }  // namespace crestline::detail

@@ -1,13 +1,29 @@
 #include "crestline/mesh/topology.h"
 
 #include <algorithm>
-#include <mutex>
 
 #include "crestline/error.h"
 #include "crestline/numerics/parallel.h"
 #include "half_edges.h"
 
 namespace crestline {
+
+namespace detail {
+
+void add_vertex_triangles(const std::vector<Triangle>& tris, size_t vertex_count, Topology& topology) {
+  group_by_bucket(
+      tris.size(), vertex_count,
+      [&](size_t t, const auto& emit) {
+        for (uint32_t v : tris[t]) emit(v, uint32_t(t));
+      },
+      topology.vertex_offsets, topology.vertex_triangles);
+  topology.boundary_vertex.assign(vertex_count, 0);
+  for (size_t e = 0; e < topology.edges.size(); ++e)
+    if (topology.is_boundary_edge(uint32_t(e)))
+      topology.boundary_vertex[topology.edges[e][0]] = topology.boundary_vertex[topology.edges[e][1]] = 1;
+}
+
+}  // namespace detail
 
 Topology build_topology(const Mesh& mesh) {
   Topology topo;
@@ -20,41 +36,15 @@ Topology build_topology(const Mesh& mesh) {
   // the sum of the counts before it, on every thread.
   std::vector<uint32_t> first_edge;
   const detail::HalfEdgeOrder order = detail::order_half_edges(mesh.triangles, nv, &first_edge);
-  topo.triangle_edges.assign(nt, {kNone, kNone, kNone});
-  using H = detail::HalfEdgeOrder;
-  for (size_t v = 0; v < nv; ++v) first_edge[v + 1] += first_edge[v];
-  const size_t edge_count = first_edge[nv];
-  topo.edges.resize(edge_count);
-  topo.edge_triangles.resize(edge_count);
-  // Boundary edges (few) are listed on the way, their ends marked after.
-  std::vector<std::array<uint32_t, 2>> boundary_edges;
-  std::mutex boundary_mutex;
+  detail::number_edges(first_edge, nt, topo);
   detail::for_bucket_ranges(order.start, [&](size_t begin, size_t end) {
-    std::vector<std::array<uint32_t, 2>> found;
     order.for_each_edge(begin, end, [&](uint32_t near, uint32_t far, const uint64_t* first, const uint64_t* last) {
       if (last - first > 2)
         throw Error(ErrorKind::InvalidInput, "the mesh has an edge shared by more than two triangles.");
-      const uint32_t e = first_edge[near]++;
-      topo.edges[e] = {near, far};
-      topo.edge_triangles[e] = {H::corner(first[0]) / 3, last - first == 2 ? H::corner(first[1]) / 3 : kNone};
-      if (last - first == 1) found.push_back({near, far});
-      for (const uint64_t* h = first; h < last; ++h) topo.triangle_edges[H::corner(*h) / 3][H::corner(*h) % 3] = e;
+      detail::record_edge(first_edge, near, far, first, last, topo);
     });
-    if (found.empty()) return;
-    const std::lock_guard<std::mutex> lock(boundary_mutex);
-    boundary_edges.insert(boundary_edges.end(), found.begin(), found.end());
   });
-
-  detail::group_by_bucket(
-      nt, nv,
-      [&](size_t t, const auto& emit) {
-        for (uint32_t v : mesh.triangles[t]) emit(v, uint32_t(t));
-      },
-      topo.vertex_offsets, topo.vertex_triangles);
-
-  topo.boundary_vertex.assign(nv, 0);
-  for (const std::array<uint32_t, 2>& edge : boundary_edges)
-    topo.boundary_vertex[edge[0]] = topo.boundary_vertex[edge[1]] = 1;
+  detail::add_vertex_triangles(mesh.triangles, nv, topo);
   return topo;
 }
 

@@ -14,6 +14,7 @@
 #include "crestline/error.h"
 #include "crestline/mesh/topology.h"
 #include "on_threads.h"
+#include "same_topology.h"
 
 using namespace crestline;
 using crestline::testing::add_triangle;
@@ -46,6 +47,10 @@ double signed_volume(const Mesh& m) {
 RepairResult repair_on(int threads, const TriangleSoup& soup) {
   return testing::on_threads(threads, [&] { return repair_mesh(soup); });
 }
+
+// The topology repair returns is the one build_topology finds on its mesh
+// (recorded while pairing, or built again after a cut or split).
+void check_own_topology(const RepairResult& r) { testing::check_same_topology(r.topology, build_topology(r.mesh)); }
 
 }  // namespace
 
@@ -99,6 +104,7 @@ TEST_CASE("repair cuts non-manifold edges and splits non-manifold vertices", "[r
   CHECK(r.report.nonmanifold_edges == 1);
   CHECK(r.mesh.triangle_count() == 3);
   CHECK_NOTHROW(build_topology(r.mesh));
+  check_own_topology(r);
 
   // Two tetrahedra touching at a single vertex.
   TriangleSoup bowtie;
@@ -118,6 +124,7 @@ TEST_CASE("repair cuts non-manifold edges and splits non-manifold vertices", "[r
   CHECK(r2.report.nonmanifold_vertices == 1);
   CHECK(r2.mesh.vertex_count() == 8);
   CHECK(r2.report.components == 2);
+  check_own_topology(r2);
 
   // Seven tetrahedra at one tip: 21 triangles there (more than the 16 that
   // split_fans compares pairwise), one tip per tetrahedron.
@@ -147,6 +154,7 @@ TEST_CASE("repair cuts non-manifold edges and splits non-manifold vertices", "[r
     tips.insert(at_tip.begin(), at_tip.end());
   }
   CHECK(tips.size() == size_t(tetrahedra));
+  check_own_topology(r3);
 }
 
 TEST_CASE("repair cuts a Moebius strip into an orientable surface", "[repair]") {
@@ -167,6 +175,7 @@ TEST_CASE("repair cuts a Moebius strip into an orientable surface", "[repair]") 
   }
   RepairResult r = repair_mesh(s);
   CHECK(r.mesh.triangle_count() == 2 * n);
+  check_own_topology(r);
   const Topology topo = build_topology(r.mesh);
   // Every interior edge is traversed in opposite directions by its two triangles.
   for (size_t e = 0; e < topo.edges.size(); ++e) {
@@ -319,6 +328,7 @@ TEST_CASE("the repair report counts the repaired mesh's boundary edges", "[repai
     for (size_t e = 0; e < topo.edges.size(); ++e) boundary += topo.is_boundary_edge(static_cast<uint32_t>(e));
     INFO("round " << round);
     CHECK(r.report.boundary_edges == boundary);
+    check_own_topology(r);
     with_cuts += r.report.nonmanifold_edges > 0 && r.report.nonmanifold_vertices > 0;
   }
   CHECK(with_cuts > 50);  // the soups exercise the cuts
@@ -543,9 +553,32 @@ TriangleSoup moebius(int n) {
   return s;
 }
 
+// A torus of nu × nv cells (closed, seams to weld, 30 % of its triangles
+// reversed) and a sphere inside out.
+TriangleSoup torus_and_sphere(int nu, int nv, std::mt19937& random) {
+  TriangleSoup parts;
+  testing::GridOptions grid;
+  grid.nu = nu, grid.nv = nv;
+  append_soup(parts, testing::torus(3, 1, grid), Vec3(0, 0, 0), 0.3, true, random);
+  append_soup(parts, testing::icosphere(4, 1), Vec3(10, 0, 0), 1.0, false, random);
+  return parts;
+}
+
+// The triangles of `parts` in random order.
+TriangleSoup shuffled(const TriangleSoup& parts, std::mt19937& random) {
+  std::vector<uint32_t> order(parts.triangle_count());
+  std::iota(order.begin(), order.end(), 0u);
+  std::shuffle(order.begin(), order.end(), random);
+  TriangleSoup s;
+  s.positions = parts.positions;
+  for (uint32_t t : order) add_triangle(s, parts.indices[3 * t], parts.indices[3 * t + 1], parts.indices[3 * t + 2]);
+  return s;
+}
+
 void check_same_repair(const RepairResult& got, const RepairResult& want) {
   CHECK(got.mesh.triangles == want.mesh.triangles);
   CHECK(got.mesh.positions == want.mesh.positions);
+  testing::check_same_topology(got.topology, want.topology);
   for (const auto& [a, b] : {std::pair{got.report.welded_vertices, want.report.welded_vertices},
                              {got.report.degenerate_triangles, want.report.degenerate_triangles},
                              {got.report.duplicate_triangles, want.report.duplicate_triangles},
@@ -570,11 +603,8 @@ void check_same_repair(const RepairResult& got, const RepairResult& want) {
 // and non-orientable loops. 1, 2 and 3 threads give the same mesh and report.
 TEST_CASE("repair gives the same mesh and report on 1, 2 and 3 threads, components in any order", "[repair][threads]") {
   std::mt19937 random(17);
-  TriangleSoup parts;
+  TriangleSoup parts = torus_and_sphere(120, 60, random);
   testing::GridOptions grid;
-  grid.nu = 120, grid.nv = 60;
-  append_soup(parts, testing::torus(3, 1, grid), Vec3(0, 0, 0), 0.3, true, random);
-  append_soup(parts, testing::icosphere(4, 1), Vec3(10, 0, 0), 1.0, false, random);
   for (int i = 0; i < 3; ++i) append_soup(parts, moebius(200 + 50 * i), Vec3(-10, 3.0 * i, 0), 0.1, i == 1, random);
   grid.nu = grid.nv = 40;
   for (int i = 0; i < 2; ++i) {
@@ -597,16 +627,11 @@ TEST_CASE("repair gives the same mesh and report on 1, 2 and 3 threads, componen
       add_triangle(noise, uint32_t(random() % nv), uint32_t(random() % nv), uint32_t(random() % nv));
     append_soup(parts, noise, Vec3(0, -30, 0), 0.0, false, random);
   }
-  // The triangles shuffled.
-  std::vector<uint32_t> order(parts.triangle_count());
-  std::iota(order.begin(), order.end(), 0u);
-  std::shuffle(order.begin(), order.end(), random);
-  TriangleSoup s;
-  s.positions = parts.positions;
-  for (uint32_t t : order) add_triangle(s, parts.indices[3 * t], parts.indices[3 * t + 1], parts.indices[3 * t + 2]);
+  TriangleSoup s = shuffled(parts, random);
   REQUIRE(s.triangle_count() > size_t{1} << 15);
 
   const RepairResult one = repair_on(1, s);
+  check_own_topology(one);
   CHECK(one.report.welded_vertices > 10000);
   CHECK(one.report.nonmanifold_edges > 50);
   CHECK(one.report.nonmanifold_vertices > 100);
@@ -615,5 +640,45 @@ TEST_CASE("repair gives the same mesh and report on 1, 2 and 3 threads, componen
   for (int threads : {2, 3}) {
     INFO("threads: " << threads);
     check_same_repair(repair_on(threads, s), one);
+  }
+}
+
+TEST_CASE("repair records its mesh's topology while pairing, on 1, 2 and 3 threads", "[repair][threads]") {
+  // Nothing to cut or split (so the edges recorded while pairing are the
+  // mesh's): seams to weld, flipped triangles, duplicates, degenerate
+  // triangles and unreferenced vertices renumber the triangles and vertices
+  // before and after the pairing; closed and open components in any order.
+  // (A Moebius strip's cut splits vertices: the tests above cover it.)
+  std::mt19937 random(23);
+  TriangleSoup parts = torus_and_sphere(150, 80, random);
+  testing::GridOptions grid;
+  grid.nu = grid.nv = 40;
+  for (int i = 0; i < 3; ++i)
+    append_soup(parts, testing::height_field([](double x, double y) { return 0.1 * std::sin(3 * x + y); }, 2, 2, grid),
+                Vec3(0, 10 + 3.0 * i, 0), 0.05, true, random);
+  for (int i = 0; i < 50; ++i) append_soup(parts, testing::icosphere(0, 0.2), Vec3(i, -5, 0), 0.5, false, random);
+  TriangleSoup s = shuffled(parts, random);
+  add_vertex(s, Vec3(100, 100, 100));  // unreferenced
+  const size_t nt = s.triangle_count();
+  for (size_t t = 0; t < nt; t += 83) add_triangle(s, s.indices[3 * t + 2], s.indices[3 * t + 1], s.indices[3 * t]);
+  for (size_t t = 0; t < nt; t += 89) add_triangle(s, s.indices[3 * t], s.indices[3 * t], s.indices[3 * t + 1]);
+  REQUIRE(s.triangle_count() > size_t{1} << 15);
+
+  const RepairResult one = repair_on(1, s);
+  CHECK(one.report.nonmanifold_edges == 0);
+  CHECK(one.report.nonmanifold_vertices == 0);
+  CHECK(one.report.welded_vertices > 10000);
+  CHECK(one.report.duplicate_triangles > 100);
+  CHECK(one.report.degenerate_triangles > 100);
+  CHECK(one.report.unreferenced_vertices > 0);
+  CHECK(one.report.flipped_triangles > 10000);
+  CHECK(one.report.boundary_edges == 3 * 4 * 40);  // the height fields' borders
+  CHECK(one.report.components == 55);
+  check_own_topology(one);
+  for (int threads : {2, 3}) {
+    INFO("threads: " << threads);
+    const RepairResult other = repair_on(threads, s);
+    check_own_topology(other);
+    check_same_repair(other, one);
   }
 }

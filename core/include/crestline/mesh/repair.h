@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "crestline/mesh/mesh.h"
+#include "crestline/mesh/topology.h"
 
 namespace crestline {
 
@@ -38,6 +39,8 @@ struct RepairReport {
 struct RepairResult {
   Mesh mesh;
   RepairReport report;
+  /// build_topology(mesh), found while repairing: pass it on to the Pipeline.
+  Topology topology;
 };
 
 /// Welds, drops degenerate/duplicate/non-finite triangles and unreferenced
