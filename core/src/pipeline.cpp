@@ -111,7 +111,7 @@ void Pipeline::set_options(const PipelineOptions& o) {
   options_ = o;
 }
 
-void Pipeline::measure_creases() {
+void Pipeline::measure_creases(const std::function<void(double)>& progress) {
   if (crease_angles_valid_ && crease_angles_compact_) {
     CreaseAngles& a = crease_angles_;
     a.angle.assign(crease_edge_count_, 0.0);
@@ -128,7 +128,7 @@ void Pipeline::measure_creases() {
   CreaseMeasureOptions measure{options_.creases.normal_filter_steps};
   const double noise = noise_levels_.empty() ? 0.0 : noise_levels_[frames_.largest()];
   if (measure.normal_filter_steps < 0) measure.normal_filter_steps = automatic_normal_filter_steps(noise);
-  crease_angles_ = measure_crease_angles(local_input(), topology(), measure);
+  crease_angles_ = measure_crease_angles(local_input(), topology(), measure, progress);
   // Where the filter does not run the stage measures no noise, but the
   // automatic angle asks whether the mesh is piecewise planar.
   if (!crease_angles_.noise_measured && !noise_levels_.empty()) {
@@ -160,13 +160,13 @@ void Pipeline::compact_crease_angles() {
   crease_angles_compact_ = true;
 }
 
-Pipeline::BoundarySelection Pipeline::select_boundaries() {
+Pipeline::BoundarySelection Pipeline::select_boundaries(const std::function<void(double)>& measure_progress) {
   BoundarySelection out;
   if (!boundaries_dirty_) return out;
   const Topology& topology = this->topology();
   std::vector<uint32_t> edges;
   if (options_.creases.boundaries) {
-    measure_creases();
+    measure_creases(measure_progress);
     CreaseOptions automatic = options_.creases;
     automatic.angle = -1;
     CreaseResult selected = select_creases(local_input(), topology, crease_angles_, automatic, 1.0);
@@ -238,11 +238,12 @@ void Pipeline::cut_along_boundaries(std::vector<uint32_t> edges) {
   cut_components_ = on_cut_vertices(cut_, frames_.vertex_component);
 }
 
-double Pipeline::select_crease_lines(std::optional<CreaseResult> automatic) {
+double Pipeline::select_crease_lines(std::optional<CreaseResult> automatic,
+                                     const std::function<void(double)>& measure_progress) {
   double seconds = 0;
   {
     StageTimer timer(seconds);
-    measure_creases();
+    measure_creases(measure_progress);
     // In the working frame (every component's mean edge 1, as the spur and
     // turn lengths expect), then mapped back per component.
     creases_ = automatic ? std::move(*automatic)
@@ -277,13 +278,25 @@ void Pipeline::run(const ProgressCallback& progress) {
   // the crease options change (a new crease angle then takes the adjacency
   // and the measure again) or an SVG asks for the adjacency.
   double cut_seconds = 0;
+  // The creases stage starts here, where its work is done (a measure over
+  // every edge, seconds on a noisy scan), so that its progress and a cancel
+  // come before the smooth stages, not after them; the measure reports its
+  // fractions as the stage's up to kCreaseMeasureShare. Without creases due
+  // (a boundary option changed) a measure reports fractions but no start.
+  constexpr double kCreaseMeasureShare = 0.9;
+  if (creases_due && progress && !progress(Stage::Creases, 0.0)) throw Cancelled();
+  std::function<void(double)> measure_progress;
+  if (progress)
+    measure_progress = [&](double fraction) {
+      if (!progress(Stage::Creases, kCreaseMeasureShare * fraction)) throw Cancelled();
+    };
   {
     BoundarySelection boundaries;
     {
       StageTimer timer(boundary_seconds);
-      boundaries = select_boundaries();
+      boundaries = select_boundaries(measure_progress);
     }
-    if (creases_due) crease_seconds = select_crease_lines(std::move(boundaries.automatic));
+    if (creases_due) crease_seconds = select_crease_lines(std::move(boundaries.automatic), measure_progress);
     if (boundaries.changed) {
       StageTimer timer(cut_seconds);
       cut_along_boundaries(std::move(*boundaries.changed));
@@ -448,11 +461,10 @@ void Pipeline::run(const ProgressCallback& progress) {
   if (creases_due || boundaries_due) {
     // Outside step(): no other stage makes it dirty, and a new crease angle
     // re-runs nothing else. Its work was done before the smooth stages; it
-    // is reported and done here, last, as the stage order says (a cancel
-    // before this point leaves it dirty: the next run selects again). Its
-    // time includes the measure and the boundary creases' selection, cut and
-    // adjacency, so that the stages account for the whole run.
-    if (creases_due && progress && !progress(Stage::Creases, 0.0)) throw Cancelled();
+    // is done here, last, as the stage order says (a cancel before this
+    // point leaves it dirty: the next run selects again). Its time includes
+    // the measure and the boundary creases' selection, cut and adjacency, so
+    // that the stages account for the whole run.
     seconds_[static_cast<int>(Stage::Creases)] = crease_seconds + boundary_seconds + cut_seconds;
     creases_dirty_ = false;
   }

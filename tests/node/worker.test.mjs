@@ -7,7 +7,7 @@ import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { test } from 'node:test';
 import { loadCrestline } from '../../wasm/node.mjs';
-import { Connection } from '../../web/src/client/client.js';
+import { Connection, overallFraction } from '../../web/src/client/client.js';
 import { createHandler } from '../../web/src/worker/handler.js';
 import { SurfaceIndex } from '../../web/src/worker/surface-index.js';
 import { MESHES, haveMeshes, sineHeightField } from './helpers.mjs';
@@ -34,6 +34,11 @@ test('init, load, re-threshold, re-smooth, fields, exports: the stages each repl
   const loaded = await send({ type: 'load', id: 1, job: 1, ...mesh, options: {} });
   const t = types(loaded);
   assert.ok(t.indexOf('loaded') < t.indexOf('progress', t.indexOf('loaded')), 'loaded comes before the pipeline runs');
+  // The page's bar never goes back: the creases report first (their measure
+  // runs before the smooth stages), then the smooth stages in order.
+  const bar = loaded.filter((m) => m.type === 'progress').map((m) => overallFraction(m.stage, m.fraction));
+  assert.equal(loaded.find((m) => m.type === 'progress' && m.stage !== 'read')?.stage, 'creases');
+  assert.ok(bar.length > 11 && bar.every((f, i) => i === 0 || f >= bar[i - 1]), `the bar rises: ${bar}`);
   const { surface } = loaded.find((m) => m.type === 'loaded');
   assert.ok(surface.positions instanceof Float64Array && surface.indices instanceof Uint32Array, "'loaded' carries the repaired surface");
   assert.deepEqual([surface.positions.length, surface.indices.length], [mesh.positions.length, mesh.indices.length]);

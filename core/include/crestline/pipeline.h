@@ -65,7 +65,7 @@ enum class Stage : int {
   Polylines,
   Fairing,
   Filter,
-  Creases,  // independent of the stages before it: runs only when its options change
+  Creases,  // independent of the others; runs (and reports) first, only when its options change
   Count
 };
 
@@ -173,7 +173,8 @@ class Pipeline {
   std::vector<Triangle> input_triangles() const;
   const Mesh& local_input();
   void release_local_input();
-  void measure_creases();
+  // progress (fractions of the measure), if set, may throw to abandon it.
+  void measure_creases(const std::function<void(double)>& progress = {});
   void compact_crease_angles();
   struct BoundarySelection {
     std::optional<std::vector<uint32_t>> changed;  // the boundary creases, when they changed
@@ -181,13 +182,14 @@ class Pipeline {
     // creases due), so that the creases stage need not select again.
     std::optional<CreaseResult> automatic;
   };
-  BoundarySelection select_boundaries();
+  BoundarySelection select_boundaries(const std::function<void(double)>& measure_progress);
   // Cuts the input along the boundary creases; takes over its working-frame
   // mesh and adjacency when the cut splits any vertex.
   void measure_boundary_segments(const Topology& topology, const Mesh& local);
   void cut_along_boundaries(std::vector<uint32_t> edges);
   // The creases stage's work; returns its seconds.
-  double select_crease_lines(std::optional<CreaseResult> automatic);
+  double select_crease_lines(std::optional<CreaseResult> automatic,
+                             const std::function<void(double)>& measure_progress);
   const Mesh& smooth_input() const { return cut_active_ ? cut_.mesh : local_input_; }
   const std::vector<uint32_t>& smooth_components() const {
     return cut_active_ ? cut_components_ : frames_.vertex_component;

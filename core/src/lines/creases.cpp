@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 
 #include "crestline/mesh/presmooth.h"
@@ -299,7 +300,10 @@ FaceNormals face_normals(const Mesh& mesh) {
   return out;
 }
 
-std::vector<Vec3> filter_normals(const Mesh& mesh, const Topology& topology, const FaceNormals& faces, int steps) {
+// Each vertex's and each face's values from the last step's alone: on any
+// number of threads, the same bits. after_step, if set, is called after each step.
+std::vector<Vec3> filter_normals(const Mesh& mesh, const Topology& topology, const FaceNormals& faces, int steps,
+                                 const std::function<void(int step)>& after_step) {
   std::vector<Vec3> normal = faces.normal, next(normal.size());
   const double scale = 1.0 / (1.0 - std::cos(kRangeAngle * kDegree));
   const size_t nv = mesh.positions.size();
@@ -310,44 +314,49 @@ std::vector<Vec3> filter_normals(const Mesh& mesh, const Topology& topology, con
     // face (a fan off the crease, where there is one), so that the range
     // weights compare with the face's side of a crease rather than with the
     // face's own noisy normal.
-    for (size_t v = 0; v < nv; ++v) {
-      Vec3 sum = Vec3::Zero();
-      for (uint32_t k = topology.vertex_offsets[v]; k < topology.vertex_offsets[v + 1]; ++k) {
-        const uint32_t g = topology.vertex_triangles[k];
-        sum += faces.area[g] * normal[g];
-      }
-      const double len = sum.norm();
-      fan_mean[v] = len > 0 ? Vec3(sum / len) : Vec3::Zero();
-      double spread = 0, area = 0;
-      for (uint32_t k = topology.vertex_offsets[v]; k < topology.vertex_offsets[v + 1]; ++k) {
-        const uint32_t g = topology.vertex_triangles[k];
-        spread += faces.area[g] * (1.0 - fan_mean[v].dot(normal[g]));
-        area += faces.area[g];
-      }
-      fan_spread[v] = area > 0 ? spread / area : 2.0;
-    }
-    for (size_t f = 0; f < normal.size(); ++f) {
-      const Triangle& t = mesh.triangles[f];
-      uint32_t best = t[0];
-      for (uint32_t v : t)
-        if (fan_spread[v] < fan_spread[best]) best = v;
-      // (A large fan's mean costs nothing more: it is computed once per vertex.)
-      const Vec3& guide = fan_mean[best];
-      Vec3 sum = Vec3::Zero();
-      // Faces around each corner: a face sharing an edge with f is met
-      // twice, f itself three times; the weights only need to be local.
-      for (uint32_t v : t) {
-        if (!small_fan(topology, v)) continue;
+    parallel_for(nv, [&](size_t first, size_t last) {
+      for (size_t v = first; v < last; ++v) {
+        Vec3 sum = Vec3::Zero();
         for (uint32_t k = topology.vertex_offsets[v]; k < topology.vertex_offsets[v + 1]; ++k) {
           const uint32_t g = topology.vertex_triangles[k];
-          const double w = faces.area[g] * std::exp(-(1.0 - guide.dot(normal[g])) * scale);
-          sum += w * normal[g];
+          sum += faces.area[g] * normal[g];
         }
+        const double len = sum.norm();
+        fan_mean[v] = len > 0 ? Vec3(sum / len) : Vec3::Zero();
+        double spread = 0, area = 0;
+        for (uint32_t k = topology.vertex_offsets[v]; k < topology.vertex_offsets[v + 1]; ++k) {
+          const uint32_t g = topology.vertex_triangles[k];
+          spread += faces.area[g] * (1.0 - fan_mean[v].dot(normal[g]));
+          area += faces.area[g];
+        }
+        fan_spread[v] = area > 0 ? spread / area : 2.0;
       }
-      const double len = sum.norm();
-      next[f] = len > 0 ? Vec3(sum / len) : normal[f];
-    }
+    });
+    parallel_for(normal.size(), [&](size_t first, size_t last) {
+      for (size_t f = first; f < last; ++f) {
+        const Triangle& t = mesh.triangles[f];
+        uint32_t best = t[0];
+        for (uint32_t v : t)
+          if (fan_spread[v] < fan_spread[best]) best = v;
+        // (A large fan's mean costs nothing more: it is computed once per vertex.)
+        const Vec3& guide = fan_mean[best];
+        Vec3 sum = Vec3::Zero();
+        // Faces around each corner: a face sharing an edge with f is met
+        // twice, f itself three times; the weights only need to be local.
+        for (uint32_t v : t) {
+          if (!small_fan(topology, v)) continue;
+          for (uint32_t k = topology.vertex_offsets[v]; k < topology.vertex_offsets[v + 1]; ++k) {
+            const uint32_t g = topology.vertex_triangles[k];
+            const double w = faces.area[g] * std::exp(-(1.0 - guide.dot(normal[g])) * scale);
+            sum += w * normal[g];
+          }
+        }
+        const double len = sum.norm();
+        next[f] = len > 0 ? Vec3(sum / len) : normal[f];
+      }
+    });
     normal.swap(next);
+    if (after_step) after_step(step);
   }
   return normal;
 }
@@ -979,17 +988,36 @@ int automatic_normal_filter_steps(double noise_level) {
   return noise_level > kNoisySurface ? kNoisyCreaseFilterSteps : 0;
 }
 
-CreaseAngles measure_crease_angles(const Mesh& mesh, const Topology& topology, const CreaseMeasureOptions& options) {
+CreaseAngles measure_crease_angles(const Mesh& mesh, const Topology& topology, const CreaseMeasureOptions& options,
+                                   const std::function<void(double)>& progress) {
   CreaseAngles out;
   out.noise_measured = options.normal_filter_steps != 0;
-  if (out.noise_measured) out.noise_level = surface_noise_level(mesh, topology);
+  // The parts' shares of the time, in filter steps (the dragon, 1 thread:
+  // a filter step ≈ the noise level ≈ the edges' loop without the filter;
+  // with it, the support over more rings ≈ 3 steps). Until the noise level
+  // decides the automatic choice, the total assumes the filter runs: it
+  // only shrinks then, so the fractions keep rising.
+  const auto total = [&](int steps) { return (out.noise_measured ? 1.0 : 0.0) + steps + (steps > 0 ? 3.0 : 1.0); };
+  double done = 0,
+         parts = total(options.normal_filter_steps >= 0 ? options.normal_filter_steps : kNoisyCreaseFilterSteps);
+  const auto report = [&](double share) {
+    done += share;
+    if (progress) progress(done / parts);
+  };
+  if (out.noise_measured) {
+    out.noise_level = surface_noise_level(mesh, topology);
+    report(1);
+  }
   out.normal_filter_steps =
       options.normal_filter_steps >= 0 ? options.normal_filter_steps : automatic_normal_filter_steps(out.noise_level);
+  parts = total(out.normal_filter_steps);
+  const double edge_share = out.normal_filter_steps > 0 ? 3.0 : 1.0;
   const FaceNormals faces = face_normals(mesh);
   // The raw normals themselves where no filter runs (clean meshes): no copy,
   // 24 bytes per triangle less fresh memory.
   std::vector<Vec3> filtered;
-  if (out.normal_filter_steps > 0) filtered = filter_normals(mesh, topology, faces, out.normal_filter_steps);
+  if (out.normal_filter_steps > 0)
+    filtered = filter_normals(mesh, topology, faces, out.normal_filter_steps, [&](int) { report(1); });
   const std::vector<Vec3>& normal = out.normal_filter_steps > 0 ? filtered : faces.normal;
   const size_t ne = topology.edges.size();
   out.angle.assign(ne, 0.0);
@@ -997,40 +1025,47 @@ CreaseAngles measure_crease_angles(const Mesh& mesh, const Topology& topology, c
   const bool very_noisy = out.normal_filter_steps > 0 && out.noise_level > kVeryNoisyCreaseLevel;
   const int rings = very_noisy ? kVeryNoisySupportRings : out.normal_filter_steps > 0 ? kNoisySupportRings : 1;
   const double candidate = std::cos(kCandidateAngle * kDegree);
-  // Each edge alone, on every thread. 1 − cos of every fourth edge's angle
-  // (NaN on boundary edges, which are left out) is kept by its index for the
-  // median (monotonic in the angle), gathered in edge order below.
+  // Each edge alone, on every thread, in blocks with progress between them.
+  // 1 − cos of every fourth edge's angle (NaN on boundary edges, which are
+  // left out) is kept by its index for the median (monotonic in the angle),
+  // gathered in edge order below.
   std::vector<double> quarter(ne / 4 + 1, std::numeric_limits<double>::quiet_NaN());
-  parallel_for(ne, [&](size_t begin, size_t end) {
-    std::vector<uint32_t> scratch;
-    for (size_t e = begin; e < end; ++e) {
-      if (topology.is_boundary_edge(static_cast<uint32_t>(e))) continue;
-      const uint32_t f0 = topology.edge_triangles[e][0], f1 = topology.edge_triangles[e][1];
-      const Vec3 &n0 = normal[f0], &n1 = normal[f1];
-      const double cosine = n0.dot(n1);
-      if (e % 4 == 0) quarter[e / 4] = 1.0 - cosine;
-      if (cosine > candidate) continue;  // below kCandidateAngle: never a crease, left 0
-      // The edge as f0 runs along it (counter-clockwise seen from outside):
-      // (n0 × n1)·d > 0 where the surface folds away below f0's plane.
-      const Triangle& t = mesh.triangles[f0];
-      int k = 0;
-      while (k < 2 && topology.triangle_edges[f0][k] != e) ++k;
-      const Vec3 d = mesh.positions[t[(k + 1) % 3]] - mesh.positions[t[k]];
-      const Vec3 cross = n0.cross(n1);
-      const double a = portable_angle(cross.norm(), cosine);
-      out.angle[e] = cross.dot(d) >= 0 ? a : -a;
-      if (a < kCandidateAngle * kDegree) continue;
-      if (!very_noisy) {
-        out.support[e] = std::abs(side_support(mesh, topology, faces, e, n0 + n1, rings, scratch));
-        continue;
+  constexpr size_t kBlock = size_t{1} << 16;
+  const double block_share =
+      edge_share * static_cast<double>(kBlock) / static_cast<double>(std::max<size_t>(ne, kBlock));
+  for (size_t block = 0; block < ne; block += kBlock) {
+    parallel_for(std::min(ne, block + kBlock) - block, [&](size_t first, size_t last) {
+      std::vector<uint32_t> scratch;
+      for (size_t e = block + first; e < block + last; ++e) {
+        if (topology.is_boundary_edge(static_cast<uint32_t>(e))) continue;
+        const uint32_t f0 = topology.edge_triangles[e][0], f1 = topology.edge_triangles[e][1];
+        const Vec3 &n0 = normal[f0], &n1 = normal[f1];
+        const double cosine = n0.dot(n1);
+        if (e % 4 == 0) quarter[e / 4] = 1.0 - cosine;
+        if (cosine > candidate) continue;  // below kCandidateAngle: never a crease, left 0
+        // The edge as f0 runs along it (counter-clockwise seen from outside):
+        // (n0 × n1)·d > 0 where the surface folds away below f0's plane.
+        const Triangle& t = mesh.triangles[f0];
+        int k = 0;
+        while (k < 2 && topology.triangle_edges[f0][k] != e) ++k;
+        const Vec3 d = mesh.positions[t[(k + 1) % 3]] - mesh.positions[t[k]];
+        const Vec3 cross = n0.cross(n1);
+        const double a = portable_angle(cross.norm(), cosine);
+        out.angle[e] = cross.dot(d) >= 0 ? a : -a;
+        if (a < kCandidateAngle * kDegree) continue;
+        if (!very_noisy) {
+          out.support[e] = std::abs(side_support(mesh, topology, faces, e, n0 + n1, rings, scratch));
+          continue;
+        }
+        // Very noisy: only where the support is a local maximum across the edge.
+        double shifted[2];
+        const double s = std::abs(
+            side_support(mesh, topology, faces, e, n0 + n1, rings, scratch, kSuppressionShift * d.norm(), shifted));
+        if (s >= std::max(std::abs(shifted[0]), std::abs(shifted[1]))) out.support[e] = s;
       }
-      // Very noisy: only where the support is a local maximum across the edge.
-      double shifted[2];
-      const double s = std::abs(
-          side_support(mesh, topology, faces, e, n0 + n1, rings, scratch, kSuppressionShift * d.norm(), shifted));
-      if (s >= std::max(std::abs(shifted[0]), std::abs(shifted[1]))) out.support[e] = s;
-    }
-  });
+    });
+    if (block + kBlock < ne) report(block_share);
+  }
   std::vector<double> sample;
   sample.reserve(ne / 4 + 1);
   for (size_t e = 0; e < ne; e += 4)

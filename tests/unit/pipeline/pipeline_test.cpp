@@ -34,6 +34,42 @@ std::vector<Stage> stages_run(Pipeline& p) {
   return ran;
 }
 
+// The stage a run after a cancel resumes at. The creases stage reports
+// first while due, and it stays due until a run completes (so that a client
+// learns of new creases from the run that finishes): after a cancel it
+// selects again from the kept measure, then the smooth stages resume.
+Stage resumed_at(Pipeline& p) {
+  const std::vector<Stage> ran = stages_run(p);
+  REQUIRE(ran.size() >= 2);
+  CHECK(ran.front() == Stage::Creases);
+  return ran[1];
+}
+
+// A jittered height field of 2 × 150² = 45,000 triangles and 67,650 edges,
+// for the tests that count progress reports in blocks of edges.
+Mesh jittered_grid_150() {
+  testing::GridOptions grid;
+  grid.nu = grid.nv = 150;
+  grid.jitter = 0.2;
+  return repair_mesh(testing::height_field([](double x, double y) { return 0.1 * std::sin(3 * x) * std::cos(2 * y); },
+                                           2, 2, grid))
+      .mesh;
+}
+
+// Runs p and has its progress callback cancel at the `report`-th report of
+// `stage` with a fraction above 0; checks that the run stops there (no
+// later report).
+void cancel_at_report(Pipeline& p, Stage stage, int report) {
+  int calls = 0, after = 0;
+  CHECK_THROWS_AS(p.run([&](Stage s, double fraction) {
+    if (calls == report) ++after;
+    if (s == stage && fraction > 0 && ++calls == report) return false;
+    return true;
+  }),
+                  Cancelled);
+  CHECK(after == 0);
+}
+
 }  // namespace
 
 TEST_CASE("changing the threshold re-runs only the filter", "[pipeline]") {
@@ -137,9 +173,7 @@ TEST_CASE("with a crease cut, crease and boundary changes give the lines and cre
 TEST_CASE("cancelling leaves the pipeline usable", "[pipeline]") {
   Pipeline p(repair_mesh(bumpy()).mesh);
   CHECK_THROWS_AS(p.run([](Stage s, double) { return s != Stage::Tracing; }), Cancelled);
-  const auto ran = stages_run(p);
-  REQUIRE(!ran.empty());
-  CHECK(ran.front() == Stage::Tracing);
+  CHECK(resumed_at(p) == Stage::Tracing);
   CHECK(!p.lines().empty());
 }
 
@@ -151,9 +185,7 @@ TEST_CASE("a cancel just before the singular stage resumes with the traced graph
   reference.run();
   Pipeline p(mesh);
   CHECK_THROWS_AS(p.run([](Stage s, double) { return s != Stage::Singular; }), Cancelled);
-  const auto ran = stages_run(p);
-  REQUIRE(!ran.empty());
-  CHECK(ran.front() == Stage::Singular);
+  CHECK(resumed_at(p) == Stage::Singular);
   REQUIRE(!reference.lines().empty());
   REQUIRE(p.lines().size() == reference.lines().size());
   for (size_t i = 0; i < p.lines().size(); ++i) CHECK(p.lines()[i].points == reference.lines()[i].points);
@@ -207,13 +239,7 @@ TEST_CASE("curvature, extremality and the smoothing's set-up report progress, an
   // 45,000 triangles, ≈ 67,000 edges: the curvature's edge terms come in
   // five blocks (numbers the test asserts, so it fails where a block
   // reports nothing).
-  testing::GridOptions grid;
-  grid.nu = grid.nv = 150;
-  grid.jitter = 0.2;
-  const Mesh mesh =
-      repair_mesh(
-          testing::height_field([](double x, double y) { return 0.1 * std::sin(3 * x) * std::cos(2 * y); }, 2, 2, grid))
-          .mesh;
+  const Mesh mesh = jittered_grid_150();
   REQUIRE(mesh.triangle_count() == 2 * 150 * 150);
   Pipeline reference(mesh);
   std::vector<double> curvature, extremality;
@@ -241,20 +267,58 @@ TEST_CASE("curvature, extremality and the smoothing's set-up report progress, an
     Pipeline p(mesh);
     // The smoothing's third call: inside its set-up, before any iteration.
     const int wanted = at == Stage::Smoothing ? 3 : 1;
-    int calls = 0, after = 0;
-    CHECK_THROWS_AS(p.run([&](Stage s, double fraction) {
-      if (calls == wanted) ++after;
-      if (s == at && fraction > 0 && ++calls == wanted) return false;
-      return true;
-    }),
-                    Cancelled);
     INFO("cancelled in " << stage_name(at));
-    CHECK(after == 0);
-    CHECK(stages_run(p).front() == at);
+    cancel_at_report(p, at, wanted);
+    CHECK(resumed_at(p) == at);
     p.run();
     REQUIRE(p.lines().size() == reference.lines().size());
     for (size_t i = 0; i < p.lines().size(); ++i) CHECK(p.lines()[i].points == reference.lines()[i].points);
   }
+}
+
+TEST_CASE("the crease measure reports before the smooth stages, and a cancel there keeps nothing", "[pipeline]") {
+  // 45,000 triangles, 67,650 edges: the measure reports after the noise
+  // level, after each of the 2 filter steps and after the first of two
+  // blocks of edges, in shares 1, 1, 1 and 3 (the edges' loop with the filter
+  // runs) of 6, as 0.9 of the creases stage.
+  const Mesh mesh = jittered_grid_150();
+  const size_t edges = build_topology(mesh).edges.size();
+  REQUIRE(edges > 65536);
+  REQUIRE(edges <= 2 * 65536);
+  PipelineOptions o;
+  o.creases.normal_filter_steps = 2;
+  Pipeline reference(mesh);
+  reference.set_options(o);
+  std::vector<double> fractions;
+  std::vector<Stage> started;
+  reference.run([&](Stage s, double fraction) {
+    if (fraction == 0) started.push_back(s);
+    if (s == Stage::Creases && fraction > 0) {
+      CHECK(started == std::vector<Stage>{Stage::Creases});  // before any smooth stage
+      fractions.push_back(fraction);
+    }
+    return true;
+  });
+  CHECK(started.size() == static_cast<size_t>(Stage::Count));
+  const double block = 3.0 * 65536 / static_cast<double>(edges);
+  const std::vector<double> expected = {0.9 * (1.0 / 6), 0.9 * (2.0 / 6), 0.9 * (3.0 / 6), 0.9 * ((3.0 + block) / 6)};
+  CHECK(fractions == expected);
+  REQUIRE(!reference.lines().empty());
+
+  // Cancelled inside the filter: nothing after it, and the next run measures
+  // again and gives the same lines and creases.
+  Pipeline p(mesh);
+  p.set_options(o);
+  cancel_at_report(p, Stage::Creases, 2);
+  fractions.clear();
+  p.run([&](Stage s, double fraction) {
+    if (s == Stage::Creases && fraction > 0) fractions.push_back(fraction);
+    return true;
+  });
+  CHECK(fractions == expected);
+  REQUIRE(p.lines().size() == reference.lines().size());
+  for (size_t i = 0; i < p.lines().size(); ++i) CHECK(p.lines()[i].points == reference.lines()[i].points);
+  CHECK(p.crease_result().edges == reference.crease_result().edges);
 }
 
 TEST_CASE("the smoothing's progress keeps rising with the most steps the parameters allow", "[pipeline]") {
@@ -295,15 +359,8 @@ TEST_CASE(
 
   Pipeline p(mesh);
   p.set_options(o);
-  int calls = 0, after = 0;
-  CHECK_THROWS_AS(p.run([&](Stage s, double fraction) {
-    if (calls == 3) ++after;
-    if (s == Stage::Presmooth && fraction > 0 && ++calls == 3) return false;
-    return true;
-  }),
-                  Cancelled);
-  CHECK(after == 0);
-  CHECK(stages_run(p).front() == Stage::Presmooth);
+  cancel_at_report(p, Stage::Presmooth, 3);
+  CHECK(resumed_at(p) == Stage::Presmooth);
   REQUIRE(p.lines().size() == reference.lines().size());
   for (size_t i = 0; i < p.lines().size(); ++i) CHECK(p.lines()[i].points == reference.lines()[i].points);
 }

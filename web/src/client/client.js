@@ -38,9 +38,12 @@ export { pickMainFile };
 /** How long a cancelled job may run on before the worker is restarted (ms). */
 export const CANCEL_GRACE_MS = 1500;
 
+/** The stages in the order a run reports them: the creases' measure comes before the smooth stages. */
+const RUN_ORDER = ['creases', ...STAGES.filter((stage) => stage !== 'creases')];
+
 /**
  * A progress reply as a fraction of the whole job: fetching and reading take
- * the first part, the pipeline's stages the rest.
+ * the first part, the pipeline's stages the rest, in the order they run.
  * @param {string} stage
  * @param {number} fraction
  */
@@ -48,7 +51,7 @@ export function overallFraction(stage, fraction) {
   const readShare = 0.2;
   if (stage === 'fetch') return (fraction * readShare) / 2;
   if (stage === 'read') return readShare / 2;
-  return readShare + ((1 - readShare) * (Math.max(0, STAGES.indexOf(stage)) + fraction)) / STAGES.length;
+  return readShare + ((1 - readShare) * (Math.max(0, RUN_ORDER.indexOf(stage)) + fraction)) / RUN_ORDER.length;
 }
 
 /**

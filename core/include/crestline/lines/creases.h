@@ -10,6 +10,7 @@
 //                            normals denoised by a feature-preserving filter;
 //   select_creases         — threshold, chain, split, drop spurs.
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "crestline/lines/polylines.h"
@@ -110,8 +111,12 @@ struct CreaseAngles {
 /// (scans), so that their fine folds do not count as creases (creases.cpp).
 double automatic_crease_angle(const CreaseAngles& angles);
 
-/// Linear in the mesh size times the filter steps.
-CreaseAngles measure_crease_angles(const Mesh& mesh, const Topology& topology, const CreaseMeasureOptions& options);
+/// Linear in the mesh size times the filter steps. progress, if set, is
+/// called on the calling thread with rising fractions below 1 (after the
+/// noise level, each filter step and each block of 65,536 edges) and may
+/// throw to abandon the measure.
+CreaseAngles measure_crease_angles(const Mesh& mesh, const Topology& topology, const CreaseMeasureOptions& options,
+                                   const std::function<void(double)>& progress = {});
 
 struct CreaseOptions {
   /// Edges whose |dihedral angle| is at least this (degrees) are crease
