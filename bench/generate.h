@@ -13,4 +13,10 @@ namespace crestline::bench {
 /// mesh; returns a soup with 4× the triangles, for repair_mesh like any input.
 TriangleSoup subdivide(const Mesh& mesh);
 
+/// A noisy scan's stand-in: every vertex moved along its area-weighted
+/// normal by a normal deviate of `sigma` mean edge lengths (mt19937_64 with
+/// `seed` and Box–Muller, so every standard library draws the same).
+/// Takes a repaired mesh; returns its soup with the moved positions.
+TriangleSoup add_normal_noise(const Mesh& mesh, double sigma, uint64_t seed);
+
 }  // namespace crestline::bench

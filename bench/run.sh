@@ -6,7 +6,8 @@
 # build-bench/bench/{native,process,wasm,browser}.json.
 #   bash bench/run.sh            all meshes, 5 runs native, 3 in WASM, 1 thread;
 #                                then every mesh again on 2 threads, and on
-#                                every core where there are more;
+#                                every core where there are more; the noisy
+#                                dragon (generated) natively, 3 runs, 1 and 2 threads;
 #                                the browser row: the dragon, 3 runs
 #   bash bench/run.sh --smoke    the bunny once each, in the browser too (< 1 min
 #                                once built); for CI
@@ -41,6 +42,12 @@ if [[ $smoke == 0 ]]; then
     echo
     "$out/crestline_bench" "${args[@]}" --threads "$cores" --json "$out/native-allthreads.json"
   fi
+  # A noisy scan (the dragon with normal noise of 0.1 edge): the automatic
+  # pre-smoothing and crease-normal filter run, which the clean meshes skip.
+  for threads in 1 2; do
+    echo
+    "$out/crestline_bench" --only dragon-noisy --runs 3 --threads $threads --json "$out/native-noisy-${threads}threads.json"
+  done
 fi
 
 # The whole process as a user runs it: the CLI from the file to the written
