@@ -7,6 +7,7 @@
 
 #include "crestline/mesh/cotan.h"
 #include "crestline/numerics/constants.h"
+#include "crestline/numerics/paired_cg.h"
 #include "crestline/numerics/parallel.h"
 #include "crestline/numerics/sparse_solver.h"
 #include "crestline/numerics/uninitialised.h"
@@ -272,6 +273,28 @@ int automatic_presmooth_steps(double noise_level) {
   return static_cast<int>(std::min<double>(kVeryNoisySurfaceSteps, kNoisySurfaceSteps + extra));
 }
 
+// Pre-smoothing's solves (solve_step_paired). The residual is relative to
+// −tL x, what a step moves (step_system); the solver's entries are in float,
+// so the residual in double stops near 1e-7 whatever its own; and rows of
+// tiny triangles (the dragon's t Σw / m reaches 3·10⁵) turn a small residual
+// into a large move. Largest vertex difference from a 10⁻¹² double solve
+// (LDLᵀ), 3 steps, 1 thread, in mean edges: one solve to 1e-6 (the double
+// residual ≈ 1e-6 too): dragon 7.4e-4, 1.1M bunny 8.1e-7, bunny 7.7e-7; to
+// 1e-8, float-bound: dragon 8.5e-4. To kFirstTolerance, then refined in
+// double to kTolerance: dragon 6.7e-7, 1.1M 1.2e-7, bunny 1.6e-8 (to 1e-9:
+// 1.0e-6; to 1e-8: dragon 2.6e-4). Main's SpdSolver (1e-10 relative to M x):
+// 1.2e-7, 1.6e-6, 3.9e-8.
+constexpr double kFirstTolerance = 1e-6, kTolerance = 3e-10;
+// Refinement passes allowed before SpdSolver takes over (one met kTolerance
+// in every step above), and iterations a solve may take.
+constexpr int kRefinements = 3;
+constexpr int kPairedBudget = 150;
+// A step's progress: kSetUpShare after its weights, rising towards
+// kSolveStart through the solver's set-up, then after i iterations of its
+// solves (all of them, counted on) kSolveStart + (1 − kSolveStart) · i / (i +
+// kTypicalIterations): a step took 30–40 on the meshes above.
+constexpr double kSetUpShare = 0.125, kSolveStart = 0.25, kTypicalIterations = 30;
+
 // Solves the SPD system given by `triplets` for the three coordinates at once
 // (one factorization or preconditioner), starting from and replacing x.
 // after_axis, if set, is called after each coordinate's solve.
@@ -384,6 +407,169 @@ static void smooth_boundary_curves(std::vector<Vec3>& x, const Mesh& mesh, const
   for (uint32_t i = 0; i < n; ++i) x[free_vertices[i]] = y[i];
 }
 
+// A step's system in displacements: x' = x + d with (M + tL) d = −tL x on
+// the free rows and d = 0 on the held ones. The right side is the flow's pull
+// Σ_q t w_pq (x_q − x_p), formed from differences in double: it does not see
+// where the mesh lies, and the solve's relative residual is relative to what
+// the step moves (presmooth.h). The solver holds its entries in float
+// (paired_cg.h); that perturbs the operator, so it is applied to d, never to x.
+namespace {
+struct StepSystem {
+  SignedPairMatrix matrix;  // M + tL over the free rows; a held row is an identity row
+  std::vector<Vec3> rhs;    // −tL x on the free rows, 0 on the held ones
+};
+}  // namespace
+
+// Whether edge e enters a step's system, and its weight t w_e: edges of
+// weight 0 and those between two held vertices do not.
+static bool coupled(const Topology& topology, const CotanWeights& cotan, const std::vector<uint8_t>& fixed, double t,
+                    size_t e, double& w) {
+  w = t * cotan.edge_weight[e];
+  return w != 0 && !(fixed[topology.edges[e][0]] && fixed[topology.edges[e][1]]);
+}
+
+// In edge order on the calling thread (each row's sums in one order: the
+// same bits for any thread count).
+static StepSystem step_system(const std::vector<Vec3>& x, const Topology& topology, const CotanWeights& cotan,
+                              const std::vector<uint8_t>& fixed, double t) {
+  const size_t nv = x.size(), ne = topology.edges.size();
+  StepSystem system;
+  SignedPairMatrix& a = system.matrix;
+  a.diagonal = cotan.vertex_mass;
+  a.offsets.assign(nv + 1, 0);
+  system.rhs.assign(nv, Vec3::Zero());
+  for (size_t e = 0; e < ne; ++e) {
+    double w;
+    if (!coupled(topology, cotan, fixed, t, e, w)) continue;
+    const uint32_t p = topology.edges[e][0], q = topology.edges[e][1];
+    a.diagonal[p] += w;
+    a.diagonal[q] += w;
+    const Vec3 pull = w * (x[q] - x[p]);
+    if (!fixed[p]) system.rhs[p] += pull;
+    if (!fixed[q]) system.rhs[q] -= pull;
+    if (!fixed[p] && !fixed[q]) ++a.offsets[p + 1], ++a.offsets[q + 1];
+  }
+  for (size_t v = 0; v < nv; ++v) {
+    if (fixed[v]) a.diagonal[v] = 1;
+    a.offsets[v + 1] += a.offsets[v];
+  }
+  a.columns.resize(a.offsets[nv]);
+  a.weights.resize(a.offsets[nv]);
+  std::vector<uint32_t> fill(a.offsets.begin(), a.offsets.end() - 1);
+  for (size_t e = 0; e < ne; ++e) {
+    double w;
+    const uint32_t p = topology.edges[e][0], q = topology.edges[e][1];
+    if (!coupled(topology, cotan, fixed, t, e, w) || fixed[p] || fixed[q]) continue;
+    a.columns[fill[p]] = q, a.weights[fill[p]++] = -w;  // no sign bits: both fields alike
+    a.columns[fill[q]] = p, a.weights[fill[q]++] = -w;
+  }
+  return system;
+}
+
+// out = A d for a step's matrix A (step_system), in double, in edge order.
+static void step_product(const Topology& topology, const CotanWeights& cotan, const std::vector<uint8_t>& fixed,
+                         double t, const std::vector<Vec3>& d, std::vector<Vec3>& out) {
+  for (size_t v = 0; v < d.size(); ++v) out[v] = fixed[v] ? d[v] : Vec3(cotan.vertex_mass[v] * d[v]);
+  for (size_t e = 0; e < topology.edges.size(); ++e) {
+    double w;
+    if (!coupled(topology, cotan, fixed, t, e, w)) continue;
+    const uint32_t p = topology.edges[e][0], q = topology.edges[e][1];
+    const Vec3 pull = w * (d[p] - d[q]);
+    if (!fixed[p]) out[p] += pull;
+    if (!fixed[q]) out[q] -= pull;
+  }
+}
+
+// Solves a step's system with SignedPairSolver and adds the displacements
+// to x; false, with x untouched, if a solve does not converge within
+// kPairedBudget, a coordinate is not within kTolerance after kRefinements
+// refinements, or the system is not one the solver takes. product(d, out)
+// sets out = A d in double. report(within) gets the fractions of the step,
+// rising from kSetUpShare.
+//
+// Each coordinate is solved to kFirstTolerance, then refined from its
+// residual in double until within kTolerance (one refinement on every mesh
+// measured); the solves are queued by coordinate and taken two at a time,
+// (x, y), (z, x's refinement), (y's, z's): three solves of the pair, no lane
+// idle, where (x, y), (z, nothing) and the two refinements took four
+// (dragon, 3 steps, kTolerance 1e-9: 136 → 115 iterations).
+static bool solve_step_paired(StepSystem& system, std::vector<Vec3>& x,
+                              const std::function<void(const std::vector<Vec3>&, std::vector<Vec3>&)>& product,
+                              const std::function<void(double)>& report) {
+  const size_t nv = x.size();
+  if (nv > SignedPairMatrix::kColumnMask) return false;
+  for (const double d : system.matrix.diagonal)
+    if (!(d > 0) || !std::isfinite(d)) return false;  // the fallback throws as SpdSolver does
+  double setup = kSetUpShare;
+  const auto pause = [&] {
+    setup = 0.5 * (setup + kSolveStart);
+    report(setup);
+  };
+  const SignedPairSolver solver(std::move(system.matrix), true, pause);
+  Vec3 rhs_norm2 = Vec3::Zero();
+  for (const Vec3& b : system.rhs) rhs_norm2 += b.cwiseAbs2();
+  std::vector<double> b(2 * nv), solved(2 * nv);
+  std::vector<Vec3> d(nv, Vec3::Zero()), r = system.rhs;
+  // The coordinates still to solve, in order, each with the relative
+  // residual it needs (kFirstTolerance from 0) and its solves so far.
+  std::vector<int> queue = {0, 1, 2};
+  double need[3] = {kFirstTolerance, kFirstTolerance, kFirstTolerance};
+  int solves[3] = {0, 0, 0};
+  int iterations = 0;  // in the step, for the progress
+  while (!queue.empty()) {
+    const int first = queue[0], second = queue.size() > 1 ? queue[1] : -1;
+    queue.erase(queue.begin(), queue.begin() + (second < 0 ? 1 : 2));
+    parallel_for(nv, [&](size_t begin, size_t end) {
+      for (size_t v = begin; v < end; ++v) b[2 * v] = r[v][first], b[2 * v + 1] = second < 0 ? 0.0 : r[v][second];
+    });
+    std::fill(solved.begin(), solved.end(), 0.0);
+    const int before = iterations;
+    const double tolerance = second < 0 ? need[first] : std::min(need[first], need[second]);
+    if (!solver.solve(b, solved, tolerance, kPairedBudget, [&](int i) {
+          iterations = before + i;
+          report(kSolveStart + (1 - kSolveStart) * iterations / (iterations + kTypicalIterations));
+        }))
+      return false;
+    parallel_for(nv, [&](size_t begin, size_t end) {
+      for (size_t v = begin; v < end; ++v) {
+        d[v][first] += solved[2 * v];
+        if (second >= 0) d[v][second] += solved[2 * v + 1];
+      }
+    });
+    product(d, r);
+    Vec3 r_norm2 = Vec3::Zero();
+    for (size_t v = 0; v < nv; ++v) r[v] = system.rhs[v] - r[v], r_norm2 += r[v].cwiseAbs2();
+    for (const int k : {first, second}) {
+      if (k < 0 || !(r_norm2[k] > kTolerance * kTolerance * rhs_norm2[k])) continue;
+      if (++solves[k] > kRefinements) return false;
+      need[k] = std::min(0.5, kTolerance / std::sqrt(r_norm2[k] / rhs_norm2[k]));
+      queue.push_back(k);
+    }
+  }
+  parallel_for(nv, [&](size_t begin, size_t end) {
+    for (size_t v = begin; v < end; ++v) x[v] += d[v];
+  });
+  return true;
+}
+
+// The same system with SpdSolver (CG, then a factorization): where the pair
+// does not converge.
+static void solve_step_fallback(const StepSystem& system, std::vector<Vec3>& x) {
+  const SignedPairMatrix& a = system.matrix;
+  const size_t nv = x.size();
+  Triplets triplets;
+  triplets.reserve(nv + a.columns.size());
+  Eigen::MatrixXd rhs(nv, 3);
+  for (size_t v = 0; v < nv; ++v) {
+    for (uint32_t k = a.offsets[v]; k < a.offsets[v + 1]; ++k) triplets.emplace_back(v, a.columns[k], a.weights[k]);
+    triplets.emplace_back(v, v, a.diagonal[v]);
+    rhs.row(v) = system.rhs[v].transpose();
+  }
+  std::vector<Vec3> d(nv, Vec3::Zero());
+  solve_positions(triplets, rhs, d);
+  for (size_t v = 0; v < nv; ++v) x[v] += d[v];
+}
+
 std::vector<Vec3> presmooth_surface(const Mesh& mesh, const Topology& topology, const PresmoothOptions& options) {
   const int steps = options.steps ? *options.steps : automatic_presmooth_steps(surface_noise_level(mesh, topology));
   return presmooth_surface(mesh, topology, options.time_step, std::vector<int>(mesh.positions.size(), steps));
@@ -406,46 +592,25 @@ std::vector<Vec3> presmooth_surface(const Mesh& mesh, const Topology& topology, 
       moving[v] = vertex_steps[v] > step;
       fixed[v] = topology.boundary_vertex[v] || !moving[v];
     }
-    // A step: its set-up and boundary curves, then three solves, a quarter each.
-    const auto report = [&](double quarters) {
-      if (progress) progress((step + quarters / 4) / steps);
+    // Fractions of the step: kSetUpShare after the boundary curves and the
+    // weights, then the solver's set-up and iterations (solve_step_paired).
+    const auto report = [&](double within) {
+      if (progress) progress((step + within) / steps);
     };
     if (!along.empty()) smooth_boundary_curves(x, mesh, along, moving, t, h);
     // Weights from the current surface: mean-curvature flow, linearised per step.
     const CotanWeights cotan = cotan_weights(x, mesh, topology);
-    report(0.5);
-    // (M + tL) x' = M x on interior vertices; boundary ones (just smoothed
-    // along their curve) are held and move to the right side.
-    std::vector<double> diagonal(cotan.vertex_mass);
-    Eigen::MatrixXd rhs(nv, 3);
-    for (size_t v = 0; v < nv; ++v) rhs.row(v) = cotan.vertex_mass[v] * x[v].transpose();
-    Triplets triplets;
-    triplets.reserve(nv + 2 * topology.edges.size());
-    for (size_t e = 0; e < topology.edges.size(); ++e) {
-      const double w = t * cotan.edge_weight[e];
-      if (w == 0) continue;
-      const uint32_t p = topology.edges[e][0], q = topology.edges[e][1];
-      if (fixed[p] && fixed[q]) continue;
-      diagonal[p] += w;
-      diagonal[q] += w;
-      if (fixed[q])
-        rhs.row(p) += w * x[q].transpose();
-      else if (fixed[p])
-        rhs.row(q) += w * x[p].transpose();
-      else {
-        triplets.emplace_back(p, q, -w);
-        triplets.emplace_back(q, p, -w);
-      }
+    report(kSetUpShare);
+    // (M + tL) x' = M x on interior vertices, in displacements; boundary
+    // ones (just smoothed along their curve) are held and move to the right side.
+    StepSystem system = step_system(x, topology, cotan, fixed, t);
+    const auto product = [&](const std::vector<Vec3>& d, std::vector<Vec3>& out) {
+      step_product(topology, cotan, fixed, t, d, out);
+    };
+    if (!solve_step_paired(system, x, product, [&](double within) { report(within); })) {
+      system = step_system(x, topology, cotan, fixed, t);
+      solve_step_fallback(system, x);
     }
-    for (size_t v = 0; v < nv; ++v) {
-      if (fixed[v]) {
-        triplets.emplace_back(v, v, 1.0);
-        rhs.row(v) = x[v].transpose();
-      } else {
-        triplets.emplace_back(v, v, diagonal[v]);
-      }
-    }
-    solve_positions(triplets, rhs, x, [&](int axis) { report(1 + axis); });
   }
   return x;
 }

@@ -65,19 +65,25 @@ int automatic_presmooth_steps(double noise_level);
 /// tests/quality broke 4–6 edges from the boundary when it was held fixed).
 ///
 /// Expects coordinates like the Pipeline's working frame (mesh/frame.h):
-/// centred, mean edge about 1. Each step's solve stops at a residual relative
-/// to its right-hand side M·x (sparse_solver.h); far from the origin M·x is
-/// dominated by the translation, and on a tiny mesh by the held boundary rows
-/// (coefficient 1 against masses of order h²), so the solve stopped before it
-/// had smoothed anything: translated by 4.3e6 units or scaled by 1e-6 a noisy
-/// field got hundreds of spurious lines (issue 13).
+/// centred, mean edge about 1. Each step solves for the displacement,
+/// (M + tL) d = −tL x, by SignedPairSolver (numerics/paired_cg.h; SpdSolver
+/// where it does not converge), its residual relative to −tL x, which is
+/// formed from coordinate differences: neither a translation nor the scale
+/// enters it. (Issue 13: the solve for x' itself stopped at a residual
+/// relative to M·x, which far from the origin is dominated by the
+/// translation and on a tiny mesh by the held boundary rows, so it stopped
+/// before it had smoothed anything: translated by 4.3e6 units or scaled by
+/// 1e-6 a noisy field got hundreds of spurious lines.) The result differs
+/// from an exact solve by at most ≈ 1e-6 mean edges (presmooth.cpp says how
+/// measured).
 std::vector<Vec3> presmooth_surface(const Mesh& mesh, const Topology& topology, const PresmoothOptions& options);
 /// The same with a step count per vertex (the Pipeline's automatic choice,
 /// made per component): vertex v moves in the first vertex_steps[v] steps
 /// and is held afterwards. time_step as in PresmoothOptions. progress, if
-/// set, is called on the calling thread after each step's set-up and each
-/// coordinate's solve (fractions of all steps; a solve is not interrupted)
-/// and may throw to abandon the smoothing.
+/// set, is called on the calling thread after each step's set-up, between
+/// the solver's set-up parts and after every iteration of its solves, with
+/// fractions of all steps that rise strictly, and may throw to abandon the
+/// smoothing (nothing is kept; the mesh is not touched).
 std::vector<Vec3> presmooth_surface(const Mesh& mesh, const Topology& topology, double time_step,
                                     const std::vector<int>& vertex_steps,
                                     const std::function<void(double)>& progress = {});

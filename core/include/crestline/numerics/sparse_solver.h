@@ -1,9 +1,12 @@
 #pragma once
-// The one place Crestline solves linear systems. Every system it solves is
-// M + t·L with a lumped mass matrix M and a (sign-corrected) cotan
-// Laplacian with non-negative weights, hence symmetric positive definite and
-// well conditioned for time steps of a few squared edge lengths: conjugate
-// gradients beat a factorization there, in time and memory. Sliver triangles
+// The general solver for Crestline's systems, M + t·L with a lumped mass
+// matrix M and a (sign-corrected) cotan Laplacian with non-negative
+// weights, hence symmetric positive definite: Eigen's CG, then a
+// factorization. The large solves, extremality smoothing and pre-smoothing,
+// run on SignedPairSolver (numerics/paired_cg.h) and come here only where
+// it does not converge; the boundary curves of pre-smoothing (1-D, small)
+// come here always. Well conditioned for time steps of a few squared edge
+// lengths, CG beats a factorization in time and memory. Sliver triangles
 // (marching-cubes scans) break that: a vertex whose cotan weights dwarf its
 // mass makes the condition number huge, and CG needs thousands of
 // iterations. The solver then factorizes once (sparse LDLᵀ) and reuses it.
