@@ -337,6 +337,9 @@ int main(int argc, char** argv) {
   mallopt(M_MMAP_THRESHOLD, 1 << 20);
   mallopt(M_TRIM_THRESHOLD, 1 << 20);
 
+  for (const std::string& name : args.only)
+    if (std::none_of(kMeshes.begin(), kMeshes.end(), [&](const MeshSpec& spec) { return spec.name == name; }))
+      return usage(("no benchmark mesh is called " + name).c_str());
   std::vector<MeshResult> results;
   for (const MeshSpec& spec : kMeshes) {
     const bool named = std::find(args.only.begin(), args.only.end(), spec.name) != args.only.end();
