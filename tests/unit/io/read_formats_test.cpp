@@ -5,8 +5,10 @@
 #include <Eigen/Geometry>
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -220,6 +222,53 @@ TEST_CASE("OFF: comments, counts on the keyword line, polygons", "[io][off]") {
   CHECK(error_kind("big.off", bytes_of("OFF\n900000000 1 0\n0 0 0\n")) == ErrorKind::TooLarge);
   CHECK(error_kind("short.off", bytes_of("OFF\n1000 1 0\n0 0 0\n")) == ErrorKind::InvalidInput);
   CHECK(error_kind("range.off", bytes_of("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n")) == ErrorKind::InvalidInput);
+}
+
+TEST_CASE("OFF text numbers read as strtod reads them, bit for bit (PLY and STL text share the parse)",
+          "[io][off][numbers]") {
+  // The readers take plain decimals by fast_float and the rest by strtod:
+  // every word must give strtod's double (sign of zero, subnormals, the
+  // largest finite, hexadecimal, '+', long mantissas), and 3,000 random
+  // decimals of 1 to 17 digits and exponents over the whole range.
+  std::vector<std::string> words = {"0",
+                                    "-0",
+                                    "0.0",
+                                    "+1.5",
+                                    "1e-320",
+                                    "4.9406564584124654e-324",
+                                    "2.2250738585072011e-308",
+                                    "1.7976931348623157e308",
+                                    "0x1p3",
+                                    "-0x1.8p-2",
+                                    "0.1",
+                                    "123456789012345678901234567890",
+                                    "1e22",
+                                    "1e23",
+                                    "9007199254740993",
+                                    "-2.5e-7",
+                                    ".5",
+                                    "5.",
+                                    "1E5",
+                                    "1e+05"};
+  std::mt19937_64 random(7);
+  for (int i = 0; i < 3000; ++i) {
+    const int digits = 1 + int(random() % 17), exponent = int(random() % 640) - 330;
+    std::string word = random() % 2 ? "-" : "";
+    for (int d = 0; d < digits; ++d) word += char('0' + random() % 10);
+    word += "e" + std::to_string(exponent);
+    words.push_back(word);
+  }
+  while (words.size() % 3) words.push_back("1");
+  std::string text = "OFF\n" + std::to_string(words.size() / 3) + " 1 0\n";
+  for (size_t i = 0; i < words.size(); i += 3) text += words[i] + " " + words[i + 1] + " " + words[i + 2] + "\n";
+  text += "3 0 1 2\n";
+  const TriangleSoup soup = read_text("n.off", text);
+  REQUIRE(soup.positions.size() == words.size());
+  for (size_t i = 0; i < words.size(); ++i) {
+    const double expected = std::strtod(words[i].c_str(), nullptr);
+    INFO(words[i]);
+    CHECK(std::memcmp(&soup.positions[i], &expected, sizeof expected) == 0);
+  }
 }
 
 TEST_CASE("format detection reads the content before the extension", "[io][detect]") {
