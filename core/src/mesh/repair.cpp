@@ -147,8 +147,12 @@ std::vector<uint32_t> weld(const std::vector<Vec3>& points, const std::vector<ui
   const double tol2 = tolerance * tolerance;
   auto near = [&](uint32_t j, uint32_t i) { return (points[j] - points[i]).squaredNorm() <= tol2; };
   if (one_thread) {
-    std::vector<uint64_t> keys(mask + 1);
-    std::vector<uint32_t> head(mask + 1, kNone), next(points.size(), kNone);
+    // A slot's key is read only once its head is set, a vertex's next only
+    // once it is in a list: neither is filled first (they were 21 of the 30 M
+    // instructions of memset here at 1.1M triangles, 2205fb1).
+    UninitialisedVector<uint64_t> keys(mask + 1);
+    std::vector<uint32_t> head(mask + 1, kNone);
+    UninitialisedVector<uint32_t> next(points.size());
     // The slot of a cell (empty if head == kNone); cells whose keys collide
     // share a list, which only costs distance tests.
     auto slot = [&](uint64_t key) {
