@@ -47,7 +47,7 @@ Pipeline::Pipeline(Mesh mesh, Topology topology) : input_(std::move(mesh)), topo
     if (topology_.triangle_edges.size() != input_.triangles.size()) topology_ = build_topology(input_);
     topology_valid_ = true;
   }
-  frames_ = component_frames(input_);
+  frames_ = component_frames(input_, topology_);
   const Mesh& local = local_input();
   double sum = 0;
   size_t count = 0;

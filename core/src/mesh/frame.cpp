@@ -16,7 +16,7 @@ uint32_t ComponentFrames::largest() const {
   return static_cast<uint32_t>(std::max_element(triangle_count.begin(), triangle_count.end()) - triangle_count.begin());
 }
 
-ComponentFrames component_frames(const Mesh& mesh) {
+ComponentFrames component_frames(const Mesh& mesh, const Topology& topology) {
   const size_t nv = mesh.positions.size(), nt = mesh.triangles.size();
   const size_t threads = detail::part_count(nt);
   // Union-find over the vertices, always linking the larger root under the
@@ -106,31 +106,25 @@ ComponentFrames component_frames(const Mesh& mesh) {
     if (!(extent[c] > 0)) extent[c] = 1;  // a single point: nothing to scale
   }
   // Mean edge length on coordinates divided by the extent (|y| ≤ 1: squares
-  // neither overflow nor underflow), then scaled back. The sums add in
-  // triangle order on one thread (rounding depends on the order); on
-  // several, the lengths are measured on every thread first.
-  auto edge_length = [&](const Triangle& t, int k, uint32_t c) {
-    return ((mesh.positions[t[(k + 1) % 3]] - mesh.positions[t[k]]) / extent[c]).norm();
-  };
+  // neither overflow nor underflow), then scaled back. Each edge is measured
+  // once, on every thread (a side's length has the same bits either way
+  // round), and the sums add the triangles' sides in triangle order on the
+  // calling thread (rounding depends on the order). Measuring each side
+  // instead, at 1.1M triangles: 12 M instructions more, on one thread and on
+  // the calling one of two, and on several twice the memory (26 MB).
+  const size_t ne = topology.edges.size();
+  UninitialisedVector<double> length(ne);
+  parallel_for(ne, [&](size_t begin, size_t end) {
+    for (size_t e = begin; e < end; ++e) {
+      const auto [a, b] = topology.edges[e];
+      length[e] = ((mesh.positions[b] - mesh.positions[a]) / extent[f.vertex_component[a]]).norm();
+    }
+  });
   std::vector<double> sum(n, 0.0);
-  if (threads == 1) {
-    for (const Triangle& t : mesh.triangles) {
-      const uint32_t c = f.vertex_component[t[0]];
-      ++f.triangle_count[c];
-      for (int k = 0; k < 3; ++k) sum[c] += edge_length(t, k, c);
-    }
-  } else {
-    UninitialisedVector<double> length(3 * nt);
-    parallel_for(nt, [&](size_t begin, size_t end) {
-      for (size_t t = begin; t < end; ++t)
-        for (int k = 0; k < 3; ++k)
-          length[3 * t + k] = edge_length(mesh.triangles[t], k, f.vertex_component[mesh.triangles[t][0]]);
-    });
-    for (size_t t = 0; t < nt; ++t) {
-      const uint32_t c = f.vertex_component[mesh.triangles[t][0]];
-      ++f.triangle_count[c];
-      for (int k = 0; k < 3; ++k) sum[c] += length[3 * t + k];
-    }
+  for (size_t t = 0; t < nt; ++t) {
+    const uint32_t c = f.vertex_component[mesh.triangles[t][0]];
+    ++f.triangle_count[c];
+    for (int k = 0; k < 3; ++k) sum[c] += length[topology.triangle_edges[t][k]];
   }
   f.scale.resize(n);
   for (size_t c = 0; c < n; ++c) {

@@ -17,7 +17,8 @@ using namespace crestline;
 namespace {
 
 ComponentFrames frames_on(int threads, const Mesh& mesh) {
-  return testing::on_threads(threads, [&] { return component_frames(mesh); });
+  const Topology topology = build_topology(mesh);
+  return testing::on_threads(threads, [&] { return component_frames(mesh, topology); });
 }
 
 // The frames as one serial pass computes them (the code before the frames

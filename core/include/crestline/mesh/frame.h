@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "crestline/mesh/mesh.h"
+#include "crestline/mesh/topology.h"
 
 namespace crestline {
 
@@ -37,11 +38,12 @@ struct ComponentFrames {
   Vec3 to_user(const Vec3& local, uint32_t component) const { return centre[component] + scale[component] * local; }
 };
 
-/// Splits a repaired mesh into components and measures each one's frame.
-/// Never overflows or underflows for finite coordinates whose bounding box is
-/// finite: the mean edge is measured on coordinates first divided by the
-/// component's extent.
-ComponentFrames component_frames(const Mesh& mesh);
+/// Splits a repaired mesh into components and measures each one's frame;
+/// `topology` is the mesh's (build_topology), whose edges are each measured
+/// once. Never overflows or underflows for finite coordinates whose bounding
+/// box is finite: the mean edge is measured on coordinates first divided by
+/// the component's extent.
+ComponentFrames component_frames(const Mesh& mesh, const Topology& topology);
 
 /// The mesh in local coordinates (same connectivity).
 Mesh to_local(const Mesh& mesh, const ComponentFrames& frames);
