@@ -95,8 +95,9 @@ struct PipelineStats {
   double mean_edge_length = 0;                          // over the whole input, in its units
   size_t smoothing_iterations = 0;                      // the smoothing's solver iterations, all steps
   double seconds[static_cast<int>(Stage::Count)] = {};  // last run time per stage
-  // Around the stages: the Pipeline constructor times topology (0 when given
-  // repair_mesh's); the caller fills in reading, repair and writing (0 where
+  // Around the stages: the Pipeline constructor times itself as topology
+  // (the adjacency unless repair_mesh's is given, the component frames and
+  // noise levels); the caller fills in reading, repair and writing (0 where
   // it did none).
   double read_seconds = 0, repair_seconds = 0, topology_seconds = 0, write_seconds = 0;
 };
