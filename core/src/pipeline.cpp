@@ -160,6 +160,13 @@ void Pipeline::compact_crease_angles() {
   crease_angles_compact_ = true;
 }
 
+// The crease selection's checkpoints: the measure's progress at its end
+// (the selection follows it; its time is not known beforehand).
+static std::function<void()> at_measure_end(const std::function<void(double)>& measure_progress) {
+  if (!measure_progress) return {};
+  return [&measure_progress] { measure_progress(1.0); };
+}
+
 Pipeline::BoundarySelection Pipeline::select_boundaries(const std::function<void(double)>& measure_progress) {
   BoundarySelection out;
   if (!boundaries_dirty_) return out;
@@ -169,7 +176,8 @@ Pipeline::BoundarySelection Pipeline::select_boundaries(const std::function<void
     measure_creases(measure_progress);
     CreaseOptions automatic = options_.creases;
     automatic.angle = -1;
-    CreaseResult selected = select_creases(local_input(), topology, crease_angles_, automatic, 1.0);
+    CreaseResult selected =
+        select_creases(local_input(), topology, crease_angles_, automatic, 1.0, at_measure_end(measure_progress));
     edges = selected.edges;
     // With the automatic angle the creases stage selects exactly these: kept for it.
     if (options_.creases.angle < 0 && creases_dirty_) out.automatic = std::move(selected);
@@ -247,7 +255,8 @@ double Pipeline::select_crease_lines(std::optional<CreaseResult> automatic,
     // In the working frame (every component's mean edge 1, as the spur and
     // turn lengths expect), then mapped back per component.
     creases_ = automatic ? std::move(*automatic)
-                         : select_creases(local_input(), topology(), crease_angles_, options_.creases, 1.0);
+                         : select_creases(local_input(), topology(), crease_angles_, options_.creases, 1.0,
+                                          at_measure_end(measure_progress));
     for (size_t i = 0; i < creases_.lines.size(); ++i) {
       const uint32_t component = frames_.vertex_component[creases_.line_vertex[i]];
       creases_.lines[i] = to_user(std::move(creases_.lines[i]), frames_, component);
@@ -281,7 +290,8 @@ void Pipeline::run(const ProgressCallback& progress) {
   // The creases stage starts here, where its work is done (a measure over
   // every edge, seconds on a noisy scan), so that its progress and a cancel
   // come before the smooth stages, not after them; the measure reports its
-  // fractions as the stage's up to kCreaseMeasureShare. Without creases due
+  // fractions as the stage's up to kCreaseMeasureShare, the selections at
+  // kCreaseMeasureShare (between their rounds and bridge walks). Without creases due
   // (a boundary option changed) a measure reports fractions but no start.
   constexpr double kCreaseMeasureShare = 0.9;
   if (creases_due && progress && !progress(Stage::Creases, 0.0)) throw Cancelled();

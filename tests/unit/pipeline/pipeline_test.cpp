@@ -277,49 +277,66 @@ TEST_CASE("curvature, extremality and the smoothing's set-up report progress, an
   }
 }
 
-TEST_CASE("the crease measure reports before the smooth stages, and a cancel there keeps nothing", "[pipeline]") {
+TEST_CASE("the crease measure and selection report before the smooth stages, and a cancel there keeps nothing",
+          "[pipeline]") {
   // 45,000 triangles, 67,650 edges: the measure reports after the noise
   // level, after each of the 2 filter steps and after the first of two
   // blocks of edges, in shares 1, 1, 1 and 3 (the edges' loop with the filter
-  // runs) of 6, as 0.9 of the creases stage.
+  // runs) of 6, as 0.9 of the creases stage; then the selection (with the
+  // filter on a clean surface it bridges gaps) at 0.9 between its rounds.
   const Mesh mesh = jittered_grid_150();
   const size_t edges = build_topology(mesh).edges.size();
   REQUIRE(edges > 65536);
   REQUIRE(edges <= 2 * 65536);
   PipelineOptions o;
   o.creases.normal_filter_steps = 2;
+  struct Reports {
+    std::vector<double> measure;
+    int selection = 0;
+  };
+  const auto run = [](Pipeline& p) {
+    Reports r;
+    std::vector<Stage> started;
+    p.run([&](Stage s, double fraction) {
+      if (fraction == 0) started.push_back(s);
+      if (s == Stage::Creases && fraction > 0) {
+        CHECK(started == std::vector<Stage>{Stage::Creases});  // before any smooth stage
+        if (fraction < 0.9) {
+          r.measure.push_back(fraction);
+        } else {
+          CHECK(fraction == 0.9);
+          ++r.selection;
+        }
+      }
+      return true;
+    });
+    CHECK(started.size() == static_cast<size_t>(Stage::Count));
+    return r;
+  };
   Pipeline reference(mesh);
   reference.set_options(o);
-  std::vector<double> fractions;
-  std::vector<Stage> started;
-  reference.run([&](Stage s, double fraction) {
-    if (fraction == 0) started.push_back(s);
-    if (s == Stage::Creases && fraction > 0) {
-      CHECK(started == std::vector<Stage>{Stage::Creases});  // before any smooth stage
-      fractions.push_back(fraction);
-    }
-    return true;
-  });
-  CHECK(started.size() == static_cast<size_t>(Stage::Count));
+  const Reports reported = run(reference);
   const double block = 3.0 * 65536 / static_cast<double>(edges);
   const std::vector<double> expected = {0.9 * (1.0 / 6), 0.9 * (2.0 / 6), 0.9 * (3.0 / 6), 0.9 * ((3.0 + block) / 6)};
-  CHECK(fractions == expected);
+  CHECK(reported.measure == expected);
+  CHECK(reported.selection >= 1);
   REQUIRE(!reference.lines().empty());
 
-  // Cancelled inside the filter: nothing after it, and the next run measures
-  // again and gives the same lines and creases.
-  Pipeline p(mesh);
-  p.set_options(o);
-  cancel_at_report(p, Stage::Creases, 2);
-  fractions.clear();
-  p.run([&](Stage s, double fraction) {
-    if (s == Stage::Creases && fraction > 0) fractions.push_back(fraction);
-    return true;
-  });
-  CHECK(fractions == expected);
-  REQUIRE(p.lines().size() == reference.lines().size());
-  for (size_t i = 0; i < p.lines().size(); ++i) CHECK(p.lines()[i].points == reference.lines()[i].points);
-  CHECK(p.crease_result().edges == reference.crease_result().edges);
+  // Cancelled inside the filter, or in the selection: nothing after it, and
+  // the next run gives the same lines and creases, measuring again, or not
+  // where the measure had finished (its angles are kept).
+  for (const int at : {2, 5}) {
+    INFO("cancelled at the creases' report " << at);
+    Pipeline p(mesh);
+    p.set_options(o);
+    cancel_at_report(p, Stage::Creases, at);
+    const Reports again = run(p);
+    CHECK(again.measure == (at == 5 ? std::vector<double>{} : expected));
+    CHECK(again.selection == reported.selection);
+    REQUIRE(p.lines().size() == reference.lines().size());
+    for (size_t i = 0; i < p.lines().size(); ++i) CHECK(p.lines()[i].points == reference.lines()[i].points);
+    CHECK(p.crease_result().edges == reference.crease_result().edges);
+  }
 }
 
 TEST_CASE("the smoothing's progress keeps rising with the most steps the parameters allow", "[pipeline]") {

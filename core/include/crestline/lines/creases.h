@@ -156,7 +156,12 @@ struct CreaseResult {
 /// where exactly two crease edges meet, splits chains at corners (three or
 /// more), at turns sharper than max_turn and where the sign changes, and drops
 /// short weak spurs (creases.cpp). Reads only `angles`: no curvature.
+/// checkpoint, if set, is called on the calling thread between the
+/// selection's rounds and every 256 free ends its gap bridging walks from
+/// (a noisy scan's selection runs for tenths of a second), and may throw to
+/// abandon it.
 CreaseResult select_creases(const Mesh& mesh, const Topology& topology, const CreaseAngles& angles,
-                            const CreaseOptions& options, double mean_edge_length);
+                            const CreaseOptions& options, double mean_edge_length,
+                            const std::function<void()>& checkpoint = {});
 
 }  // namespace crestline
