@@ -57,6 +57,12 @@ Mesh jittered_grid_150() {
       .mesh;
 }
 
+// p's kept lines are reference's, point for point.
+void same_lines(const Pipeline& p, const Pipeline& reference) {
+  REQUIRE(p.lines().size() == reference.lines().size());
+  for (size_t i = 0; i < p.lines().size(); ++i) CHECK(p.lines()[i].points == reference.lines()[i].points);
+}
+
 // Runs p and has its progress callback cancel at the `report`-th report of
 // `stage` with a fraction above 0; checks that the run stops there (no
 // later report).
@@ -188,8 +194,7 @@ TEST_CASE("a cancel just before the singular stage resumes with the traced graph
   CHECK_THROWS_AS(p.run([](Stage s, double) { return s != Stage::Singular; }), Cancelled);
   CHECK(resumed_at(p) == Stage::Singular);
   REQUIRE(!reference.lines().empty());
-  REQUIRE(p.lines().size() == reference.lines().size());
-  for (size_t i = 0; i < p.lines().size(); ++i) CHECK(p.lines()[i].points == reference.lines()[i].points);
+  same_lines(p, reference);
 }
 
 TEST_CASE("progress moves inside smoothing and tracing, and a cancel there stops within one iteration", "[pipeline]") {
@@ -272,8 +277,7 @@ TEST_CASE("curvature, extremality and the smoothing's set-up report progress, an
     cancel_at_report(p, at, wanted);
     CHECK(resumed_at(p) == at);
     p.run();
-    REQUIRE(p.lines().size() == reference.lines().size());
-    for (size_t i = 0; i < p.lines().size(); ++i) CHECK(p.lines()[i].points == reference.lines()[i].points);
+    same_lines(p, reference);
   }
 }
 
@@ -333,8 +337,7 @@ TEST_CASE("the crease measure and selection report before the smooth stages, and
     const Reports again = run(p);
     CHECK(again.measure == (at == 5 ? std::vector<double>{} : expected));
     CHECK(again.selection == reported.selection);
-    REQUIRE(p.lines().size() == reference.lines().size());
-    for (size_t i = 0; i < p.lines().size(); ++i) CHECK(p.lines()[i].points == reference.lines()[i].points);
+    same_lines(p, reference);
     CHECK(p.crease_result().edges == reference.crease_result().edges);
   }
 }
@@ -389,8 +392,7 @@ TEST_CASE(
   REQUIRE(fractions[7] > 0.125);  // the eighth report: an iteration of the first step's solves
   cancel_at_report(p, Stage::Presmooth, 8);
   CHECK(resumed_at(p) == Stage::Presmooth);
-  REQUIRE(p.lines().size() == reference.lines().size());
-  for (size_t i = 0; i < p.lines().size(); ++i) CHECK(p.lines()[i].points == reference.lines()[i].points);
+  same_lines(p, reference);
 }
 
 TEST_CASE("the lines are identical for 1 and 2 threads", "[pipeline][threads]") {
