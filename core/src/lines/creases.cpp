@@ -8,6 +8,7 @@
 #include "crestline/mesh/presmooth.h"
 #include "crestline/numerics/constants.h"
 #include "crestline/numerics/parallel.h"
+#include "crestline/numerics/portable_math.h"
 
 namespace crestline {
 namespace {
@@ -256,28 +257,6 @@ void add_one_ring(const Mesh& mesh, const Topology& topology, const std::vector<
   to.erase(std::unique(to.begin(), to.end()), to.end());
 }
 
-// atan2(y, x) for y ≥ 0 (an angle in [0, π]) from +, −, ×, ÷ and sqrt only,
-// which IEEE rounds exactly everywhere: glibc's and Emscripten's atan2
-// differ in the last bit for some arguments, and the CLI and the page must
-// write the same bytes. atan(t) = π/6 + atan((√3 t − 1)/(t + √3)) brings t ≤ 1
-// below tan(π/12), where 17 terms of the series leave less than 1e-19.
-double portable_angle(double y, double x) {
-  constexpr double kSqrt3 = 1.7320508075688772;
-  if (!(y > 0)) return x < 0 ? kPi : 0.0;
-  if (x == 0) return kPi / 2;
-  double t = y / std::abs(x);
-  const bool inverted = t > 1;
-  if (inverted) t = 1 / t;
-  const bool shifted = t > 0.2679491924311227;  // tan(π/12)
-  if (shifted) t = (kSqrt3 * t - 1) / (t + kSqrt3);
-  const double t2 = t * t;
-  double series = 0;
-  for (int k = 16; k >= 0; --k) series = series * t2 + (k % 2 ? -1.0 : 1.0) / (2 * k + 1);
-  double a = t * series + (shifted ? kPi / 6 : 0.0);
-  if (inverted) a = kPi / 2 - a;
-  return x < 0 ? kPi - a : a;
-}
-
 struct FaceNormals {
   std::vector<Vec3> normal;  // unit (zero for degenerate faces)
   std::vector<double> area;
@@ -347,7 +326,7 @@ std::vector<Vec3> filter_normals(const Mesh& mesh, const Topology& topology, con
           if (!small_fan(topology, v)) continue;
           for (uint32_t k = topology.vertex_offsets[v]; k < topology.vertex_offsets[v + 1]; ++k) {
             const uint32_t g = topology.vertex_triangles[k];
-            const double w = faces.area[g] * std::exp(-(1.0 - guide.dot(normal[g])) * scale);
+            const double w = faces.area[g] * portable_exp(-(1.0 - guide.dot(normal[g])) * scale);
             sum += w * normal[g];
           }
         }
