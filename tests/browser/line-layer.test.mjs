@@ -1,8 +1,10 @@
 // The line layer's segments (one plain indexed draw, 8 vertices per segment)
 // against three's own LineSegments2 (one instanced draw) drawing the same
 // shown segments with the same LineMaterial settings: the same pixels in
-// Chromium's WebGL, before and after a threshold change, and the same picks;
-// a threshold's lines (the strong ones) drawn without a hidden segment.
+// Chromium's WebGL but at the rim of some joints (one cap a joint, not two),
+// before and after a threshold change, and the same picks; a threshold's
+// lines (the strong ones) drawn without a hidden segment, a start cap only
+// where an open line starts.
 import assert from 'node:assert/strict';
 import { mkdirSync, rmSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
@@ -78,13 +80,15 @@ function reference(kept, width) {
   });
 }
 
+/** Pixels of a differing from b's, those of a line in a where b has none (the background is black), and b's line pixels. */
 function compare(a, b) {
-  let differ = 0, drawn = 0;
+  let differ = 0, gained = 0, drawn = 0;
   for (let i = 0; i < a.length; i += 4) {
     if (a[i] !== b[i] || a[i + 1] !== b[i + 1] || a[i + 2] !== b[i + 2] || a[i + 3] !== b[i + 3]) differ++;
+    if (a[i] + a[i + 1] + a[i + 2] && !(b[i] + b[i + 1] + b[i + 2])) gained++;
     if (b[i + 3] && (b[i] || b[i + 1] || b[i + 2])) drawn++;
   }
-  return { differ, drawn };
+  return { differ, gained, drawn };
 }
 
 const layer = new LineLayer({ ridgeColor: colors[0], valleyColor: colors[1], width: 3.5 });
@@ -101,7 +105,9 @@ const strongKept = all.filter((l) => strengths[l] >= 25);
 layer.setKept(Uint32Array.from(strongKept));
 const strong = compare(draw([layer.group]), draw(reference(strongKept, 3.5)));
 const ranges = layer.objects.map((o) => o.geometry.drawRange.count);
-const shownIndices = layer.shownSegments.map((n) => 18 * n);
+// Each segment's body and end cap (12 indices), and a start cap (6) where an open line starts.
+const lineIndices = (l) => { const n = offsets[l + 1] - offsets[l]; return closed[l] ? 12 * n : 12 * (n - 1) + 6; };
+const shownIndices = [0, 1].map((type) => strongKept.filter((l) => types[l] === type).reduce((sum, l) => sum + lineIndices(l), 0));
 
 // Picks: every 6th pixel of the frame, every line shown.
 layer.setKept(Uint32Array.from(all));
@@ -155,12 +161,16 @@ test('the line layer draws and picks its segments as LineSegments2 does', async 
     result.segments.map((s) => 8 * s),
     'one shown flag per segment vertex',
   );
-  // A few thousand line pixels, and not one differs from LineSegments2's.
+  // A few thousand line pixels, LineSegments2's but at the rim of some joints: a cap's disc is
+  // tested once a pixel (at its centre) but covers samples, so LineSegments2's second cap on a joint
+  // adds samples of a pixel whose centre is in the disc that lie outside it (some tenths of a per cent
+  // of the pixels, a little darker, or another colour where two lines cross); no pixel gains a line.
   assert.ok(result.first.drawn > 2000 && result.second.drawn > 2000, JSON.stringify(result));
-  assert.equal(result.first.differ, 0, 'pixels differing from LineSegments2, first threshold');
-  assert.equal(result.second.differ, 0, 'pixels differing from LineSegments2, after setKept');
+  for (const [name, { differ, gained, drawn }] of Object.entries({ first: result.first, second: result.second, strong: result.strong })) {
+    assert.ok(differ <= drawn / 200, `${name}: ${differ} of ${drawn} line pixels differ from LineSegments2's`);
+    assert.equal(gained, 0, `${name}: line pixels where LineSegments2 draws none`);
+  }
   assert.ok(result.strong.drawn > 1000, JSON.stringify(result.strong));
-  assert.equal(result.strong.differ, 0, 'pixels differing from LineSegments2, the strong lines kept');
   assert.deepEqual(result.ranges, result.shownIndices, 'the draw ranges: the indices of the shown segments, no more');
   assert.ok(result.hits > 50, `${result.hits} hits over ${result.rays} rays`);
   assert.equal(result.mismatches, 0, 'rays whose hits (object, segment, point) differ from LineSegments2');

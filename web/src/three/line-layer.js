@@ -6,9 +6,15 @@
 //
 // The segments are not instanced: each one is 8 vertices of its own (the
 // LineSegmentsGeometry template's, told apart by gl_VertexID % 8) carrying
-// its two end points, drawn with LineMaterial's own shaders. The look is
-// LineSegments2's, pixel for pixel; one instanced draw of 141k segments costs
-// WebGL on the CPU (SwiftShader) about three times as much as this one.
+// its two end points, drawn with LineMaterial's own shaders; one instanced
+// draw of 141k segments costs WebGL on the CPU (SwiftShader) about three
+// times as much as this one. A segment draws its start cap (a half disc)
+// only where its line starts: elsewhere the previous segment's body and end
+// cap cover that half disc already, so the line covers the same pixels as
+// LineSegments2's, with two of each segment's six triangles and eight
+// vertices fewer to draw. Only where the dropped cap's depth (its start
+// point's) decided a depth test against another object may a pixel differ
+// (tests/browser/line-layer.test.mjs bounds it).
 import { BufferAttribute, BufferGeometry, Color, Group, InstancedInterleavedBuffer, InterleavedBuffer, InterleavedBufferAttribute } from 'three';
 import { LineMaterial } from 'three/examples/jsm/lines/LineMaterial.js';
 import { LineSegments2 } from 'three/examples/jsm/lines/LineSegments2.js';
@@ -58,26 +64,38 @@ export function segmentPositions(lines, type, origin) {
   return out;
 }
 
-/** The vertices of a segment (LineSegmentsGeometry's template) and its 6 triangles. */
+/** The vertices of a segment (LineSegmentsGeometry's template) and its triangles: end cap, body, start cap. */
 export const SEGMENT_VERTICES = 8;
 const SEGMENT_INDEX = [0, 2, 1, 2, 3, 1, 2, 4, 3, 4, 5, 3, 4, 6, 5, 6, 7, 5];
+/** The indices of a segment without its start cap (rows 0 and -1 of the template: vertices 4-7). */
+const JOINED_INDICES = 12;
+
+const START_CAP = SEGMENT_INDEX.length - JOINED_INDICES;
+
+/** Whether segment s of `positions` has the same two end points (no direction: LineMaterial draws nothing of it). */
+const degenerate = (positions, s) =>
+  positions[6 * s] === positions[6 * s + 3] && positions[6 * s + 1] === positions[6 * s + 4] && positions[6 * s + 2] === positions[6 * s + 5];
 
 /**
  * The segments `positions` (end point pairs, as segmentPositions makes them)
  * as a plain indexed geometry: 8 vertices per segment, each with both end
  * points (instanceStart, instanceEnd: one interleaved buffer) and the
  * segment's shown flag (instanceShown, 0 until setKept). `runs` ([first
- * segment, count] pairs covering every segment once) is the order of the
- * triangles in the index: a draw range over its start draws those runs only.
+ * segment, count, closed] triples covering every segment once, by default
+ * each segment alone) are the lines, each segment's end the next one's start
+ * (and the last one's the first one's when closed), in the order of the
+ * triangles in the index: a draw range over its start up to runEnds[r]
+ * draws runs 0…r only. An open run's start cap goes with its first segment
+ * of any length.
  */
 export class SegmentGeometry extends BufferGeometry {
-  constructor(positions = new Float32Array(0), runs = [[0, positions.length / 6]]) {
+  constructor(positions = new Float32Array(0), runs = Array.from({ length: positions.length / 6 }, (_, s) => [s, 1, false])) {
     super();
     this.type = 'SegmentGeometry';
     const count = positions.length / 6;
     this.segmentCount = count;
     const ends = new Float32Array(count * SEGMENT_VERTICES * 6);
-    const index = new Uint32Array(count * SEGMENT_INDEX.length);
+    const index = new Uint32Array(JOINED_INDICES * count + START_CAP * runs.length);
     for (let s = 0, o = 0; s < count; s++) {
       // The segment's end points (6 floats) on each of its vertices.
       const p = 6 * s;
@@ -90,19 +108,27 @@ export class SegmentGeometry extends BufferGeometry {
         ends[o + 5] = positions[p + 5];
       }
     }
-    let i = 0;
-    for (const [start, length] of runs) {
+    /** Run r's last index + 1. */
+    this.runEnds = new Uint32Array(runs.length);
+    let i = 0,
+      covered = 0;
+    runs.forEach(([start, length, closed], r) => {
+      let capped = closed;
       for (let s = start; s < start + length; s++) {
         const first = s * SEGMENT_VERTICES;
-        for (let k = 0; k < SEGMENT_INDEX.length; k++) index[i++] = first + SEGMENT_INDEX[k];
+        const drawn = capped ? JOINED_INDICES : SEGMENT_INDEX.length;
+        for (let k = 0; k < drawn; k++) index[i++] = first + SEGMENT_INDEX[k];
+        capped ||= !degenerate(positions, s);
       }
-    }
-    if (i !== index.length) throw new Error('SegmentGeometry: the runs do not cover every segment once');
+      covered += length;
+      this.runEnds[r] = i;
+    });
+    if (covered !== count) throw new Error('SegmentGeometry: the runs do not cover every segment once');
+    this.setIndex(new BufferAttribute(i < index.length ? index.subarray(0, i) : index, 1));
     const buffer = new InterleavedBuffer(ends, 6);
     this.setAttribute('instanceStart', new InterleavedBufferAttribute(buffer, 3, 0));
     this.setAttribute('instanceEnd', new InterleavedBufferAttribute(buffer, 3, 3));
     this.setAttribute('instanceShown', new BufferAttribute(new Uint8Array(count * SEGMENT_VERTICES), 1));
-    this.setIndex(new BufferAttribute(index, 1));
     // One entry per segment over the same floats (every 8th vertex), for LineSegments2's raycast.
     const perSegment = new InstancedInterleavedBuffer(ends, 6 * SEGMENT_VERTICES, 1);
     this.segments = new LineSegmentsGeometry();
@@ -211,20 +237,20 @@ export class LineLayer {
     // The hidden segments past it cost nothing; drawn and hidden, they cost SwiftShader about as much as shown.
     const strengths = lines.strengths;
     const byStrength = Array.from({ length: count }, (_, l) => l).sort((a, b) => (strengths ? strengths[b] - strengths[a] : 0) || a - b);
-    this.drawEnd = new Uint32Array(count); // line → the segments drawn up to and with it, in its type's order
+    this.drawEnd = new Uint32Array(count); // line → the indices drawn up to and with it, in its type's order
     const runs = [[], []];
-    const drawn = [0, 0];
+    const runLines = [[], []];
     for (const l of byStrength) {
       const type = lines.types[l];
       if (type !== RIDGE && type !== VALLEY) continue;
-      runs[type].push([this.firstSegment[l], this.segments[l]]);
-      drawn[type] += this.segments[l];
-      this.drawEnd[l] = drawn[type];
+      runs[type].push([this.firstSegment[l], this.segments[l], lines.closed[l] === 1]);
+      runLines[type].push(l);
     }
     for (const type of [RIDGE, VALLEY]) {
       const object = this.objects[type];
       object.geometry.dispose();
       const geometry = new SegmentGeometry(segmentPositions(lines, type, origin), runs[type]);
+      runLines[type].forEach((l, r) => (this.drawEnd[l] = geometry.runEnds[r]));
       object.geometry = geometry;
       object.userData.segments = geometry.segmentCount;
     }
@@ -259,7 +285,7 @@ export class LineLayer {
       this.shownSegments[this.types[l]] += this.segments[l];
       ends[this.types[l]] = Math.max(ends[this.types[l]], this.drawEnd[l]);
     }
-    for (const type of [RIDGE, VALLEY]) this.objects[type].geometry.setDrawRange(0, ends[type] * SEGMENT_INDEX.length);
+    for (const type of [RIDGE, VALLEY]) this.objects[type].geometry.setDrawRange(0, ends[type]);
     for (const type of [RIDGE, VALLEY]) {
       const [start, end] = ranges[type];
       if (end < 0) continue;
