@@ -72,6 +72,7 @@ export function renderInto(view, context, width, height) {
   gl.setScissor(0, 0, width, height);
   gl.setScissorTest(true);
   gl.setClearColor(0x000000, 0);
+  view.surface?.cullHiddenFaces(view.camera);
   gl.render(view.scene, view.camera);
   gl.setScissorTest(false);
   context.clearRect(0, 0, width, height);

@@ -188,6 +188,7 @@ export class Viewer {
 
   /** One frame, now: through the surface cache when the surface is large. */
   draw() {
+    this.surface.cullHiddenFaces(this.camera);
     const index = this.surface.mesh.geometry.index;
     if ((index ? index.count / 3 : 0) >= this.cacheMinTriangles)
       this.surfaceCache.draw(this.renderer, this.scene, this.camera, [this.lines.group, this.creases.group]);

@@ -1,0 +1,110 @@
+// The surface layer's test for culling its back faces (web/src/three/surface-layer.js,
+// facesOutward): closed surfaces facing outwards only, whatever their size,
+// place, number of parts or vertex order; the camera test of cullHiddenFaces.
+import assert from 'node:assert/strict';
+import { test } from 'node:test';
+import { DoubleSide, FrontSide, PerspectiveCamera } from 'three';
+import { SurfaceLayer, facesOutward } from '../../web/src/three/surface-layer.js';
+
+/** The unit cube's 8 corners and 12 triangles facing out. */
+const CUBE = {
+  positions: [0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1],
+  indices: [0, 2, 1, 0, 3, 2, 4, 5, 6, 4, 6, 7, 0, 1, 5, 0, 5, 4, 1, 2, 6, 1, 6, 5, 2, 3, 7, 2, 7, 6, 3, 0, 4, 3, 4, 7],
+};
+
+/** A UV sphere about `center` (closed: poles as single vertices), its triangles facing out. */
+function sphere(center = [0, 0, 0], radius = 1, rings = 12, sectors = 20) {
+  const positions = [...center.map((c, i) => c + (i === 2 ? radius : 0))];
+  for (let r = 1; r < rings; r++)
+    for (let s = 0; s < sectors; s++) {
+      const [theta, phi] = [(Math.PI * r) / rings, (2 * Math.PI * s) / sectors];
+      positions.push(
+        center[0] + radius * Math.sin(theta) * Math.cos(phi),
+        center[1] + radius * Math.sin(theta) * Math.sin(phi),
+        center[2] + radius * Math.cos(theta),
+      );
+    }
+  positions.push(center[0], center[1], center[2] - radius);
+  const ring = (r, s) => 1 + (r - 1) * sectors + (s % sectors);
+  const south = positions.length / 3 - 1;
+  const indices = [];
+  for (let s = 0; s < sectors; s++) {
+    indices.push(0, ring(1, s), ring(1, s + 1));
+    for (let r = 1; r < rings - 1; r++) indices.push(ring(r, s), ring(r + 1, s), ring(r + 1, s + 1), ring(r, s), ring(r + 1, s + 1), ring(r, s + 1));
+    indices.push(south, ring(rings - 1, s + 1), ring(rings - 1, s));
+  }
+  return { positions, indices };
+}
+
+/** Several meshes as one (indices shifted). */
+function joined(...meshes) {
+  const positions = [],
+    indices = [];
+  for (const m of meshes) {
+    const base = positions.length / 3;
+    positions.push(...m.positions);
+    indices.push(...m.indices.map((i) => i + base));
+  }
+  return { positions, indices };
+}
+
+const flipped = (m) => ({ positions: m.positions, indices: m.indices.map((_, i) => m.indices[i - (i % 3) + [0, 2, 1][i % 3]]) });
+const outward = (m) => facesOutward(Float32Array.from(m.positions), Uint32Array.from(m.indices));
+
+test('closed surfaces facing out: a cube, a sphere, several parts, at any scale and in any vertex order', () => {
+  assert.equal(outward(CUBE), true, 'the cube');
+  assert.equal(outward(sphere()), true, 'a sphere');
+  for (const scale of [1e-8, 1e8]) assert.equal(outward(sphere([0, 0, 0], scale)), true, `a sphere of radius ${scale}`);
+  assert.equal(outward(joined(CUBE, sphere([3, 0, 0]), sphere([0, 0, 0], 0.2))), true, 'a cube, a sphere and a sphere inside the cube');
+  // The vertices renumbered (reversed), and the triangles in another order: the same surface.
+  const s = sphere();
+  const n = s.positions.length / 3;
+  const reversed = {
+    positions: Array.from({ length: 3 * n }, (_, i) => s.positions[3 * (n - 1 - Math.floor(i / 3)) + (i % 3)]),
+    indices: s.indices.map((v) => n - 1 - v),
+  };
+  assert.equal(outward(reversed), true, 'the sphere renumbered');
+  const shuffled = { positions: s.positions, indices: s.indices.slice(3 * 7).concat(s.indices.slice(0, 3 * 7)) };
+  assert.equal(outward(shuffled), true, 'the sphere, triangles rotated');
+});
+
+test('not closed, or not facing out: holes, inward, a misoriented triangle, a stray triangle, nothing', () => {
+  assert.equal(outward({ positions: CUBE.positions, indices: CUBE.indices.slice(0, 33) }), false, 'a cube without a triangle');
+  assert.equal(outward({ positions: CUBE.positions, indices: CUBE.indices.slice(0, 30) }), false, 'a cube without a face');
+  assert.equal(outward(flipped(CUBE)), false, 'the cube facing in');
+  assert.equal(outward(flipped(sphere())), false, 'a sphere facing in');
+  // (A small closed part facing in beside larger ones facing out is not caught: the repair turns every closed part out.)
+  const s = sphere();
+  const oneFlipped = { positions: s.positions, indices: s.indices.map((v, i) => (i < 3 ? s.indices[[0, 2, 1][i]] : v)) };
+  assert.equal(outward(oneFlipped), false, 'one triangle turned');
+  assert.equal(outward(joined(CUBE, { positions: [5, 0, 0, 6, 0, 0, 5, 1, 0], indices: [0, 1, 2] })), false, 'a cube and a lone triangle');
+  assert.equal(outward({ positions: [], indices: [] }), false, 'no triangles');
+});
+
+test('culled only when the camera and its near plane are outside the bounding sphere of a closed surface', () => {
+  const layer = new SurfaceLayer();
+  const s = sphere();
+  const normals = new Float32Array(s.positions.length);
+  layer.setMesh({ positions: Float32Array.from(s.positions), normals, radius: 1 }, Uint32Array.from(s.indices));
+  assert.equal(layer.closed, true);
+  const camera = new PerspectiveCamera(35, 1.5, 0.05, 100);
+  const sideAt = (distance, near = 0.05) => {
+    camera.near = near;
+    camera.updateProjectionMatrix();
+    camera.position.set(0, 0, distance);
+    camera.lookAt(0, 0, 0);
+    const version = layer.material.version;
+    layer.cullHiddenFaces(camera);
+    return { side: layer.material.side, changed: layer.material.version !== version };
+  };
+  assert.deepEqual(sideAt(4), { side: FrontSide, changed: true }, 'outside');
+  assert.deepEqual(sideAt(4), { side: FrontSide, changed: false }, 'no change, no new material version');
+  assert.equal(sideAt(0.5).side, DoubleSide, 'inside the sphere');
+  assert.equal(sideAt(1.04).side, DoubleSide, 'outside, but the near plane reaches into the sphere');
+  assert.equal(sideAt(1.04, 0.001).side, FrontSide, 'just outside, with a near plane that does not');
+  assert.equal(sideAt(3, 2.5).side, DoubleSide, 'a near plane cutting the model');
+  layer.setMesh({ positions: Float32Array.from(s.positions), normals, radius: 1 }, Uint32Array.from(s.indices.slice(3)));
+  assert.equal(layer.closed, false, 'a sphere with a hole');
+  assert.equal(sideAt(4).side, DoubleSide, 'an open surface shows both sides');
+  layer.dispose();
+});
