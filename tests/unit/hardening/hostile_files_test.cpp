@@ -58,6 +58,20 @@ std::vector<uint8_t> triangle_buffer() {
   return out;
 }
 
+// A GLB of `json` (space-padded to 4 bytes) and, unless empty, a BIN chunk of `bin`.
+std::string glb_of(std::string json, const std::vector<uint8_t>& bin = {}) {
+  while (json.size() % 4) json += ' ';
+  std::string glb = "glTF";
+  auto u32 = [&](size_t v) {
+    const auto word = uint32_t(v);
+    glb.append(reinterpret_cast<const char*>(&word), 4);
+  };
+  u32(2), u32(20 + json.size() + (bin.empty() ? 0 : 8 + bin.size())), u32(json.size()), u32(0x4E4F534A);
+  glb += json;
+  if (!bin.empty()) u32(bin.size()), u32(0x004E4942), glb.append(bin.begin(), bin.end());
+  return glb;
+}
+
 std::string data_uri_buffer() {
   // base64 of triangle_buffer(), 36 bytes.
   return R"({"byteLength":36,"uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"})";
@@ -260,12 +274,24 @@ TEST_CASE("reader messages quote at most about 60 characters and no internal nam
         "exp.obj: line 2 has the number '1E-9999999999', whose exponent is out of range.");
   CHECK_NOTHROW(io::read_mesh_bytes("zeros.obj", bytes_of("v 0 0 0\nv 1e0000000000000 0 0\nv 0 1 0\nf 1 2 3\n")));
   // A GLB whose first buffer has no BIN chunk named our internal file.
-  std::string json = triangle_gltf(R"({"byteLength":36})");
-  while (json.size() % 4) json += ' ';
-  std::string glb = "glTF";
-  auto u32 = [&](uint32_t v) { glb.append(reinterpret_cast<const char*>(&v), 4); };
-  u32(2), u32(uint32_t(20 + json.size())), u32(uint32_t(json.size())), u32(0x4E4F534A);
-  glb += json;
-  const Error chunk = refusal("nobin.glb", glb);
+  const Error chunk = refusal("nobin.glb", glb_of(triangle_gltf(R"({"byteLength":36})")));
   CHECK(!contains(chunk, "crestline-"));
+}
+
+TEST_CASE("GLB: accessors read the BIN chunk in place, within the buffer's byteLength", "[hardening][hostile]") {
+  // The chunk is padded past the buffer (here by 8 bytes): the padding is no part of it.
+  std::vector<uint8_t> bin = triangle_buffer();
+  bin.resize(44, 0x7F);
+  const TriangleSoup soup =
+      io::read_mesh_bytes("padded.glb", bytes_of(glb_of(triangle_gltf(R"({"byteLength":36})"), bin)));
+  CHECK(soup.positions == std::vector<double>{0, 0, 0, 1, 0, 0, 0, 1, 0});
+  std::string past = triangle_gltf(R"({"byteLength":36})");
+  const std::string view = R"("buffer":0,"byteLength":36})";
+  past.replace(past.find(view), view.size(), R"("buffer":0,"byteLength":36,"byteOffset":4})");
+  CHECK(std::string(refusal("past.glb", glb_of(past, bin)).what()) ==
+        "past.glb: bufferView 0 reaches past the end of its buffer.");
+  // A chunk shorter than the buffer is refused as before.
+  bin.resize(32);
+  CHECK(std::string(refusal("short.glb", glb_of(triangle_gltf(R"({"byteLength":36})"), bin)).what()) ==
+        "short.glb: the GLB BIN chunk has 32 bytes but the glTF declares 36.");
 }
