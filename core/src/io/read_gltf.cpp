@@ -22,8 +22,12 @@
 #include <Eigen/Geometry>
 #include <cctype>
 #include <cstring>
+#include <limits>
 #include <map>
+#include <numeric>
+#include <type_traits>
 
+#include "crestline/numerics/uninitialised.h"
 #include "readers.h"
 
 #ifndef __EMSCRIPTEN__
@@ -339,9 +343,68 @@ using Bytes = std::pair<const uint8_t*, size_t>;
 
 // One primitive, decoded once per mesh and reused by every instance.
 struct Primitive {
-  std::vector<double> positions;  // xyz
-  std::vector<uint32_t> triangles;
+  UninitialisedVector<double> positions;  // xyz
+  UninitialisedVector<uint32_t> triangles;
 };
+
+/// A stored value as a double: normalized integers are divided by their
+/// type's largest value (glTF 2.0, 3.11), signed ones clamped at -1.
+template <typename C>
+double to_double(C value, bool normalized) {
+  if constexpr (std::is_same_v<C, float>) {
+    return value;
+  } else if constexpr (std::is_signed_v<C>) {
+    return normalized ? std::max(value / double(std::numeric_limits<C>::max()), -1.0) : value;
+  } else {
+    return normalized ? value / double(std::numeric_limits<C>::max()) : value;
+  }
+}
+
+/// The value of type C at `data` as T (uint32_t only from unsigned
+/// integers: indices, which go through a double only when normalized).
+template <typename C, typename T>
+T value_at(const uint8_t* data, bool normalized) {
+  C value;
+  std::memcpy(&value, data, sizeof(C));
+  if constexpr (std::is_integral_v<T>) {
+    return normalized ? T(to_double(value, true)) : T(value);
+  } else {
+    return T(to_double(value, normalized));
+  }
+}
+
+/// `count` elements of `components` values of type C, `stride` bytes
+/// apart, converted to T.
+template <typename C, typename T>
+void convert(const uint8_t* data, size_t count, size_t stride, size_t components, bool normalized, T* out) {
+  if (stride == components * sizeof(C)) {  // packed: one loop the compiler can vectorise
+    for (size_t k = 0; k < count * components; ++k) out[k] = value_at<C, T>(data + k * sizeof(C), normalized);
+    return;
+  }
+  for (size_t i = 0; i < count; ++i, data += stride) {
+    for (size_t c = 0; c < components; ++c) out[i * components + c] = value_at<C, T>(data + c * sizeof(C), normalized);
+  }
+}
+
+/// convert() for a glTF componentType, chosen once per accessor rather than
+/// per value. INT (5124, not a glTF accessor type) reads as FLOAT, as before.
+template <typename T>
+void convert(int type, const uint8_t* data, size_t count, size_t stride, size_t components, bool normalized, T* out) {
+  switch (type) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+      return convert<int8_t>(data, count, stride, components, normalized, out);
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return convert<uint8_t>(data, count, stride, components, normalized, out);
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+      return convert<int16_t>(data, count, stride, components, normalized, out);
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+      return convert<uint16_t>(data, count, stride, components, normalized, out);
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+      return convert<uint32_t>(data, count, stride, components, normalized, out);
+    default:
+      return convert<float>(data, count, stride, components, normalized, out);
+  }
+}
 
 class GltfReader {
  public:
@@ -507,6 +570,8 @@ class GltfReader {
                std::to_string(limit) + " (" + std::to_string(ratio) + " times the triangles stored, or " +
                std::to_string(options_.max_expanded_triangles) + " if that is more).");
     }
+    soup_.positions.reserve(3 * vertices);
+    soup_.indices.reserve(3 * triangles);
   }
 
   void check_mesh_index(int mesh_index) const {
@@ -556,12 +621,32 @@ class GltfReader {
              "the scene has more than " + std::to_string(options_.max_triangles) + " triangles.");
       }
       const uint32_t base = uint32_t(soup_.vertex_count());
+      const bool identity = world == Eigen::Matrix4d::Identity();
+      // Copied into the capacity check_expansion reserved (resize() would
+      // zero-fill first), then transformed from the primitive's values: in
+      // the WASM SIMD build an in-place p = world * (p, 1) miscomputed
+      // (Emscripten 3.1.6, Eigen 3.4; Box.glb's rotated node).
+      auto& positions = soup_.positions;
+      const size_t first = positions.size();
+      positions.insert(positions.end(), primitive.positions.begin(), primitive.positions.end());
       for (size_t v = 0; v < primitive.positions.size(); v += 3) {
-        const Eigen::Vector4d p = world * Eigen::Vector4d(primitive.positions[v], primitive.positions[v + 1],
-                                                          primitive.positions[v + 2], 1.0);
-        soup_.positions.insert(soup_.positions.end(), {p[0], p[1], p[2]});
+        const double* s = &primitive.positions[v];
+        double* p = &positions[first + v];
+        // The identity's product, without it: x + 0 (-0 becomes +0 as in
+        // the product), unless a coordinate is not finite (0 * inf is NaN).
+        if (identity && std::isfinite(s[0]) && std::isfinite(s[1]) && std::isfinite(s[2])) {
+          p[0] = s[0] + 0.0, p[1] = s[1] + 0.0, p[2] = s[2] + 0.0;
+        } else {
+          const Eigen::Vector4d q = world * Eigen::Vector4d(s[0], s[1], s[2], 1.0);
+          p[0] = q[0], p[1] = q[1], p[2] = q[2];
+        }
       }
-      for (uint32_t index : primitive.triangles) soup_.indices.push_back(base + index);
+      auto& indices = soup_.indices;
+      const size_t corner = indices.size();
+      indices.insert(indices.end(), primitive.triangles.begin(), primitive.triangles.end());
+      if (base > 0) {
+        for (size_t k = corner; k < indices.size(); ++k) indices[k] += base;
+      }
     }
   }
 
@@ -576,7 +661,7 @@ class GltfReader {
         continue;
       }
       Primitive primitive;
-      std::vector<double> indices;
+      UninitialisedVector<uint32_t> indices;
       bool indexed = source.indices >= 0;
       auto draco = source.extensions.find("KHR_draco_mesh_compression");
       if (draco != source.extensions.end()) {
@@ -592,29 +677,36 @@ class GltfReader {
         }
       }
       const size_t vertices = primitive.positions.size() / 3;
-      const size_t count = indexed ? indices.size() : vertices;
-      auto corner = [&](size_t k) -> uint32_t {
-        if (!indexed) return uint32_t(k);
-        const double index = indices[k];
-        if (!(index >= 0 && index < double(vertices))) {
-          invalid(where + " refers to vertex " + number_text(index) + " but has only " + std::to_string(vertices) +
-                  " vertices.");
+      if (!indexed) {
+        indices.resize(vertices);
+        std::iota(indices.begin(), indices.end(), 0u);
+      }
+      // The corners the mode uses: the whole triangles of a list, every
+      // index of a strip or fan of three or more.
+      const size_t count = indices.size();
+      const size_t used = source.mode == TINYGLTF_MODE_TRIANGLES ? count - count % 3 : count >= 3 ? count : 0;
+      uint32_t largest = 0;
+      for (size_t k = 0; k < used; ++k) largest = std::max(largest, indices[k]);
+      for (size_t k = 0; used > 0 && largest >= vertices; ++k) {
+        if (indices[k] >= vertices) {
+          invalid(where + " refers to vertex " + std::to_string(indices[k]) + " but has only " +
+                  std::to_string(vertices) + " vertices.");
         }
-        return uint32_t(index);
-      };
+      }
       auto& out = primitive.triangles;
       if (source.mode == TINYGLTF_MODE_TRIANGLES) {
-        for (size_t k = 0; k + 2 < count; k += 3) out.insert(out.end(), {corner(k), corner(k + 1), corner(k + 2)});
+        indices.resize(used);
+        out = std::move(indices);
       } else if (source.mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
         // Every other triangle is flipped to keep one orientation.
         for (size_t k = 0; k + 2 < count; ++k) {
           if (k % 2 == 0)
-            out.insert(out.end(), {corner(k), corner(k + 1), corner(k + 2)});
+            out.insert(out.end(), {indices[k], indices[k + 1], indices[k + 2]});
           else
-            out.insert(out.end(), {corner(k + 1), corner(k), corner(k + 2)});
+            out.insert(out.end(), {indices[k + 1], indices[k], indices[k + 2]});
         }
       } else {
-        for (size_t k = 1; k + 1 < count; ++k) out.insert(out.end(), {corner(0), corner(k), corner(k + 1)});
+        for (size_t k = 1; k + 1 < count; ++k) out.insert(out.end(), {indices[0], indices[k], indices[k + 1]});
       }
       primitives.push_back(std::move(primitive));
     }
@@ -658,37 +750,6 @@ class GltfReader {
     return {data + view.byteOffset, view.byteLength};
   }
 
-  static double component(const uint8_t* p, int type, bool normalized) {
-    switch (type) {
-      case TINYGLTF_COMPONENT_TYPE_BYTE: {
-        const double v = int8_t(*p);
-        return normalized ? std::max(v / 127.0, -1.0) : v;
-      }
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-        return normalized ? *p / 255.0 : *p;
-      case TINYGLTF_COMPONENT_TYPE_SHORT: {
-        int16_t s;
-        std::memcpy(&s, p, 2);
-        return normalized ? std::max(s / 32767.0, -1.0) : s;
-      }
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-        uint16_t s;
-        std::memcpy(&s, p, 2);
-        return normalized ? s / 65535.0 : s;
-      }
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
-        uint32_t u;
-        std::memcpy(&u, p, 4);
-        return normalized ? u / 4294967295.0 : u;
-      }
-      default: {
-        float f;
-        std::memcpy(&f, p, 4);
-        return f;
-      }
-    }
-  }
-
   // Checks that `count` elements of `element` bytes at `stride` starting at
   // `offset` fit in `size` bytes.
   void check_range(size_t offset, size_t count, size_t stride, size_t element, size_t size,
@@ -700,7 +761,11 @@ class GltfReader {
     }
   }
 
-  void read_accessor(int index, int type, const std::string& what, std::vector<double>& out) const {
+  /// The values of accessor `index` (of glTF type `type`) into `out`:
+  /// doubles, or uint32_t for indices (unsigned integer components only).
+  template <typename Vector>
+  void read_accessor(int index, int type, const std::string& what, Vector& out) const {
+    using T = typename Vector::value_type;
     if (index < 0 || size_t(index) >= model_.accessors.size()) {
       invalid(what + " refers to accessor " + std::to_string(index) + ", which does not exist.");
     }
@@ -708,6 +773,11 @@ class GltfReader {
     const int components = tinygltf::GetNumComponentsInType(uint32_t(accessor.type));
     const int size = tinygltf::GetComponentSizeInBytes(uint32_t(accessor.componentType));
     if (accessor.type != type || size <= 0 || accessor.componentType == TINYGLTF_COMPONENT_TYPE_DOUBLE) {
+      invalid(what + " has an unexpected type.");
+    }
+    if (std::is_integral_v<T> && accessor.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+        accessor.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+        accessor.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) {
       invalid(what + " has an unexpected type.");
     }
     const size_t count = accessor.count;
@@ -721,20 +791,15 @@ class GltfReader {
       const size_t stride = declared ? declared : element;
       check_range(accessor.byteOffset, count, stride, element, length, what);
       out.resize(count * size_t(components));
-      for (size_t i = 0; i < count; ++i) {
-        const uint8_t* p = data + accessor.byteOffset + i * stride;
-        for (int c = 0; c < components; ++c) {
-          out[i * size_t(components) + size_t(c)] =
-              component(p + ptrdiff_t{c} * size, accessor.componentType, accessor.normalized);
-        }
-      }
+      convert(accessor.componentType, data + accessor.byteOffset, count, stride, size_t(components),
+              accessor.normalized, out.data());
     } else {
       // No bufferView: zeros, then the sparse values. Nothing in the file
       // backs the count, so allow at most one element per byte of the file.
       if (count > std::max<size_t>(in_.size, 1024)) {
         invalid(what + " claims " + std::to_string(count) + " elements that the file holds no data for.");
       }
-      out.assign(count * size_t(components), 0.0);
+      out.assign(count * size_t(components), T(0));
     }
     if (!accessor.sparse.isSparse) return;
     const auto& sparse = accessor.sparse;
@@ -750,14 +815,12 @@ class GltfReader {
     check_range(size_t(std::max(sparse.values.byteOffset, 0)), sparse_count, element, element, value_length,
                 what + " sparse values");
     for (size_t k = 0; k < sparse_count; ++k) {
-      const double target = component(index_data + std::max(sparse.indices.byteOffset, 0) + k * size_t(index_size),
-                                      sparse.indices.componentType, false);
+      double target = 0;
+      convert(sparse.indices.componentType,
+              index_data + std::max(sparse.indices.byteOffset, 0) + k * size_t(index_size), 1, 0, 1, false, &target);
       if (!(target >= 0 && target < double(count))) invalid(what + " has a sparse index out of range.");
-      const uint8_t* p = value_data + std::max(sparse.values.byteOffset, 0) + k * element;
-      for (int c = 0; c < components; ++c) {
-        out[size_t(target) * size_t(components) + size_t(c)] =
-            component(p + ptrdiff_t{c} * size, accessor.componentType, accessor.normalized);
-      }
+      convert(accessor.componentType, value_data + std::max(sparse.values.byteOffset, 0) + k * element, 1, 0,
+              size_t(components), accessor.normalized, &out[size_t(target) * size_t(components)]);
     }
   }
 
@@ -819,8 +882,8 @@ class GltfReader {
     }
   }
 
-  void decode_draco(const tinygltf::Value& extension, const std::string& where, std::vector<double>& positions,
-                    std::vector<double>& indices) const {
+  void decode_draco(const tinygltf::Value& extension, const std::string& where, UninitialisedVector<double>& positions,
+                    UninitialisedVector<uint32_t>& indices) const {
     const auto [data, length] = view_bytes(value_int(extension, "bufferView", -1), where + " (Draco)");
     const int position_id = extension.Has("attributes") ? value_int(extension.Get("attributes"), "POSITION", -1) : -1;
     draco::DecoderBuffer buffer;
@@ -850,7 +913,8 @@ class GltfReader {
       if (view.extensions.count("EXT_meshopt_compression")) unsupported_compression("EXT_meshopt_compression");
     }
   }
-  void decode_draco(const tinygltf::Value&, const std::string&, std::vector<double>&, std::vector<double>&) const {
+  void decode_draco(const tinygltf::Value&, const std::string&, UninitialisedVector<double>&,
+                    UninitialisedVector<uint32_t>&) const {
     unsupported_compression("KHR_draco_mesh_compression");
   }
   [[noreturn]] void unsupported_compression(const char* extension) const {

@@ -203,16 +203,22 @@ void finish_soup(TriangleSoup& soup, const Input& in) {
   std::atomic<bool> any_finite_referenced{false};
   crestline::detail::for_each_part(crestline::detail::part_count(indices), indices,
                                    [&](size_t, size_t begin, size_t end) {
-                                     bool any_finite = false;
-                                     for (size_t k = begin; k < end; ++k) {
-                                       const uint32_t index = soup.indices[k];
-                                       if (index >= vertices) {
+                                     // The largest index first (a loop that vectorises), the
+                                     // first one out of range only when there is one.
+                                     uint32_t largest = 0;
+                                     for (size_t k = begin; k < end; ++k) largest = std::max(largest, soup.indices[k]);
+                                     for (size_t k = begin; largest >= vertices && k < end; ++k) {
+                                       if (soup.indices[k] >= vertices) {
                                          crestline::detail::atomic_min(first_out_of_range, k);
                                          return;
                                        }
-                                       any_finite = any_finite || !non_finite[index];
                                      }
-                                     if (any_finite) any_finite_referenced = true;
+                                     for (size_t k = begin; k < end; ++k) {
+                                       if (!non_finite[soup.indices[k]]) {
+                                         any_finite_referenced = true;
+                                         return;
+                                       }
+                                     }
                                    });
   if (const size_t k = first_out_of_range; k < indices) {
     fail(ErrorKind::InvalidInput, in,

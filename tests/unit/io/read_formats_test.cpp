@@ -394,6 +394,34 @@ TEST_CASE("glTF: data URIs, strips, instancing with transforms, companions", "[i
   }
 }
 
+TEST_CASE("glTF: interleaved positions, byte indices, unused trailing corners; -0 reads as +0", "[io][gltf]") {
+  // Four float vertices 16 bytes apart (the first at x = -0), then seven
+  // byte indices: two triangles and one corner no triangle uses.
+  std::vector<uint8_t> buffer;
+  for (float c : {-0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f, 1.f, 1.f, 0.f}) {
+    put(buffer, c, false);
+    if (buffer.size() % 16 == 12) put(buffer, 0.f, false);
+  }
+  for (uint8_t index : {0, 1, 2, 2, 1, 3, 200}) buffer.push_back(index);
+  const std::string gltf = R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":71,"uri":"b.bin"}],
+    "bufferViews":[{"buffer":0,"byteLength":64,"byteStride":16},{"buffer":0,"byteOffset":64,"byteLength":7}],
+    "accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3"},
+                 {"bufferView":1,"componentType":5121,"count":7,"type":"SCALAR"}],
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],"nodes":[{"mesh":0}]})";
+  const TriangleSoup soup = read_mesh_bytes("i.gltf", bytes_of(gltf), {NamedBuffer{"b.bin", buffer}});
+  CHECK(soup.indices == std::vector<uint32_t>{0, 1, 2, 2, 1, 3});
+  CHECK(soup.positions == std::vector<double>{0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0});
+  CHECK(!std::signbit(soup.positions[0]));  // as the node transform's product gives it
+  // A used corner out of range is named by its value.
+  buffer[64 + 5] = 9;
+  try {
+    read_mesh_bytes("i.gltf", bytes_of(gltf), {NamedBuffer{"b.bin", buffer}});
+    FAIL("no error");
+  } catch (const Error& e) {
+    CHECK(std::string(e.what()) == "i.gltf: mesh 0 primitive 0 refers to vertex 9 but has only 4 vertices.");
+  }
+}
+
 TEST_CASE("glTF: EXT_mesh_gpu_instancing is expanded", "[io][gltf]") {
   std::vector<uint8_t> buffer = square_buffer();
   for (float c : {0.f, 0.f, 0.f, 10.f, 0.f, 0.f, 0.f, 10.f, 0.f}) put(buffer, c);  // 3 translations
