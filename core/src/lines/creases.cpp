@@ -288,6 +288,7 @@ std::vector<Vec3> filter_normals(const Mesh& mesh, const Topology& topology, con
   const size_t nv = mesh.positions.size();
   std::vector<Vec3> fan_mean(nv);
   std::vector<double> fan_spread(nv);
+  std::vector<uint32_t> guide_of(normal.size());
   for (int step = 0; step < steps; ++step) {
     // Guidance: the mean normal of the most consistent corner fan of each
     // face (a fan off the crease, where there is one), so that the range
@@ -317,21 +318,49 @@ std::vector<Vec3> filter_normals(const Mesh& mesh, const Topology& topology, con
         uint32_t best = t[0];
         for (uint32_t v : t)
           if (fan_spread[v] < fan_spread[best]) best = v;
+        guide_of[f] = best;
+      }
+    });
+    // Each face's sum, by the vertex whose fan mean guides it: the faces
+    // that one guide serves share its corners' fans' weighted sums (a
+    // corner fan's sum is formed once per guide, not once per face).
+    parallel_for(nv, [&](size_t first, size_t last) {
+      struct CornerSum {
+        uint32_t corner;
+        Vec3 sum;
+      };
+      std::vector<CornerSum> sums;
+      for (size_t b = first; b < last; ++b) {
         // (A large fan's mean costs nothing more: it is computed once per vertex.)
-        const Vec3& guide = fan_mean[best];
-        Vec3 sum = Vec3::Zero();
-        // Faces around each corner: a face sharing an edge with f is met
-        // twice, f itself three times; the weights only need to be local.
-        for (uint32_t v : t) {
-          if (!small_fan(topology, v)) continue;
+        const Vec3& guide = fan_mean[b];
+        sums.clear();
+        // Kept for a small fan's guide only (at most 2 kMaxFan + 1 corners
+        // to search): a vertex of degree 10,000 stays linear.
+        const bool keep = small_fan(topology, b);
+        const auto corner_sum = [&](uint32_t v) {
+          if (keep)
+            for (const CornerSum& c : sums)
+              if (c.corner == v) return c.sum;
+          Vec3 sum = Vec3::Zero();
           for (uint32_t k = topology.vertex_offsets[v]; k < topology.vertex_offsets[v + 1]; ++k) {
             const uint32_t g = topology.vertex_triangles[k];
             const double w = faces.area[g] * portable_exp(-(1.0 - guide.dot(normal[g])) * scale);
             sum += w * normal[g];
           }
+          if (keep) sums.push_back({v, sum});
+          return sum;
+        };
+        for (uint32_t k = topology.vertex_offsets[b]; k < topology.vertex_offsets[b + 1]; ++k) {
+          const uint32_t f = topology.vertex_triangles[k];
+          if (guide_of[f] != b) continue;
+          // Faces around each corner: a face sharing an edge with f is met
+          // twice, f itself three times; the weights only need to be local.
+          Vec3 sum = Vec3::Zero();
+          for (uint32_t v : mesh.triangles[f])
+            if (small_fan(topology, v)) sum += corner_sum(v);
+          const double len = sum.norm();
+          next[f] = len > 0 ? Vec3(sum / len) : normal[f];
         }
-        const double len = sum.norm();
-        next[f] = len > 0 ? Vec3(sum / len) : normal[f];
       }
     });
     normal.swap(next);
