@@ -284,7 +284,7 @@ FaceNormals face_normals(const Mesh& mesh) {
 std::vector<Vec3> filter_normals(const Mesh& mesh, const Topology& topology, const FaceNormals& faces, int steps,
                                  const std::function<void(int step)>& after_step) {
   std::vector<Vec3> normal = faces.normal, next(normal.size());
-  const double scale = 1.0 / (1.0 - std::cos(kRangeAngle * kDegree));
+  const double scale = 1.0 / (1.0 - portable_cos(kRangeAngle * kDegree));
   const size_t nv = mesh.positions.size();
   std::vector<Vec3> fan_mean(nv);
   std::vector<double> fan_spread(nv);
@@ -597,7 +597,7 @@ std::vector<Chain> split_at_turns(const Mesh& mesh, Chain c, double max_turn, do
     return x(j);
   };
   std::vector<double> turn(n, 0.0);
-  const double cos_max = std::cos(max_turn);
+  const double cos_max = portable_cos(max_turn);
   std::vector<uint8_t> sharp(n, 0);
   for (size_t i = c.closed ? 0 : 1; i < (c.closed ? n : n - 1); ++i) {
     const Vec3 in = x(i) - reach(i, -1), out = reach(i, +1) - x(i);
@@ -1082,7 +1082,7 @@ CreaseAngles measure_crease_angles(const Mesh& mesh, const Topology& topology, c
   out.support.assign(ne, 0.0);
   const bool very_noisy = out.normal_filter_steps > 0 && out.noise_level > kVeryNoisyCreaseLevel;
   const int rings = very_noisy ? kVeryNoisySupportRings : out.normal_filter_steps > 0 ? kNoisySupportRings : 1;
-  const double candidate = std::cos(kCandidateAngle * kDegree);
+  const double candidate = portable_cos(kCandidateAngle * kDegree);
   // Each edge alone, on every thread, in blocks with progress between them.
   // 1 − cos of every fourth edge's angle (NaN on boundary edges, which are
   // left out) is kept by its index for the median (monotonic in the angle),
@@ -1129,7 +1129,7 @@ CreaseAngles measure_crease_angles(const Mesh& mesh, const Topology& topology, c
   for (size_t e = 0; e < ne; e += 4)
     if (!topology.is_boundary_edge(static_cast<uint32_t>(e))) sample.push_back(quarter[e / 4]);
   std::vector<double>().swap(quarter);
-  if (!sample.empty()) out.median = std::acos(std::clamp(1.0 - upper_median(sample), -1.0, 1.0)) / kDegree;
+  if (!sample.empty()) out.median = portable_acos_of_complement(upper_median(sample)) / kDegree;
   // The same edges' median length, for the spur rule's scale.
   sample.clear();
   for (size_t e = 0; e < ne; e += 4)

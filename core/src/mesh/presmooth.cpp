@@ -9,6 +9,7 @@
 #include "crestline/numerics/constants.h"
 #include "crestline/numerics/paired_cg.h"
 #include "crestline/numerics/parallel.h"
+#include "crestline/numerics/portable_math.h"
 #include "crestline/numerics/sparse_solver.h"
 #include "crestline/numerics/uninitialised.h"
 #include "half_edges.h"
@@ -53,7 +54,7 @@ static void edges_at(const Mesh& mesh, const Topology& topology, uint32_t v, std
 static std::vector<uint8_t> clean_crease_vertices(const Mesh& mesh, const Topology& topology,
                                                   const std::vector<Vec3>& n,
                                                   const UninitialisedVector<double>& n_norm) {
-  const double cos_sharp = std::cos(kCleanCreaseTurn), cos_flat = std::cos(kFlatTurn);
+  const double cos_sharp = portable_cos(kCleanCreaseTurn), cos_flat = portable_cos(kFlatTurn);
   const size_t nv = mesh.positions.size(), ne = topology.edges.size();
   // The angle between an edge's normals as its cosine; 0 where a normal
   // vanishes (degenerate), 1 on the boundary.
@@ -110,7 +111,7 @@ static std::vector<uint8_t> clean_crease_vertices(const Mesh& mesh, const Topolo
         between = 2;
       } else if (c < cos_flat && c > cos_sharp) {
         between += between < 1;
-        sum += std::acos(c);
+        sum += portable_acos_of_complement(1 - c);
       } else if (c <= cos_sharp) {
         sharp += sharp < 2;
       } else {
@@ -367,7 +368,7 @@ static void smooth_boundary_curves(std::vector<Vec3>& x, const Mesh& mesh, const
       const uint32_t v = tri[k];
       if (along.count(v) == 0) continue;
       const Vec3 a = x[tri[(k + 1) % 3]] - x[v], b = x[tri[(k + 2) % 3]] - x[v];
-      angle_sum[v] += std::atan2(a.cross(b).norm(), a.dot(b));
+      angle_sum[v] += portable_angle(a.cross(b).norm(), a.dot(b));
     }
   // Boundary edges far shorter than the mean (a weld tolerance of 0 keeps
   // near-coincident vertices) would give weights t / length that overflow:

@@ -62,3 +62,35 @@ TEST_CASE("portable_angle is atan2(y, x) for y >= 0 to 1e-15", "[numerics]") {
   CHECK(portable_angle(1.0, 0.0) == crestline::kPi / 2);
   CHECK(portable_angle(1.0, 1.0) == Approx(crestline::kPi / 4).epsilon(1e-15));
 }
+
+TEST_CASE("portable_cos is cos(x) to 4e-16 absolutely; portable_acos_of_complement is acos(1 - m)", "[numerics]") {
+  double worst = 0;
+  for (int i = -100000; i <= 100000; ++i) {
+    const double x = i * (crestline::kPi / 100000);
+    worst = std::max(
+        worst, static_cast<double>(std::fabs(crestline::portable_cos(x) - std::cos(static_cast<long double>(x)))));
+  }
+  CHECK(worst < 4e-16);  // 3.1e-16 by π − x (the double π is 1.2e-16 off)
+  CHECK(crestline::portable_cos(0.0) == 1.0);
+  CHECK(crestline::portable_cos(crestline::kPi) == -1.0);
+  // 180° in radians rounds past π: still cos = −1, not NaN; beyond, periodic.
+  CHECK(crestline::portable_cos(180 * (crestline::kPi / 180)) == Approx(-1.0).epsilon(1e-15));
+  CHECK(crestline::portable_cos(2 * crestline::kPi + 1) == Approx(std::cos(1.0)).epsilon(1e-14));
+  CHECK(std::isnan(crestline::portable_cos(std::numeric_limits<double>::infinity())));
+
+  // Near 1 − m = 1 the complement keeps the small angles (acos of the
+  // rounded 1 − m would lose them): m = 1e-12 is an angle of √2·1e-6.
+  worst = 0;
+  for (int i = 0; i <= 200000; ++i) {
+    const double m = i / 100000.0;  // 1 − cos over [0, 2]
+    // acos(1 − m) = 2 asin(√(m/2)): no rounding of 1 − m in the reference.
+    const long double truth = 2 * std::asin(std::sqrt(static_cast<long double>(m) / 2));
+    if (truth > 0) worst = std::max(worst, relative_error(crestline::portable_acos_of_complement(m), truth));
+  }
+  CHECK(worst < 1e-15);
+  CHECK(crestline::portable_acos_of_complement(1e-12) == Approx(std::sqrt(2e-12)).epsilon(1e-12));
+  CHECK(crestline::portable_acos_of_complement(0.0) == 0.0);
+  CHECK(crestline::portable_acos_of_complement(2.0) == crestline::kPi);
+  CHECK(crestline::portable_acos_of_complement(-1.0) == 0.0);  // clamped
+  CHECK(crestline::portable_acos_of_complement(3.0) == crestline::kPi);
+}

@@ -50,4 +50,12 @@ inline double portable_exp(double x) {
 /// atan2(y, x) for y ≥ 0: an angle in [0, π].
 double portable_angle(double y, double x);
 
+/// acos(c) for c in [−1, 1] (clamped), from 1 − c, which a caller may hold
+/// more precisely than c near 1: acos(1 − one_minus_c).
+double portable_acos_of_complement(double one_minus_c);
+
+/// cos(x), within 4·10⁻¹⁶ absolutely for |x| ≤ π (beyond, of x reduced by
+/// the double nearest 2π); NaN for infinite x.
+double portable_cos(double x);
+
 }  // namespace crestline
