@@ -10,7 +10,7 @@ cd "$(dirname "$0")/.."
 # Debian's emcc finds its node modules (acorn, …) only here.
 export NODE_PATH=${NODE_PATH:-/usr/share/nodejs}
 emcmake cmake -S . -B build-wasm -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build build-wasm -j "$(nproc)" --target crestline_wasm crestline_cli_wasm
+cmake --build build-wasm -j "$(nproc)" --target crestline_wasm crestline_cli_wasm crestline_slp_check
 mkdir -p wasm/dist
 cp build-wasm/wasm/crestline.js build-wasm/wasm/crestline.wasm wasm/dist/
 # The command for node (wasm/cli.mjs): CommonJS glue, hence .cjs in a "type": "module" package.
