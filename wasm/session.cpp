@@ -13,6 +13,7 @@
 #include "crestline/io/read_mesh.h"
 #include "crestline/io/write_lines.h"
 #include "crestline/mesh/repair.h"
+#include "crestline/mesh/topology.h"
 
 namespace crestline::wasm {
 namespace {
@@ -169,6 +170,8 @@ val Session::adopt(TriangleSoup soup, const RepairOptions& repair) {
   out.set("triangles", repaired.mesh.triangle_count());
   out.set("report", report_value(repaired.report));
   out.set("notes", notes);
+  // Here, while the repair's adjacency is at hand (a run may release it).
+  closed_outward_ = is_closed_outward(repaired.mesh, repaired.topology);
   pipeline_ = std::make_unique<Pipeline>(std::move(repaired.mesh), std::move(repaired.topology));
   pipeline_->set_options(settings_.pipeline);  // weights belong to the last mesh
   return out;
@@ -366,6 +369,7 @@ val Session::surface() const {
   view.set("normals", copy_out(unit.data(), unit.size()));
   view.set("origin", copy_out(centre.data(), 3));
   view.set("radius", radius);
+  view.set("closed", closed_outward_);
   out.set("view", view);
   return out;
 }

@@ -59,7 +59,8 @@ class Session {
   /// them on a smoothed copy. view: what a viewer draws, {positions:
   /// Float32Array relative to origin, normals: Float32Array (unit,
   /// area-weighted), origin: Float64Array (the bounding box's centre),
-  /// radius: the bounding sphere's about it}.
+  /// radius: the bounding sphere's about it, closed: is_closed_outward
+  /// (its back faces are hidden from outside)}.
   val surface() const;
   /// Ridges and valleys as flat arrays: {points: Float64Array (xyz), offsets: Uint32Array
   /// (lineCount+1, in points), types: Uint8Array (0 ridge, 1 valley),
@@ -108,6 +109,7 @@ class Session {
 
   Settings settings_;  // pipeline and SVG parameters, kept across loads
   std::unique_ptr<Pipeline> pipeline_;
+  bool closed_outward_ = false;  // is_closed_outward of the loaded mesh (surface()'s view.closed)
   size_t triangles_ = 0;
 };
 

@@ -1,9 +1,11 @@
 // The surface layer's test for culling its back faces (web/src/three/surface-layer.js,
 // facesOutward): closed surfaces facing outwards only, whatever their size,
-// place, number of parts or vertex order; the camera test of cullHiddenFaces.
+// place, number of parts or vertex order; the camera test of cullHiddenFaces;
+// the worker's own answer (Session.surface()'s view.closed, C++) agrees.
 import assert from 'node:assert/strict';
 import { test } from 'node:test';
 import { DoubleSide, FrontSide, PerspectiveCamera } from 'three';
+import { loadCrestline } from '../../wasm/node.mjs';
 import { SurfaceLayer, facesOutward } from '../../web/src/three/surface-layer.js';
 
 /** The unit cube's 8 corners and 12 triangles facing out. */
@@ -107,4 +109,26 @@ test('culled only when the camera and its near plane are outside the bounding sp
   assert.equal(layer.closed, false, 'a sphere with a hole');
   assert.equal(sideAt(4).side, DoubleSide, 'an open surface shows both sides');
   layer.dispose();
+});
+
+test("the WASM Session's view.closed (the repaired mesh, C++) agrees with facesOutward", async () => {
+  const module = await loadCrestline();
+  const holed = sphere();
+  holed.indices = holed.indices.slice(0, -3);
+  const cases = [
+    ['the cube', CUBE, true],
+    ['a sphere far off', sphere([1e5, -2e5, 3e5], 0.01), true],
+    ['a sphere facing in (the repair turns it out)', flipped(sphere()), true],
+    ['a sphere with a hole', holed, false],
+    ['two spheres', joined(sphere(), sphere([3, 0, 0])), true],
+  ];
+  for (const [name, mesh, expected] of cases) {
+    const session = new module.Session();
+    const loaded = session.load(Float64Array.from(mesh.positions), Uint32Array.from(mesh.indices), {});
+    assert.equal(loaded.ok, true, `${name}: ${loaded.error}`);
+    const { indices, view } = session.surface();
+    session.delete();
+    assert.equal(view.closed, expected, name);
+    assert.equal(view.closed, facesOutward(view.positions, indices), `${name}: the page's own test`);
+  }
 });

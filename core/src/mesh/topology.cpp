@@ -48,6 +48,37 @@ Topology build_topology(const Mesh& mesh) {
   return topo;
 }
 
+bool is_closed_outward(const Mesh& mesh, const Topology& topology) {
+  if (mesh.triangles.empty()) return false;
+  for (const auto& pair : topology.edge_triangles)
+    if (pair[1] == kNone) return false;
+  // Each edge has two triangles; they run along it in opposite directions
+  // exactly when its two corners' signs (+1 from the smaller end, −1 from
+  // the larger) cancel. Summed over all corners with a fixed pseudo-random
+  // weight per edge, in one pass over the triangles (no reads of the
+  // edges' other triangles): an edge run twice the same way adds ±2 of its
+  // weight, which other edges cancel with chance 2⁻⁶³.
+  uint64_t sum = 0;
+  for (size_t t = 0; t < mesh.triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      uint64_t weight = topology.triangle_edges[t][k] * 0x9E3779B97F4A7C15ull;
+      weight ^= weight >> 29;
+      weight *= 0xBF58476D1CE4E5B9ull;
+      weight ^= weight >> 32;
+      sum += mesh.triangles[t][k] < mesh.triangles[t][(k + 1) % 3] ? weight : 0 - weight;
+    }
+  if (sum != 0) return false;
+  // Six times the volume: each triangle's cone to a vertex of the mesh
+  // (about the origin, far-off coordinates would cancel).
+  const Vec3& apex = mesh.positions[mesh.triangles[0][0]];
+  double volume = 0;
+  for (const Triangle& t : mesh.triangles) {
+    const Vec3 a = mesh.positions[t[0]] - apex, b = mesh.positions[t[1]] - apex, c = mesh.positions[t[2]] - apex;
+    volume += a.dot(b.cross(c));
+  }
+  return volume > 0;
+}
+
 std::vector<uint32_t> boundary_ring_distance(const Mesh& mesh, const Topology& topology, uint32_t max_rings) {
   std::vector<uint32_t> distance(mesh.positions.size(), max_rings);
   std::vector<uint32_t> front, next;

@@ -128,3 +128,45 @@ TEST_CASE("topology of several components in random order is the same on 1, 2 an
     testing::check_same_topology(topology_on(threads, mesh), one);
   }
 }
+
+TEST_CASE("is_closed_outward: closed, consistently oriented surfaces facing out, anywhere in space", "[topology]") {
+  const auto mesh_of = [](const TriangleSoup& soup, const Vec3& offset = Vec3::Zero()) {
+    Mesh mesh;
+    for (size_t v = 0; v < soup.vertex_count(); ++v)
+      mesh.positions.push_back(Vec3(soup.positions[3 * v], soup.positions[3 * v + 1], soup.positions[3 * v + 2]) +
+                               offset);
+    for (size_t t = 0; t < soup.triangle_count(); ++t)
+      mesh.triangles.push_back({soup.indices[3 * t], soup.indices[3 * t + 1], soup.indices[3 * t + 2]});
+    return mesh;
+  };
+  const auto outward = [](const Mesh& mesh) { return is_closed_outward(mesh, build_topology(mesh)); };
+  testing::GridOptions grid;
+  grid.nu = grid.nv = 24;
+  Mesh sphere = mesh_of(testing::icosphere(3, 1));
+  CHECK(outward(sphere));
+  CHECK(outward(mesh_of(testing::torus(3, 1, grid))));
+  // Far from the origin and tiny: the volume is taken about a vertex.
+  CHECK(outward(mesh_of(testing::icosphere(3, 1e-3), Vec3(1e6, -2e6, 3e6))));
+  // Facing in.
+  Mesh inward = sphere;
+  for (Triangle& t : inward.triangles) std::swap(t[1], t[2]);
+  CHECK_FALSE(outward(inward));
+  // One triangle flipped: two of its edges run the same way as their neighbours'.
+  Mesh flipped = sphere;
+  std::swap(flipped.triangles[7][1], flipped.triangles[7][2]);
+  CHECK_FALSE(outward(flipped));
+  // A hole: one triangle missing.
+  Mesh holed = sphere;
+  holed.triangles.pop_back();
+  CHECK_FALSE(outward(holed));
+  // Open surfaces and the empty mesh.
+  CHECK_FALSE(outward(mesh_of(testing::height_field([](double x, double y) { return 0.1 * x * y; }, 1, 1, grid))));
+  CHECK_FALSE(outward(Mesh{}));
+  // Two closed parts, both facing out.
+  Mesh two = mesh_of(testing::icosphere(2, 2));
+  const Mesh small = mesh_of(testing::icosphere(2, 1), Vec3(5, 0, 0));
+  const uint32_t base = uint32_t(two.positions.size());
+  two.positions.insert(two.positions.end(), small.positions.begin(), small.positions.end());
+  for (Triangle t : small.triangles) two.triangles.push_back({base + t[0], base + t[1], base + t[2]});
+  CHECK(outward(two));
+}

@@ -121,11 +121,12 @@ export class SurfaceLayer {
 
   /**
    * The surface's `view` (Session.surface(): float32 positions about its
-   * origin, unit normals, the bounding sphere's radius about the origin) and
-   * its triangles (Uint32Array). The worker computed all of it: nothing
-   * here walks the mesh.
+   * origin, unit normals, the bounding sphere's radius about the origin,
+   * whether it is closed and faces out) and its triangles (Uint32Array). The
+   * worker computed all of it: nothing here walks the mesh (facesOutward
+   * only for a view without `closed`).
    */
-  setMesh({ positions, normals, radius }, indices) {
+  setMesh({ positions, normals, radius, closed }, indices) {
     this.mesh.geometry.dispose();
     const geometry = new BufferGeometry();
     geometry.setAttribute('position', new BufferAttribute(positions, 3));
@@ -134,7 +135,8 @@ export class SurfaceLayer {
     geometry.boundingSphere = new Sphere(new Vector3(), radius);
     this.mesh.geometry = geometry;
     this.indices = indices;
-    this.closed = facesOutward(positions, indices);
+    // The worker's (C++, from the repair's adjacency) where given: no walk of the mesh here.
+    this.closed = typeof closed === 'boolean' ? closed : facesOutward(positions, indices);
     this.setColors(null);
     this.setSingular(null);
   }

@@ -10,10 +10,11 @@
  *   a file: the main mesh file or one of a .gltf's companions
  * @typedef {Record<string, number | boolean | string | Float64Array | null | undefined>} PipelineOptions
  *   Session.setOptions keys: the parameter table's (Session.describe()) and vertexWeights
- * @typedef {{positions: Float32Array, normals: Float32Array, origin: Float64Array, radius: number}} SurfaceView
+ * @typedef {{positions: Float32Array, normals: Float32Array, origin: Float64Array, radius: number, closed: boolean}} SurfaceView
  *   what a viewer draws (Session.surface()): positions relative to origin (the
  *   bounding box's centre), unit area-weighted vertex normals, the bounding
- *   sphere's radius about origin
+ *   sphere's radius about origin, whether the surface is closed and faces out
+ *   (its back faces are hidden from outside)
  * @typedef {{positions: Float64Array, indices: Uint32Array, view: SurfaceView}} Surface
  * @typedef {{points: Float64Array, offsets: Uint32Array, types: Uint8Array,
  *            strengths: Float64Array, lengths: Float64Array, closed: Uint8Array}} Lines

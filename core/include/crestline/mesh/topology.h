@@ -33,6 +33,13 @@ struct Topology {
 /// triangles per edge), which `repair_mesh` guarantees.
 Topology build_topology(const Mesh& mesh);
 
+/// Whether the surface bounds solids it faces out of: every edge has two
+/// triangles that run along it in opposite directions (closed and
+/// consistently oriented) and the enclosed signed volume is positive. Seen
+/// from outside its bounding sphere, such a surface hides its back faces.
+/// False for an empty mesh.
+bool is_closed_outward(const Mesh& mesh, const Topology& topology);
+
 /// Ring distance of each vertex to the mesh boundary (0 on it), capped at
 /// `max_rings`: vertices farther away (or on closed components) get max_rings.
 std::vector<uint32_t> boundary_ring_distance(const Mesh& mesh, const Topology& topology, uint32_t max_rings);
