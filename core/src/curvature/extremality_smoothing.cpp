@@ -18,7 +18,9 @@ namespace {
 // and the feline it flips the sign of no extremality value and moves line
 // crossings by at most 0.0025 edge lengths (mean 1e-5), a hundredth of the
 // fairing bound, with identical lines after filtering; it saves a third of
-// the iterations.
+// the iterations. On the dragon (871k) it flips one vertex's sign and moves
+// crossings by up to 0.035 edge (mean 1e-6, 99.99 % under 0.001), the same
+// line counts; 1e-5 would save 8 of its 50 iterations but move up to 0.21.
 constexpr double kTolerance = 1e-6;
 // Lockstep CG iterations allowed on the first step before falling back to
 // SpdSolver, which then factorizes ill-conditioned systems (see sparse_solver.h).

@@ -625,7 +625,8 @@ class GltfReader {
       // Copied into the capacity check_expansion reserved (resize() would
       // zero-fill first), then transformed from the primitive's values: in
       // the WASM SIMD build an in-place p = world * (p, 1) miscomputed
-      // (Emscripten 3.1.6, Eigen 3.4; Box.glb's rotated node).
+      // (LLVM 14's SLP vectorizer, which the WASM build now leaves off:
+      // CMakeLists.txt, tests/wasm/slp_check.cpp).
       auto& positions = soup_.positions;
       const size_t first = positions.size();
       positions.insert(positions.end(), primitive.positions.begin(), primitive.positions.end());
