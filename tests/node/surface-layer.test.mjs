@@ -1,12 +1,13 @@
-// The surface layer's test for culling its back faces (web/src/three/surface-layer.js,
-// facesOutward): closed surfaces facing outwards only, whatever their size,
-// place, number of parts or vertex order; the camera test of cullHiddenFaces;
-// the worker's own answer (Session.surface()'s view.closed, C++) agrees.
+// The surface layer's culling of back faces (web/src/three/surface-layer.js):
+// the camera test of cullHiddenFaces, and the worker's answer it relies on
+// (Session.surface()'s view.closed, C++ is_closed_outward, whose own cases —
+// scale, numbering, nested parts, holes, stray triangles — are in
+// tests/unit/mesh/topology_test.cpp) on repaired meshes.
 import assert from 'node:assert/strict';
 import { test } from 'node:test';
 import { DoubleSide, FrontSide, PerspectiveCamera } from 'three';
 import { loadCrestline } from '../../wasm/node.mjs';
-import { SurfaceLayer, facesOutward } from '../../web/src/three/surface-layer.js';
+import { SurfaceLayer } from '../../web/src/three/surface-layer.js';
 
 /** The unit cube's 8 corners and 12 triangles facing out. */
 const CUBE = {
@@ -51,43 +52,12 @@ function joined(...meshes) {
 }
 
 const flipped = (m) => ({ positions: m.positions, indices: m.indices.map((_, i) => m.indices[i - (i % 3) + [0, 2, 1][i % 3]]) });
-const outward = (m) => facesOutward(Float32Array.from(m.positions), Uint32Array.from(m.indices));
-
-test('closed surfaces facing out: a cube, a sphere, several parts, at any scale and in any vertex order', () => {
-  assert.equal(outward(CUBE), true, 'the cube');
-  assert.equal(outward(sphere()), true, 'a sphere');
-  for (const scale of [1e-8, 1e8]) assert.equal(outward(sphere([0, 0, 0], scale)), true, `a sphere of radius ${scale}`);
-  assert.equal(outward(joined(CUBE, sphere([3, 0, 0]), sphere([0, 0, 0], 0.2))), true, 'a cube, a sphere and a sphere inside the cube');
-  // The vertices renumbered (reversed), and the triangles in another order: the same surface.
-  const s = sphere();
-  const n = s.positions.length / 3;
-  const reversed = {
-    positions: Array.from({ length: 3 * n }, (_, i) => s.positions[3 * (n - 1 - Math.floor(i / 3)) + (i % 3)]),
-    indices: s.indices.map((v) => n - 1 - v),
-  };
-  assert.equal(outward(reversed), true, 'the sphere renumbered');
-  const shuffled = { positions: s.positions, indices: s.indices.slice(3 * 7).concat(s.indices.slice(0, 3 * 7)) };
-  assert.equal(outward(shuffled), true, 'the sphere, triangles rotated');
-});
-
-test('not closed, or not facing out: holes, inward, a misoriented triangle, a stray triangle, nothing', () => {
-  assert.equal(outward({ positions: CUBE.positions, indices: CUBE.indices.slice(0, 33) }), false, 'a cube without a triangle');
-  assert.equal(outward({ positions: CUBE.positions, indices: CUBE.indices.slice(0, 30) }), false, 'a cube without a face');
-  assert.equal(outward(flipped(CUBE)), false, 'the cube facing in');
-  assert.equal(outward(flipped(sphere())), false, 'a sphere facing in');
-  // (A small closed part facing in beside larger ones facing out is not caught: the repair turns every closed part out.)
-  const s = sphere();
-  const oneFlipped = { positions: s.positions, indices: s.indices.map((v, i) => (i < 3 ? s.indices[[0, 2, 1][i]] : v)) };
-  assert.equal(outward(oneFlipped), false, 'one triangle turned');
-  assert.equal(outward(joined(CUBE, { positions: [5, 0, 0, 6, 0, 0, 5, 1, 0], indices: [0, 1, 2] })), false, 'a cube and a lone triangle');
-  assert.equal(outward({ positions: [], indices: [] }), false, 'no triangles');
-});
 
 test('culled only when the camera and its near plane are outside the bounding sphere of a closed surface', () => {
   const layer = new SurfaceLayer();
   const s = sphere();
   const normals = new Float32Array(s.positions.length);
-  layer.setMesh({ positions: Float32Array.from(s.positions), normals, radius: 1 }, Uint32Array.from(s.indices));
+  layer.setMesh({ positions: Float32Array.from(s.positions), normals, radius: 1, closed: true }, Uint32Array.from(s.indices));
   assert.equal(layer.closed, true);
   const camera = new PerspectiveCamera(35, 1.5, 0.05, 100);
   const sideAt = (distance, near = 0.05) => {
@@ -105,13 +75,16 @@ test('culled only when the camera and its near plane are outside the bounding sp
   assert.equal(sideAt(1.04).side, DoubleSide, 'outside, but the near plane reaches into the sphere');
   assert.equal(sideAt(1.04, 0.001).side, FrontSide, 'just outside, with a near plane that does not');
   assert.equal(sideAt(3, 2.5).side, DoubleSide, 'a near plane cutting the model');
-  layer.setMesh({ positions: Float32Array.from(s.positions), normals, radius: 1 }, Uint32Array.from(s.indices.slice(3)));
+  layer.setMesh({ positions: Float32Array.from(s.positions), normals, radius: 1, closed: false }, Uint32Array.from(s.indices.slice(3)));
   assert.equal(layer.closed, false, 'a sphere with a hole');
   assert.equal(sideAt(4).side, DoubleSide, 'an open surface shows both sides');
+  layer.setMesh({ positions: Float32Array.from(s.positions), normals, radius: 1 }, Uint32Array.from(s.indices));
+  assert.equal(layer.closed, false, 'a view without `closed` counts as open');
+  assert.equal(sideAt(4).side, DoubleSide, 'both sides drawn then');
   layer.dispose();
 });
 
-test("the WASM Session's view.closed (the repaired mesh, C++) agrees with facesOutward", async () => {
+test("the WASM Session's view.closed: the repaired mesh's, C++", async () => {
   const module = await loadCrestline();
   const holed = sphere();
   holed.indices = holed.indices.slice(0, -3);
@@ -129,6 +102,6 @@ test("the WASM Session's view.closed (the repaired mesh, C++) agrees with facesO
     const { indices, view } = session.surface();
     session.delete();
     assert.equal(view.closed, expected, name);
-    assert.equal(view.closed, facesOutward(view.positions, indices), `${name}: the page's own test`);
+    assert.equal(indices.length, mesh.indices.length, `${name}: every triangle kept`);
   }
 });

@@ -169,4 +169,37 @@ TEST_CASE("is_closed_outward: closed, consistently oriented surfaces facing out,
   two.positions.insert(two.positions.end(), small.positions.begin(), small.positions.end());
   for (Triangle t : small.triangles) two.triangles.push_back({base + t[0], base + t[1], base + t[2]});
   CHECK(outward(two));
+  // Any scale, any vertex numbering, any triangle order.
+  CHECK(outward(mesh_of(testing::icosphere(3, 1e-8))));
+  CHECK(outward(mesh_of(testing::icosphere(3, 1e8))));
+  Mesh renumbered = sphere;
+  const uint32_t last = uint32_t(sphere.positions.size()) - 1;
+  std::reverse(renumbered.positions.begin(), renumbered.positions.end());
+  for (Triangle& t : renumbered.triangles)
+    for (uint32_t& v : t) v = last - v;
+  CHECK(outward(renumbered));
+  Mesh rotated = sphere;
+  std::rotate(rotated.triangles.begin(), rotated.triangles.begin() + 7, rotated.triangles.end());
+  CHECK(outward(rotated));
+  // A cube facing out, with a small sphere inside it (nested parts, both out).
+  Mesh cube;
+  for (int v = 0; v < 8; ++v) cube.positions.push_back(Vec3(v & 1, (v >> 1) & 1, (v >> 2) & 1));
+  cube.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                    {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+  CHECK(outward(cube));
+  const auto with = [](Mesh a, const Mesh& b) {
+    const uint32_t base = uint32_t(a.positions.size());
+    a.positions.insert(a.positions.end(), b.positions.begin(), b.positions.end());
+    for (Triangle t : b.triangles) a.triangles.push_back({base + t[0], base + t[1], base + t[2]});
+    return a;
+  };
+  CHECK(outward(with(cube, mesh_of(testing::icosphere(2, 0.2), Vec3(0.5, 0.5, 0.5)))));
+  // A cube without a face (two triangles), and a cube with a stray triangle beside it.
+  Mesh open_cube = cube;
+  open_cube.triangles.resize(10);
+  CHECK_FALSE(outward(open_cube));
+  Mesh stray;
+  stray.positions = {Vec3(5, 0, 0), Vec3(6, 0, 0), Vec3(5, 1, 0)};
+  stray.triangles = {{0, 1, 2}};
+  CHECK_FALSE(outward(with(cube, stray)));
 }

@@ -7,56 +7,6 @@
 import { BufferAttribute, BufferGeometry, DoubleSide, FrontSide, Mesh, MeshStandardMaterial, Sphere, Vector3 } from 'three';
 import { divergingColor, divergingColors, robustScale } from './colormap.js';
 
-/**
- * Whether `indices` (triangles of `positions`, x,y,z each) bound solids from
- * which they face outwards: every directed edge a→b is matched by one b→a
- * (closed and consistently oriented), and the signed volume is positive.
- * The repair turns each closed component outwards (core/src/mesh/repair.cpp);
- * the volume is a check on that for the whole, not for each part.
- * The edges are matched through the signed area of the triangles in two
- * pseudo-random integer maps of the vertices to the plane, modulo 2^32: each
- * matched pair of edges cancels exactly, so a closed oriented surface sums
- * to 0, and a boundary (the sum of its edges' terms) does so by chance only.
- */
-export function facesOutward(positions, indices) {
-  const n = positions.length / 3;
-  // Two maps: u0, w0, u1, w1 of each vertex.
-  const map = new Int32Array(4 * n);
-  let state = 0x9e3779b9; // xorshift32
-  for (let i = 0; i < map.length; i++) {
-    state ^= state << 13;
-    state ^= state >>> 17;
-    state ^= state << 5;
-    map[i] = state;
-  }
-  let area0 = 0,
-    area1 = 0,
-    volume = 0;
-  for (let t = 0; t < indices.length; t += 3) {
-    const a = 4 * indices[t],
-      b = 4 * indices[t + 1],
-      c = 4 * indices[t + 2];
-    // Twice the signed area of (a, b, c) in each map: the sum of its edges' cross products.
-    area0 = (area0 + Math.imul(map[a], map[b + 1]) - Math.imul(map[b], map[a + 1])) | 0;
-    area0 = (area0 + Math.imul(map[b], map[c + 1]) - Math.imul(map[c], map[b + 1])) | 0;
-    area0 = (area0 + Math.imul(map[c], map[a + 1]) - Math.imul(map[a], map[c + 1])) | 0;
-    area1 = (area1 + Math.imul(map[a + 2], map[b + 3]) - Math.imul(map[b + 2], map[a + 3])) | 0;
-    area1 = (area1 + Math.imul(map[b + 2], map[c + 3]) - Math.imul(map[c + 2], map[b + 3])) | 0;
-    area1 = (area1 + Math.imul(map[c + 2], map[a + 3]) - Math.imul(map[a + 2], map[c + 3])) | 0;
-    const pa = (3 * a) / 4,
-      pb = (3 * b) / 4,
-      pc = (3 * c) / 4;
-    const bx = positions[pb],
-      by = positions[pb + 1],
-      bz = positions[pb + 2],
-      cx = positions[pc],
-      cy = positions[pc + 1],
-      cz = positions[pc + 2];
-    volume += positions[pa] * (by * cz - bz * cy) + positions[pa + 1] * (bz * cx - bx * cz) + positions[pa + 2] * (bx * cy - by * cx);
-  }
-  return indices.length > 0 && area0 === 0 && area1 === 0 && volume > 0;
-}
-
 const sphere = new Sphere();
 const corner = new Vector3();
 const eye = new Vector3();
@@ -84,7 +34,7 @@ export class SurfaceLayer {
     this.singular = new Mesh(new BufferGeometry(), this.singularMaterial);
     this.mesh.add(this.singular);
     this.indices = new Uint32Array(0);
-    /** Whether the surface bounds solids it faces out of (facesOutward): seen from outside, its back faces are hidden. */
+    /** Whether the surface bounds solids it faces out of (the worker's is_closed_outward): seen from outside, its back faces are hidden. */
     this.closed = false;
   }
 
@@ -123,8 +73,9 @@ export class SurfaceLayer {
    * The surface's `view` (Session.surface(): float32 positions about its
    * origin, unit normals, the bounding sphere's radius about the origin,
    * whether it is closed and faces out) and its triangles (Uint32Array). The
-   * worker computed all of it: nothing here walks the mesh (facesOutward
-   * only for a view without `closed`).
+   * worker computed all of it (`closed` is C++'s is_closed_outward, from the
+   * repair's adjacency): nothing here walks the mesh. A view without `closed`
+   * counts as open (both sides drawn, the safe look).
    */
   setMesh({ positions, normals, radius, closed }, indices) {
     this.mesh.geometry.dispose();
@@ -135,8 +86,7 @@ export class SurfaceLayer {
     geometry.boundingSphere = new Sphere(new Vector3(), radius);
     this.mesh.geometry = geometry;
     this.indices = indices;
-    // The worker's (C++, from the repair's adjacency) where given: no walk of the mesh here.
-    this.closed = typeof closed === 'boolean' ? closed : facesOutward(positions, indices);
+    this.closed = closed === true;
     this.setColors(null);
     this.setSingular(null);
   }

@@ -2,8 +2,9 @@
 // Elementary functions from +, −, ×, ÷ and sqrt only, which IEEE 754 rounds
 // the same everywhere: glibc's exp and atan2 (natively) and Emscripten's
 // (in WASM) differ in the last bit for some arguments, and the CLI and the
-// page must write the same bytes. Both are within a few units in the last
-// place of the true value; neither is bit for bit the C library's.
+// page must write the same bytes. Each is within a few units in the last
+// place of the true value (their tests bound it); none is bit for bit the C
+// library's.
 #include <cstdint>
 #include <cstring>
 #include <limits>
