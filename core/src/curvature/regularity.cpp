@@ -19,10 +19,10 @@ Regularity classify_triangles(const Mesh& mesh, const Curvature& curvature) {
     size_t count_max = 0, count_min = 0;
     for (size_t t = begin; t < end; ++t) {
       const Triangle& f = mesh.triangles[t];
-      r.regular_max[t] =
-          consistent_signs(curvature.dir_max[f[0]], curvature.dir_max[f[1]], curvature.dir_max[f[2]], signs);
-      r.regular_min[t] =
-          consistent_signs(curvature.dir_min[f[0]], curvature.dir_min[f[1]], curvature.dir_min[f[2]], signs);
+      r.regular_max[t] = regularity_code(
+          consistent_signs(curvature.dir_max[f[0]], curvature.dir_max[f[1]], curvature.dir_max[f[2]], signs), signs);
+      r.regular_min[t] = regularity_code(
+          consistent_signs(curvature.dir_min[f[0]], curvature.dir_min[f[1]], curvature.dir_min[f[2]], signs), signs);
       count_max += !r.regular_max[t];
       count_min += !r.regular_min[t];
     }

@@ -1,6 +1,7 @@
 #include "crestline/lines/trace.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -66,11 +67,12 @@ constexpr uint32_t kProgressStride = 1u << 15;
 
 // The edges (k, k + 1) of triangle t that carry a segment of the field's
 // line, as 1 + first + 3 · second (first < second); 0 where there is none.
-uint8_t segment_edges(const Mesh& mesh, const Field& field, uint32_t t) {
+// `code`: the triangle's regularity_code (nonzero), whose signs are
+// consistent_signs' of the field's directions.
+uint8_t segment_edges(const Mesh& mesh, const Field& field, uint32_t t, uint8_t code) {
   const std::vector<Vec3>& x = mesh.positions;
   const Triangle& f = mesh.triangles[t];
-  std::array<double, 3> s;
-  consistent_signs(field.dir[f[0]], field.dir[f[1]], field.dir[f[2]], s);
+  const std::array<double, 3> s = code_signs(code);
   const double v[3] = {s[0] * nonzero(field.e[f[0]]), s[1] * nonzero(field.e[f[1]]), s[2] * nonzero(field.e[f[2]])};
   int crossed[2], n = 0;
   for (int k = 0; k < 3; ++k)
@@ -81,14 +83,17 @@ uint8_t segment_edges(const Mesh& mesh, const Field& field, uint32_t t) {
   const Vec3 normal = (x[f[1]] - x[f[0]]).cross(x[f[2]] - x[f[0]]);
   const double twice_area = normal.norm();
   if (!(twice_area > 0)) return 0;
-  Vec3 gradient = Vec3::Zero(), direction = Vec3::Zero();
+  // ∇e = Σ_k v_k N × (opposite edge) / (2 area)² with N the unnormalised
+  // normal: one cross product and one division for the three corners.
+  Vec3 opposite_sum = Vec3::Zero(), direction = Vec3::Zero();
   double own = 0, other = 0;
   for (int k = 0; k < 3; ++k) {
-    gradient += v[k] * (normal / twice_area).cross(x[f[(k + 2) % 3]] - x[f[(k + 1) % 3]]) / twice_area;
+    opposite_sum += v[k] * (x[f[(k + 2) % 3]] - x[f[(k + 1) % 3]]);
     direction += s[k] * field.dir[f[k]];
     own += field.kappa_own[f[k]];
     other += field.kappa_other[f[k]];
   }
+  const Vec3 gradient = normal.cross(opposite_sum) / (twice_area * twice_area);
   const double slope = gradient.dot(direction);
   const bool extremum = field.type == LineType::Ridge ? slope < 0 : slope > 0;
   if (!extremum || !(std::abs(own) > kDominance * std::abs(other))) return 0;
@@ -114,7 +119,7 @@ void trace_field(const Mesh& mesh, const Topology& topology, const Field& field,
     parallel_for(end - begin, [&](size_t first, size_t last) {
       for (size_t i = first; i < last; ++i) {
         const uint32_t t = begin + static_cast<uint32_t>(i);
-        code[i] = excluded[t] || !field.regular[t] ? 0 : segment_edges(mesh, field, t);
+        code[i] = excluded[t] || !field.regular[t] ? 0 : segment_edges(mesh, field, t, field.regular[t]);
       }
     });
     for (uint32_t t = begin; t < end; ++t) {

@@ -154,6 +154,39 @@ TEST_CASE("consistent signs follow Definition 1", "[regularity]") {
   CHECK_FALSE(consistent_signs(Vec3(1, 0, 0), Vec3(c, d, 0), Vec3(-c, d, 0), s));
 }
 
+TEST_CASE("classify_triangles keeps each regular triangle's signs for the tracer", "[regularity]") {
+  // A noisy sphere: regular and singular triangles of both fields, both signs.
+  Mesh mesh = repair_mesh(testing::icosphere(4)).mesh;
+  testing::add_normal_noise(mesh, 0.01, 5);
+  const Curvature curvature = compute_curvature(mesh, build_topology(mesh));
+  const Regularity reg = classify_triangles(mesh, curvature);
+  size_t singular[2] = {0, 0}, negative[2][3] = {{0, 0, 0}, {0, 0, 0}};
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const Triangle& f = mesh.triangles[t];
+    for (int field = 0; field < 2; ++field) {
+      const std::vector<Vec3>& dir = field == 0 ? curvature.dir_max : curvature.dir_min;
+      const uint8_t code = (field == 0 ? reg.regular_max : reg.regular_min)[t];
+      std::array<double, 3> s;
+      const bool regular = consistent_signs(dir[f[0]], dir[f[1]], dir[f[2]], s);
+      REQUIRE((code != 0) == regular);
+      if (!regular) {
+        ++singular[field];
+        continue;
+      }
+      REQUIRE(code_signs(code) == s);
+      for (int k = 0; k < 3; ++k) negative[field][k] += s[k] < 0;
+    }
+  }
+  CHECK(singular[0] == reg.singular_max);
+  CHECK(singular[1] == reg.singular_min);
+  for (int field = 0; field < 2; ++field) {
+    CHECK(singular[field] > 0);
+    CHECK(negative[field][0] == 0);  // s_0 = +1 always
+    CHECK(negative[field][1] > 0);
+    CHECK(negative[field][2] > 0);
+  }
+}
+
 TEST_CASE("a sphere-free smooth surface has few singular triangles", "[regularity]") {
   testing::GridOptions grid;
   grid.nu = 128;
