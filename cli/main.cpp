@@ -22,6 +22,10 @@
 #include "options.h"
 #include "progress.h"
 
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
+
 #ifdef __EMSCRIPTEN__
 #include <emscripten.h>
 
@@ -201,5 +205,13 @@ int main(int argc, char** argv) {
     return parsed.exit_code;
   }
   Progress::catch_interrupt();
+#ifdef __GLIBC__
+  // Freed blocks under 32 MB (glibc's largest mmap threshold) go back to
+  // the heap for the next stage's arrays instead of being unmapped and their
+  // pages faulted in afresh; glibc's dynamic threshold gets there only after
+  // the first large free. 1.1M triangles, 1 thread: page faults 144k → 92k,
+  // system time ≈ −0.1 s, peak RSS +5 MB (at 2 threads −8 MB).
+  mallopt(M_MMAP_THRESHOLD, 32 << 20);
+#endif
   return run(options);
 }
