@@ -262,7 +262,14 @@ std::vector<Run> visible_runs(const std::vector<Vec3>& projected, bool closed, c
     const Vec3& b = projected[(s + 1) % n];
     // One sample a pixel; a segment with a non-finite end keeps its ends only
     // (never drawn), and the count is bounded so that it stays an int.
-    const double pixels = std::hypot(b.x() - a.x(), b.y() - a.y()) * depth.factor();
+    // sqrt of the sum of squares, which IEEE 754 rounds the same everywhere
+    // (the C library's hypot differs between glibc and Emscripten in the
+    // last bit, and ceil below would turn that into another sample count);
+    // hypot only where the squares overflow.
+    const double dx = b.x() - a.x(), dy = b.y() - a.y();
+    double length = std::sqrt(dx * dx + dy * dy);
+    if (std::isinf(length)) length = std::hypot(dx, dy);
+    const double pixels = length * depth.factor();
     const int samples = std::isfinite(pixels) ? static_cast<int>(std::clamp(std::ceil(pixels), 1.0, kMaxSamples)) : 1;
     for (int k = s == 0 ? 0 : 1; k <= samples; ++k) {
       const double t = static_cast<double>(k) / samples;
