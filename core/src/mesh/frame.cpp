@@ -21,14 +21,20 @@ ComponentFrames component_frames(const Mesh& mesh, const Topology& topology) {
   const size_t threads = detail::part_count(nt);
   // Union-find over the vertices, always linking the larger root under the
   // smaller: a tree's root is then its component's smallest vertex whatever
-  // order the links were made in, so the triangles are joined on every thread
+  // order the links were made in, so the edges are joined on every thread
   // (a link is a compare-and-swap; halving a path stores an ancestor, which
-  // any interleaving leaves valid). Not zero-filled: every entry is set first.
+  // any interleaving leaves valid). The edges join what the triangles do
+  // (each triangle's sides are edges), 1.5 links a triangle instead of 2,
+  // and a run of edges from one smaller end finds that end's root once.
+  // number[r]: root r's component, set below. Not zero-filled: every entry
+  // is set first.
   std::unique_ptr<std::atomic<uint32_t>[]> parent(new std::atomic<uint32_t>[nv]);
+  UninitialisedVector<uint32_t> number(nv);
   parallel_for(nv, [&](size_t begin, size_t end) {
-    for (size_t v = begin; v < end; ++v) parent[v].store(uint32_t(v), std::memory_order_relaxed);
+    for (size_t v = begin; v < end; ++v) parent[v].store(uint32_t(v), std::memory_order_relaxed), number[v] = kNone;
   });
-  auto find = [&](uint32_t x) {
+  std::atomic<uint32_t>* const parent_data = parent.get();  // a copy the links' stores cannot alias
+  auto find = [parent = parent_data](uint32_t x) {
     for (;;) {
       const uint32_t p = parent[x].load(std::memory_order_relaxed);
       if (p == x) return x;
@@ -37,50 +43,61 @@ ComponentFrames component_frames(const Mesh& mesh, const Topology& topology) {
       x = g;
     }
   };
-  parallel_for(nt, [&](size_t begin, size_t end) {
-    for (size_t t = begin; t < end; ++t)
-      for (int k = 1; k < 3; ++k)
-        for (uint32_t a = mesh.triangles[t][0], b = mesh.triangles[t][k];;) {
-          a = find(a), b = find(b);
-          if (a == b) break;
-          if (a < b) std::swap(a, b);
-          uint32_t expected = a;  // still a root unless another thread linked it since
-          if (parent[a].compare_exchange_weak(expected, b, std::memory_order_relaxed)) break;
+  parallel_for(topology.edges.size(), [&, edges = topology.edges.data()](size_t begin, size_t end) {
+    uint32_t near = kNone, near_root = kNone;
+    for (size_t e = begin; e < end; ++e) {
+      const auto [a, b] = edges[e];
+      if (a != near) near = a, near_root = a;
+      for (uint32_t r = find(near_root), s = find(b);; r = find(r), s = find(b)) {
+        if (r == s) {
+          near_root = r;
+          break;
         }
+        const uint32_t low = std::min(r, s), high = std::max(r, s);
+        uint32_t expected = high;  // still a root unless another thread linked it since
+        if (parent_data[high].compare_exchange_weak(expected, low, std::memory_order_relaxed)) {
+          near_root = low;
+          break;
+        }
+      }
+    }
   });
-  // Every vertex straight under its root (later finds take one step).
-  parallel_for(nv, [&](size_t begin, size_t end) {
-    for (size_t v = begin; v < end; ++v) parent[v].store(find(uint32_t(v)), std::memory_order_relaxed);
+  // Every vertex straight under its root (later finds take one step), and
+  // the roots of triangles counted.
+  const size_t vertex_parts = detail::part_count(nv);
+  std::vector<size_t> roots(vertex_parts, 0);
+  detail::for_each_part(vertex_parts, nv, [&](size_t p, size_t begin, size_t end) {
+    size_t count = 0;
+    for (size_t v = begin; v < end; ++v) {
+      const uint32_t r = find(uint32_t(v));
+      parent[v].store(r, std::memory_order_relaxed);
+      count += r == v && topology.vertex_offsets[v + 1] > topology.vertex_offsets[v];
+    }
+    roots[p] = count;
   });
   auto root = [&](uint32_t v) { return parent[v].load(std::memory_order_relaxed); };
 
   // Components are numbered in order of first appearance among the
-  // triangles, i.e. of their first triangles (a triangle's corners share a
-  // component): each root's first triangle is a minimum over every thread's
-  // triangles, and those first triangles numbered in order on every thread.
-  std::unique_ptr<std::atomic<uint32_t>[]> first(new std::atomic<uint32_t>[nv]);
-  parallel_for(nv, [&](size_t begin, size_t end) {
-    for (size_t v = begin; v < end; ++v) first[v].store(kNone, std::memory_order_relaxed);
-  });
-  parallel_for(nt, [&](size_t begin, size_t end) {
-    for (size_t t = begin; t < end; ++t) detail::atomic_min(first[root(mesh.triangles[t][0])], uint32_t(t));
-  });
+  // triangles (a triangle's corners share a component): the triangles in
+  // order until every root has its number, on the calling thread; one
+  // triangle when the mesh is one component.
   ComponentFrames f;
-  UninitialisedVector<uint32_t> component(nv);  // of each root; set below for the roots of triangles
-  detail::place_kept(
-      nt, [&](size_t t) { return first[root(mesh.triangles[t][0])].load(std::memory_order_relaxed) == t; },
-      [&](size_t n) { f.triangle_count.assign(n, 0); },
-      [&](size_t t, size_t c) { component[root(mesh.triangles[t][0])] = uint32_t(c); });
-  const size_t n = f.triangle_count.size();
+  size_t n = 0;
+  for (size_t count : roots) n += count;
+  f.triangle_count.assign(n, 0);
+  for (size_t t = 0, numbered = 0; numbered < n; ++t) {
+    uint32_t& c = number[root(mesh.triangles[t][0])];
+    if (c == kNone) c = uint32_t(numbered++);
+  }
   f.vertex_component.resize(nv);
   // Unreferenced vertices (none after repair) join component 0.
   parallel_for(nv, [&](size_t begin, size_t end) {
     for (size_t v = begin; v < end; ++v) {
-      const uint32_t r = root(uint32_t(v));
-      f.vertex_component[v] = first[r].load(std::memory_order_relaxed) == kNone ? 0 : component[r];
+      const uint32_t c = number[root(uint32_t(v))];
+      f.vertex_component[v] = c == kNone ? 0 : c;
     }
   });
-  first.reset();
+  number = UninitialisedVector<uint32_t>();
   parent.reset();
 
   // Centre: the bounding box's, halved before adding so it cannot overflow.

@@ -39,8 +39,8 @@ struct ComponentFrames {
 };
 
 /// Splits a repaired mesh into components and measures each one's frame;
-/// `topology` is the mesh's (build_topology), whose edges are each measured
-/// once. Never overflows or underflows for finite coordinates whose bounding
+/// `topology` is the mesh's (build_topology), whose edges join the
+/// components and are each measured once. Never overflows or underflows for finite coordinates whose bounding
 /// box is finite: the mean edge is measured on coordinates first divided by
 /// the component's extent.
 ComponentFrames component_frames(const Mesh& mesh, const Topology& topology);
