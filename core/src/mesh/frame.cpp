@@ -84,7 +84,6 @@ ComponentFrames component_frames(const Mesh& mesh, const Topology& topology) {
   ComponentFrames f;
   size_t n = 0;
   for (size_t count : roots) n += count;
-  f.triangle_count.assign(n, 0);
   for (size_t t = 0, numbered = 0; numbered < n; ++t) {
     uint32_t& c = number[root(mesh.triangles[t][0])];
     if (c == kNone) c = uint32_t(numbered++);
@@ -137,18 +136,36 @@ ComponentFrames component_frames(const Mesh& mesh, const Topology& topology) {
       length[e] = ((mesh.positions[b] - mesh.positions[a]) / extent[f.vertex_component[a]]).norm();
     }
   });
-  std::vector<double> sum(n, 0.0);
-  for (size_t t = 0; t < nt; ++t) {
-    const uint32_t c = f.vertex_component[mesh.triangles[t][0]];
-    ++f.triangle_count[c];
-    for (int k = 0; k < 3; ++k) sum[c] += length[topology.triangle_edges[t][k]];
-  }
+  SideSums sums = side_sums(mesh, topology, f.vertex_component, n, length.data());
+  f.triangle_count = std::move(sums.triangles);
   f.scale.resize(n);
   for (size_t c = 0; c < n; ++c) {
-    const double mean = f.triangle_count[c] ? sum[c] / (3.0 * f.triangle_count[c]) : 0;
+    const double mean = f.triangle_count[c] ? sums.sum[c] / (3.0 * f.triangle_count[c]) : 0;
     f.scale[c] = mean > 0 ? extent[c] * mean : extent[c];
   }
   return f;
+}
+
+SideSums side_sums(const Mesh& mesh, const Topology& topology, const std::vector<uint32_t>& vertex_component,
+                   size_t components, const double* length) {
+  SideSums out{std::vector<double>(components, 0.0), std::vector<size_t>(components, 0)};
+  const auto* sides = topology.triangle_edges.data();
+  const size_t nt = mesh.triangles.size();
+  // A run of one component's triangles is summed in a register; one run
+  // when there is one component.
+  for (size_t t = 0; t < nt;) {
+    const uint32_t c = components == 1 ? 0 : vertex_component[mesh.triangles[t][0]];
+    const size_t first = t;
+    double sum = out.sum[c];
+    if (components == 1) {
+      for (; t < nt; ++t) sum += length[sides[t][0]], sum += length[sides[t][1]], sum += length[sides[t][2]];
+    } else {
+      for (; t < nt && vertex_component[mesh.triangles[t][0]] == c; ++t)
+        sum += length[sides[t][0]], sum += length[sides[t][1]], sum += length[sides[t][2]];
+    }
+    out.sum[c] = sum, out.triangles[c] += t - first;
+  }
+  return out;
 }
 
 Mesh to_local(const Mesh& mesh, const ComponentFrames& frames) {

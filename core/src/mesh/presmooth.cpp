@@ -6,6 +6,7 @@
 #include <functional>
 
 #include "crestline/mesh/cotan.h"
+#include "crestline/mesh/frame.h"
 #include "crestline/numerics/constants.h"
 #include "crestline/numerics/paired_cg.h"
 #include "crestline/numerics/parallel.h"
@@ -50,56 +51,59 @@ static void edges_at(const Mesh& mesh, const Topology& topology, uint32_t v, std
   out.erase(std::unique(out.begin(), out.end()), out.end());
 }
 
-// n: each triangle's unnormalised normal (twice its area), n_norm its norm.
+// The angle between an edge's two face normals as its cosine; 0 where a
+// normal vanishes (degenerate), 1 on the boundary. n: each triangle's
+// unnormalised normal (twice its area), n_norm its norm.
+static double edge_cosine(const Topology& topology, const std::vector<Vec3>& n,
+                          const UninitialisedVector<double>& n_norm, uint32_t e, bool& degenerate) {
+  const auto& tt = topology.edge_triangles[e];
+  degenerate = false;
+  if (tt[1] == kNone) return 1.0;
+  const double norms = n_norm[tt[0]] * n_norm[tt[1]];
+  degenerate = !(norms > 0);
+  return norms > 0 ? n[tt[0]].dot(n[tt[1]]) / norms : 0.0;
+}
+
+static double cos_clean_crease_turn() { return portable_cos(kCleanCreaseTurn); }
+
+// Whether an edge is sharp enough for a clean crease: only a vertex with one
+// can be on a clean crease or a wall (below).
+static bool sharp_edge(const Topology& topology, const std::vector<Vec3>& n, const UninitialisedVector<double>& n_norm,
+                       uint32_t e, double cos_sharp) {
+  bool degenerate;
+  const double c = edge_cosine(topology, n, n_norm, e, degenerate);
+  return topology.edge_triangles[e][1] != kNone && !degenerate && c <= cos_sharp;
+}
+
+// sharp: the sharp edges (sharp_edge) in ascending order; few on a smooth
+// mesh, so the rest is found only at their vertices.
 static std::vector<uint8_t> clean_crease_vertices(const Mesh& mesh, const Topology& topology,
-                                                  const std::vector<Vec3>& n,
-                                                  const UninitialisedVector<double>& n_norm) {
-  const double cos_sharp = portable_cos(kCleanCreaseTurn), cos_flat = portable_cos(kFlatTurn);
-  const size_t nv = mesh.positions.size(), ne = topology.edges.size();
-  // The angle between an edge's normals as its cosine; 0 where a normal
-  // vanishes (degenerate), 1 on the boundary.
-  auto cosine = [&](uint32_t e, bool& degenerate) {
-    const auto& tt = topology.edge_triangles[e];
-    degenerate = false;
-    if (tt[1] == kNone) return 1.0;
-    const double norms = n_norm[tt[0]] * n_norm[tt[1]];
-    degenerate = !(norms > 0);
-    return norms > 0 ? n[tt[0]].dot(n[tt[1]]) / norms : 0.0;
-  };
-  // Only a vertex with a sharp edge can be on a clean crease or on a wall
-  // (below): few on a smooth mesh, so only the edges' sharpness is found on
-  // all of them (on every thread), and the rest only at those vertices.
-  UninitialisedVector<uint8_t> sharp_edge(ne);
-  parallel_for(ne, [&](size_t begin, size_t end) {
-    for (size_t e = begin; e < end; ++e) {
-      bool degenerate;
-      const double c = cosine(uint32_t(e), degenerate);
-      sharp_edge[e] = topology.edge_triangles[e][1] != kNone && !degenerate && c <= cos_sharp;
-    }
-  });
-  // The sharp edges and then their vertices, gathered in ascending order on
-  // every thread.
-  std::vector<uint32_t> sharp, candidates;
-  auto gather = [](size_t count, const auto& keep, std::vector<uint32_t>& out) {
-    detail::place_kept(
-        count, keep, [&](size_t n) { out.resize(n); }, [&](size_t i, size_t rank) { out[rank] = uint32_t(i); });
-  };
-  gather(
-      ne, [&](size_t e) { return sharp_edge[e] != 0; }, sharp);
-  sharp_edge = UninitialisedVector<uint8_t>();
-  std::vector<uint8_t> candidate(nv, 0);
-  for (uint32_t e : sharp) candidate[topology.edges[e][0]] = candidate[topology.edges[e][1]] = 1;
-  gather(
-      nv, [&](size_t v) { return candidate[v] != 0; }, candidates);
+                                                  const std::vector<Vec3>& n, const UninitialisedVector<double>& n_norm,
+                                                  const std::vector<uint32_t>& sharp) {
+  const double cos_sharp = cos_clean_crease_turn(), cos_flat = portable_cos(kFlatTurn);
+  const size_t nv = mesh.positions.size();
+  std::vector<uint8_t> out(nv, 0);
+  if (sharp.empty()) return out;
+  auto cosine = [&](uint32_t e, bool& degenerate) { return edge_cosine(topology, n, n_norm, e, degenerate); };
+  // Their vertices, gathered in ascending order on every thread.
+  std::vector<uint32_t> candidates;
+  std::vector<uint8_t> state(nv, 0);  // 1 for a candidate, then its state (below)
+  for (uint32_t e : sharp) state[topology.edges[e][0]] = state[topology.edges[e][1]] = 1;
+  detail::place_kept(
+      nv, [&](size_t v) { return state[v] != 0; }, [&](size_t count) { candidates.resize(count); },
+      [&](size_t v, size_t rank) { candidates[rank] = uint32_t(v); });
   // At each: at least two sharp edges, at least two flat ones and none in
   // between (counts up to 2; a degenerate edge means never clean), or on a
   // wall (a sharp edge and one in between): the total turn over the
-  // in-between edges, added in edge order.
+  // in-between edges, added in edge order (turn[i]: of candidates[i]).
   enum : uint8_t { kOnWall = 1, kClean = 2, kCleanIfEqual = 4 };
-  std::vector<uint8_t> state(nv, 0);
-  std::vector<double> turn(nv, 0.0);
+  std::vector<double> turn(candidates.size(), 0.0);
+  auto turn_at = [&](uint32_t v) {
+    return turn[std::lower_bound(candidates.begin(), candidates.end(), v) - candidates.begin()];
+  };
   std::vector<uint32_t> edges;
-  for (uint32_t v : candidates) {
+  for (size_t i = 0; i < candidates.size(); ++i) {
+    const uint32_t v = candidates[i];
     edges_at(mesh, topology, v, edges);
     int sharp = 0, flat = 0, between = 0;
     double sum = 0.0;
@@ -121,22 +125,23 @@ static std::vector<uint8_t> clean_crease_vertices(const Mesh& mesh, const Topolo
     const bool on_wall = sharp > 0 && between == 1;
     state[v] = uint8_t((on_wall ? kOnWall : 0) | (sharp == 2 && flat == 2 && !between ? kClean : 0) |
                        (sharp == 2 && flat >= 1 && between == 1 ? kCleanIfEqual : 0));
-    if (on_wall) turn[v] = sum;
+    if (on_wall) turn[i] = sum;
   }
   // Clean where it qualified outright, or where two neighbours along sharp
   // edges turn by the same total.
-  std::vector<uint8_t> out(nv, 0);
   for (uint32_t v : candidates) {
     if (state[v] & kClean) out[v] = 1;
     if (!(state[v] & kCleanIfEqual)) continue;
     edges_at(mesh, topology, v, edges);
     int equal = 0;
+    const double turn_v = turn_at(v);
     for (uint32_t e : edges) {
       bool degenerate;
       const uint32_t w = topology.edges[e][0] ^ topology.edges[e][1] ^ v;
       if (topology.edge_triangles[e][1] == kNone || !(cosine(e, degenerate) <= cos_sharp) || !(state[w] & kOnWall))
         continue;
-      equal += equal < 2 && std::abs(turn[v] - turn[w]) <= kEqualTurn * std::max(turn[v], turn[w]);
+      const double turn_w = turn_at(w);
+      equal += equal < 2 && std::abs(turn_v - turn_w) <= kEqualTurn * std::max(turn_v, turn_w);
     }
     out[v] = equal == 2;
   }
@@ -172,14 +177,28 @@ std::vector<double> surface_noise_levels(const Mesh& mesh, const Topology& topol
       face_norm[f] = face_normal[f].norm();
     }
   });
+  // The sharp edges in ascending order: each part's, then joined in part
+  // order (few on a smooth mesh).
+  const double cos_sharp = cos_clean_crease_turn();
+  const size_t edge_parts = detail::part_count(ne);
+  std::vector<std::vector<uint32_t>> part_sharp(edge_parts);
+  detail::for_each_part(edge_parts, ne, [&](size_t p, size_t begin, size_t end) {
+    for (size_t e = begin; e < end; ++e)
+      if (sharp_edge(topology, face_normal, face_norm, uint32_t(e), cos_sharp)) part_sharp[p].push_back(uint32_t(e));
+  });
+  std::vector<uint32_t> sharp = std::move(part_sharp[0]);
+  for (size_t p = 1; p < edge_parts; ++p) sharp.insert(sharp.end(), part_sharp[p].begin(), part_sharp[p].end());
+  part_sharp = {};
   // Vertices on clean creases count as jump 0 and stay out of their
   // neighbours' means.
-  const std::vector<uint8_t> on_crease = clean_crease_vertices(mesh, topology, face_normal, face_norm);
+  const std::vector<uint8_t> on_crease = clean_crease_vertices(mesh, topology, face_normal, face_norm, sharp);
   face_norm = UninitialisedVector<double>();
-  std::vector<double> offset(nv, 0.0);
-  std::vector<uint8_t> valid(nv, 0);
+  // Every entry written; offset only where valid.
+  UninitialisedVector<double> offset(nv);
+  UninitialisedVector<uint8_t> valid(nv);
   parallel_for(nv, [&](size_t begin, size_t end) {
     for (size_t v = begin; v < end; ++v) {
+      valid[v] = 0;
       const uint32_t first = neighbour_start[v], last = neighbour_start[v + 1];
       if (boundary[v] || on_crease[v] || first == last) continue;
       Vec3 normal = Vec3::Zero(), neighbour_sum = Vec3::Zero();
@@ -206,6 +225,7 @@ std::vector<double> surface_noise_levels(const Mesh& mesh, const Topology& topol
       if (valid_count > 0) jump[v] = std::abs(offset[v] - offset_sum / valid_count), has_jump[v] = 1;
     }
   });
+  neighbours = UninitialisedVector<uint32_t>();
   // Each component's jumps, in units of its own mean edge length (as
   // mean_edge_length measures it: over the triangles' sides, added in
   // triangle order; each edge measured once, on every thread).
@@ -213,52 +233,43 @@ std::vector<double> surface_noise_levels(const Mesh& mesh, const Topology& topol
   parallel_for(ne, [&](size_t begin, size_t end) {
     for (size_t e = begin; e < end; ++e) length[e] = (x[topology.edges[e][1]] - x[topology.edges[e][0]]).norm();
   });
-  // The sums themselves stay in triangle order on the calling thread (their
-  // bits are the level's): each block's side lengths and components are
-  // gathered on every thread first, and a run of one component's triangles
-  // is summed in a register.
-  std::vector<double> edge_sum(components, 0.0);
-  std::vector<size_t> edge_count(components, 0);
-  constexpr size_t kBlock = size_t{1} << 15;
-  UninitialisedVector<double> sides(3 * std::min(nt, kBlock));
-  UninitialisedVector<uint32_t> side_component(std::min(nt, kBlock));
-  for (size_t block = 0; block < nt; block += kBlock) {
-    const size_t n = std::min(kBlock, nt - block);
-    parallel_for(n, [&](size_t begin, size_t end) {
-      for (size_t i = begin; i < end; ++i) {
-        const size_t f = block + i;
-        side_component[i] = vertex_component[mesh.triangles[f][0]];
-        for (int k = 0; k < 3; ++k) sides[3 * i + k] = length[topology.triangle_edges[f][k]];
-      }
-    });
-    for (size_t i = 0; i < n;) {
-      const uint32_t c = side_component[i];
-      const size_t run = i;
-      double sum = edge_sum[c];
-      for (; i < n && side_component[i] == c; ++i)
-        sum += sides[3 * i], sum += sides[3 * i + 1], sum += sides[3 * i + 2];
-      edge_sum[c] = sum, edge_count[c] += 3 * (i - run);
-    }
-  }
-  length = UninitialisedVector<double>();
-  // Each component's jumps in vertex order (as a copy: the median does not
-  // depend on it), grouped on every thread.
-  std::vector<uint32_t> jump_start;
-  UninitialisedVector<double> jumps;
-  detail::group_by_bucket(
-      nv, components,
-      [&](size_t v, const auto& emit) {
-        if (has_jump[v]) emit(vertex_component[v], jump[v]);
+  // The sums are serial; beside them (a second thread if there is one) each
+  // component's jumps in vertex order (as a copy: the median does not depend
+  // on it) are grouped and their medians found.
+  SideSums sums;
+  std::vector<double> median(components, 0.0);
+  std::vector<uint8_t> has_median(components, 0);
+  parallel_for(
+      2,
+      [&](size_t begin, size_t end) {
+        for (size_t task = begin; task < end; ++task) {
+          if (task == 0) {
+            sums = side_sums(mesh, topology, vertex_component, components, length.data());
+            continue;
+          }
+          std::vector<uint32_t> jump_start;
+          UninitialisedVector<double> jumps;
+          detail::group_by_bucket(
+              nv, components,
+              [&](size_t v, const auto& emit) {
+                if (has_jump[v]) emit(vertex_component[v], jump[v]);
+              },
+              jump_start, jumps);
+          for (size_t c = 0; c < components; ++c) {
+            const auto first = jumps.begin() + jump_start[c], last = jumps.begin() + jump_start[c + 1];
+            if (first == last) continue;
+            const auto middle = first + (last - first) / 2;
+            std::nth_element(first, middle, last);
+            median[c] = *middle, has_median[c] = 1;
+          }
+        }
       },
-      jump_start, jumps);
+      1);
+  length = UninitialisedVector<double>();
   std::vector<double> level(components, 0.0);
   for (size_t c = 0; c < components; ++c) {
-    const double h = edge_count[c] ? edge_sum[c] / double(edge_count[c]) : 0;
-    const auto first = jumps.begin() + jump_start[c], last = jumps.begin() + jump_start[c + 1];
-    if (first == last || !(h > 0)) continue;
-    const auto middle = first + (last - first) / 2;
-    std::nth_element(first, middle, last);
-    level[c] = *middle / h;
+    const double h = sums.triangles[c] ? sums.sum[c] / double(3 * sums.triangles[c]) : 0;
+    if (has_median[c] && h > 0) level[c] = median[c] / h;
   }
   return level;
 }

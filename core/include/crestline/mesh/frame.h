@@ -45,6 +45,18 @@ struct ComponentFrames {
 /// the component's extent.
 ComponentFrames component_frames(const Mesh& mesh, const Topology& topology);
 
+/// Each component's sum of its triangles' sides, length[e] for each edge e
+/// of `topology` (the mesh's), added side by side in triangle order on the
+/// calling thread (the bits depend on that order; the mean edge lengths are
+/// these sums over 3 · triangles). vertex_component numbers the components
+/// 0 … components−1.
+struct SideSums {
+  std::vector<double> sum;
+  std::vector<size_t> triangles;
+};
+SideSums side_sums(const Mesh& mesh, const Topology& topology, const std::vector<uint32_t>& vertex_component,
+                   size_t components, const double* length);
+
 /// The mesh in local coordinates (same connectivity).
 Mesh to_local(const Mesh& mesh, const ComponentFrames& frames);
 
