@@ -256,34 +256,42 @@ EdgePairs pair_half_edges(const std::vector<Triangle>& tris, size_t vertex_count
   const detail::HalfEdgeOrder order = detail::order_half_edges(tris, vertex_count, &first_edge);
   detail::number_edges(first_edge, nt, topology);
   using H = detail::HalfEdgeOrder;
-  auto from = [&](uint32_t c) { return tris[c / 3][c % 3]; };
-  auto opposite = [&](uint32_t c) { return tris[c / 3][(c % 3 + 2) % 3]; };
+  // The arrays by address (see EdgeRecorder). A half-edge's start and the
+  // corner opposite it come from its entry (no division of a corner number).
+  const Triangle* triangles = tris.data();
+  uint32_t* partner = out.partner.data();
+  uint8_t *same = out.same.data(), *cut = out.cut.data();
+  const detail::EdgeRecorder record(first_edge, topology);
+  auto from = [triangles](uint64_t h) { return triangles[H::triangle(h)][H::side(h)]; };
+  auto opposite = [triangles](uint64_t h) { return triangles[H::triangle(h)][H::side(h) == 0 ? 2 : H::side(h) - 1]; };
   std::atomic<size_t> nonmanifold{0}, single{0};
   std::atomic<bool> duplicates{false};
   detail::for_bucket_ranges(order.start, [&](size_t begin, size_t end) {
     size_t count = 0, singles = 0;
     bool repeated = false;
-    order.for_each_edge(begin, end, [&](uint32_t near, uint32_t far, const uint64_t* first, const uint64_t* last) {
-      detail::record_edge(first_edge, near, far, first, std::min(last, first + 2), topology);
-      if (last - first == 1) {
-        ++singles;
-        const uint32_t a = H::corner(first[0]);
-        out.partner[a] = kNone, out.same[a] = 0, out.cut[a] = 0;
-      } else if (last - first == 2) {
-        const uint32_t a = H::corner(first[0]), b = H::corner(first[1]);
-        out.partner[a] = b, out.partner[b] = a;
-        out.same[a] = out.same[b] = from(a) == from(b);
-        out.cut[a] = out.cut[b] = 0;
-        repeated |= opposite(a) == opposite(b);
-      } else {
-        ++count;
-        for (const uint64_t* h = first; h < last; ++h) {
-          const uint32_t a = H::corner(*h);
-          out.partner[a] = kNone, out.same[a] = 0, out.cut[a] = 1;
-          for (const uint64_t* g = first; g < h; ++g) repeated |= opposite(H::corner(*g)) == opposite(H::corner(*h));
-        }
-      }
-    });
+    order.for_each_edge(begin, end,
+                        [&count, &singles, &repeated, record, from, opposite, partner, same, cut](
+                            uint32_t near, uint32_t far, const uint64_t* first, const uint64_t* last) {
+                          record(near, far, first, std::min(last, first + 2));
+                          if (last - first == 1) {
+                            ++singles;
+                            const uint32_t a = H::corner(first[0]);
+                            partner[a] = kNone, same[a] = 0, cut[a] = 0;
+                          } else if (last - first == 2) {
+                            const uint32_t a = H::corner(first[0]), b = H::corner(first[1]);
+                            partner[a] = b, partner[b] = a;
+                            same[a] = same[b] = from(first[0]) == from(first[1]);
+                            cut[a] = cut[b] = 0;
+                            repeated |= opposite(first[0]) == opposite(first[1]);
+                          } else {
+                            ++count;
+                            for (const uint64_t* h = first; h < last; ++h) {
+                              const uint32_t a = H::corner(*h);
+                              partner[a] = kNone, same[a] = 0, cut[a] = 1;
+                              for (const uint64_t* g = first; g < h; ++g) repeated |= opposite(*g) == opposite(*h);
+                            }
+                          }
+                        });
     nonmanifold += count;
     single += singles;
     if (repeated) duplicates = true;
