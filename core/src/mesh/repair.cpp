@@ -66,21 +66,14 @@ void check_soup(const TriangleSoup& soup, const RepairOptions& options) {
                                          " triangles, more than the limit of " + std::to_string(options.max_triangles) +
                                          ".");
   if (soup.triangle_count() == 0) throw Error(ErrorKind::InvalidInput, "the mesh contains no triangles.");
-  const size_t nv = soup.vertex_count();
-  // The first index out of range: each thread's first, the smallest kept.
-  std::atomic<size_t> first_bad{soup.indices.size()};
-  parallel_for(soup.indices.size(), [&](size_t begin, size_t end) {
-    for (size_t i = begin; i < end; ++i)
-      if (soup.indices[i] >= nv) {
-        detail::atomic_min(first_bad, i);
-        return;
-      }
-  });
-  const size_t i = first_bad;
-  if (i < soup.indices.size())
-    throw Error(ErrorKind::InvalidInput, "triangle " + std::to_string(i / 3) + " refers to vertex " +
-                                             std::to_string(soup.indices[i]) + " but there are only " +
-                                             std::to_string(nv) + " vertices.");
+}
+
+// Throws for the index at `first_bad` (out of range) unless it is past the end.
+void check_first_bad_index(const TriangleSoup& soup, size_t first_bad) {
+  if (first_bad < soup.indices.size())
+    throw Error(ErrorKind::InvalidInput, "triangle " + std::to_string(first_bad / 3) + " refers to vertex " +
+                                             std::to_string(soup.indices[first_bad]) + " but there are only " +
+                                             std::to_string(soup.vertex_count()) + " vertices.");
 }
 
 // Merges vertices closer than `tolerance`: vertex i joins the earliest
@@ -418,6 +411,7 @@ struct Orientation {
   UninitialisedVector<uint32_t> component;
   size_t components = 0;
   size_t single_edges = 0;  // edges of one triangle: boundary edges whatever the repair does
+  bool any_cut = false;     // some cut flag is set
 };
 
 // A component's triangles are those joined through uncut paired edges; a
@@ -437,6 +431,7 @@ Orientation orient(std::vector<Triangle>& tris, const std::vector<Vec3>& points,
   out.cut = std::move(pairs.cut);
   report.nonmanifold_edges += pairs.nonmanifold;
   out.single_edges = pairs.single;
+  out.any_cut = pairs.nonmanifold > 0;
   out.partner = std::move(pairs.partner);
   const UninitialisedVector<uint32_t>& partner = out.partner;
   const UninitialisedVector<uint8_t>& same = pairs.same;
@@ -462,6 +457,7 @@ Orientation orient(std::vector<Triangle>& tris, const std::vector<Vec3>& points,
           stack.push_back(u);
         } else if (disagree != flipped[u]) {
           out.cut[corner] = out.cut[other] = 1;  // non-orientable here
+          out.any_cut = true;
         }
       }
     }
@@ -553,11 +549,17 @@ Orientation orient(std::vector<Triangle>& tris, const std::vector<Vec3>& points,
 // those, so the edge leaving v in one enters v in the next), instead of
 // grouping every vertex's corners: ~5 bytes per triangle of fresh memory
 // instead of ~30. A fan holding all of its vertex's triangles is the
-// vertex's only one: nearly every fan. The rest, found on every thread, are
-// sorted by (vertex, first corner). Returns whether it split any vertex.
+// vertex's only one: nearly every fan. So each vertex's fan through one of
+// its corners (`corner_at`, any) is walked first, on every thread; only
+// the vertices it leaves short (flagged in `several`) have all their fans
+// found, from every corner there, on every thread too, and sorted by
+// (vertex, first corner). (Walking every corner's fan once, with a flag per
+// corner walked, cost 0.16 G instructions at 1.1M triangles, d848c66.)
+// Returns whether it split any vertex.
 bool split_fans(std::vector<Triangle>& tris, std::vector<Vec3>& points, const Orientation& orientation,
-                const std::vector<uint32_t>& triangles_at, RepairReport& report) {
-  const size_t nt = tris.size();
+                const std::vector<uint32_t>& triangles_at, const std::vector<uint32_t>& corner_at,
+                RepairReport& report) {
+  const size_t nt = tris.size(), nv = triangles_at.size();
   const UninitialisedVector<uint8_t>& cut = orientation.cut;
   const UninitialisedVector<uint32_t>& partner = orientation.partner;
   // The corner at v of the triangle across the edge of corner `edge` (a
@@ -583,6 +585,19 @@ bool split_fans(std::vector<Triangle>& tris, std::vector<Vec3>& points, const Or
       visit(x);
     }
   };
+  std::vector<uint8_t> several(nv, 0);
+  std::atomic<bool> any{false};
+  parallel_for(nv, [&](size_t begin, size_t end) {
+    bool found = false;
+    for (size_t v = begin; v < end; ++v) {
+      if (triangles_at[v] == 0) continue;
+      uint32_t size = 1;
+      for_fan(corner_at[v], uint32_t(v), [&](uint32_t) { ++size; });
+      if (size < triangles_at[v]) several[v] = 1, found = true;
+    }
+    if (found) any = true;
+  });
+  if (!any) return false;
   // (vertex << 32 | first corner) of every fan of a vertex of several.
   std::vector<uint64_t> fans;
   std::mutex fans_mutex;
@@ -591,15 +606,15 @@ bool split_fans(std::vector<Triangle>& tris, std::vector<Vec3>& points, const Or
     std::vector<uint8_t> seen(last - first, 0);
     std::vector<uint64_t> found;
     for (size_t c = first; c < last; ++c) {
-      if (seen[c - first]) continue;
       const uint32_t v = tris[c / 3][c % 3];
-      uint32_t size = 1, lowest = uint32_t(c);
+      if (seen[c - first] || !several[v]) continue;
+      uint32_t lowest = uint32_t(c);
       for_fan(uint32_t(c), v, [&](uint32_t x) {
-        ++size, lowest = std::min(lowest, x);
+        lowest = std::min(lowest, x);
         if (x >= first && x < last) seen[x - first] = 1;
       });
       // Once per fan: from its first corner (the range that holds it).
-      if (size < triangles_at[v] && lowest == c) found.push_back(uint64_t{v} << 32 | c);
+      if (lowest == c) found.push_back(uint64_t{v} << 32 | c);
     }
     if (found.empty()) return;
     const std::lock_guard<std::mutex> lock(fans_mutex);
@@ -631,6 +646,7 @@ bool split_fans(std::vector<Triangle>& tris, std::vector<Vec3>& points, const Or
 // each end); only the cut edges' half-edges, few, are grouped anew by their
 // renamed ends, and one left alone is a boundary edge.
 size_t count_boundary_edges(const std::vector<Triangle>& tris, const Orientation& orientation) {
+  if (!orientation.any_cut) return orientation.single_edges;  // no scan of the flags (30 M instructions at 1.1M)
   // Found on every thread (sorted after, so in any order).
   std::vector<uint64_t> cut_edges;
   std::mutex cut_edges_mutex;
@@ -675,9 +691,20 @@ RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options)
       referenced[i].store(0, std::memory_order_relaxed);
     }
   });
+  // The indices checked in the same pass: the first out of range (each
+  // thread's first, the smallest kept) is the one reported.
+  std::atomic<size_t> first_bad{soup.indices.size()};
   parallel_for(soup.indices.size(), [&](size_t begin, size_t end) {
-    for (size_t i = begin; i < end; ++i) referenced[soup.indices[i]].store(1, std::memory_order_relaxed);
+    for (size_t i = begin; i < end; ++i) {
+      const uint32_t v = soup.indices[i];
+      if (v >= nv) {
+        detail::atomic_min(first_bad, i);
+        return;
+      }
+      referenced[v].store(1, std::memory_order_relaxed);
+    }
   });
+  check_first_bad_index(soup, first_bad);
   // The bounding box of the weldable vertices (finite and referenced), by
   // parts merged in order. (Equal minima of −0 and 0 may keep the other
   // sign than a pass in index order did; nothing below sees a zero's sign.)
@@ -767,10 +794,12 @@ RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options)
   // Triangles at each vertex: split_fans finds vertices of several fans by
   // them, and a vertex is used after the split if it had any (its first
   // fan keeps it; its copies are all used).
-  std::vector<uint32_t> triangles_at(nv, 0);
-  for (const Triangle& t : tris)
-    for (uint32_t v : t) ++triangles_at[v];
-  const bool split = split_fans(tris, points, orientation, triangles_at, report);
+  // corner_at[v]: one corner at v (the last), where split_fans starts its walk.
+  std::vector<uint32_t> triangles_at(nv, 0), corner_at(nv);
+  for (uint32_t t = 0; t < tris.size(); ++t)
+    for (uint32_t k = 0; k < 3; ++k) ++triangles_at[tris[t][k]], corner_at[tris[t][k]] = 3 * t + k;
+  const bool split = split_fans(tris, points, orientation, triangles_at, corner_at, report);
+  corner_at = {};
   orientation.partner = {};
 
   // Compact: keep used vertices in input order (copies last), on every thread.
