@@ -406,7 +406,8 @@ std::vector<uint8_t> link_components(const UninitialisedVector<uint32_t>& partne
 struct Orientation {
   UninitialisedVector<uint8_t> cut;  // 3 per triangle, edge k = corners k, k+1
   // EdgePairs::partner, its slots following the flips (its values still
-  // name the other triangle, the corner there as paired): split_fans walks it.
+  // name the other triangle, the corner there as paired), and kNone across
+  // every cut edge: split_fans walks it.
   UninitialisedVector<uint32_t> partner;
   UninitialisedVector<uint32_t> component;
   size_t components = 0;
@@ -433,61 +434,82 @@ Orientation orient(std::vector<Triangle>& tris, const std::vector<Vec3>& points,
   out.single_edges = pairs.single;
   out.any_cut = pairs.nonmanifold > 0;
   out.partner = std::move(pairs.partner);
-  const UninitialisedVector<uint32_t>& partner = out.partner;
-  const UninitialisedVector<uint8_t>& same = pairs.same;
-  auto joined = [&](uint32_t corner) { return partner[corner] != kNone && !out.cut[corner]; };
+  // By address (byte stores would reload the vectors' data at every corner).
+  // A cut edge has no partner (the pairing's cuts have none), so a corner
+  // is joined to another exactly when it has a partner.
+  uint32_t* partner = out.partner.data();
+  uint8_t* cut = out.cut.data();
+  const uint8_t* same = pairs.same.data();
+  auto joined = [partner](size_t corner) { return partner[corner] != kNone; };
 
   std::vector<uint8_t> flipped(nt, 0);
   out.component.resize(nt);
+  uint8_t* flip = flipped.data();
+  uint32_t* component = out.component.data();
   std::vector<uint32_t> seeds, stack;  // seeds[c]: component c's first triangle
-  // Component c from its seed, over the triangles not yet visited (kNone).
-  auto traverse = [&](uint32_t c) {
+  // Each component's size, flipped triangles and whether it is open (a
+  // corner without a partner, or cut: every non-orientable one).
+  std::vector<uint32_t> size, nflip;
+  std::vector<uint8_t> open;
+  // Component c from its seed, over the triangles not yet visited (kNone);
+  // counts it in size, nflip and open if `tally`.
+  auto traverse = [&](uint32_t c, bool tally) {
     stack.assign(1, seeds[c]);
-    out.component[seeds[c]] = c;
+    component[seeds[c]] = c;
+    uint32_t triangles = 0, flips = 0;
+    uint8_t opening = 0;
     while (!stack.empty()) {
       const uint32_t t = stack.back();
       stack.pop_back();
+      ++triangles, flips += flip[t];
       for (uint32_t corner = 3 * t; corner < 3 * t + 3; ++corner) {
-        if (!joined(corner)) continue;
-        const uint32_t other = partner[corner], u = other / 3;
-        const uint8_t disagree = same[corner] ^ flipped[t];
-        if (out.component[u] == kNone) {
-          flipped[u] = disagree;
-          out.component[u] = c;
+        const uint32_t other = partner[corner];
+        if (other == kNone) {
+          opening = 1;
+          continue;
+        }
+        const uint32_t u = other / 3;
+        const uint8_t disagree = same[corner] ^ flip[t];
+        if (component[u] == kNone) {
+          flip[u] = disagree;
+          component[u] = c;
           stack.push_back(u);
-        } else if (disagree != flipped[u]) {
-          out.cut[corner] = out.cut[other] = 1;  // non-orientable here
-          out.any_cut = true;
+        } else if (disagree != flip[u]) {
+          cut[corner] = cut[other] = 1;  // non-orientable here
+          partner[corner] = partner[other] = kNone;
+          out.any_cut = true, opening = 1;
         }
       }
     }
+    if (tally) size.push_back(triangles), nflip.push_back(flips), open.push_back(opening);
   };
-  if (detail::part_count(nt) == 1) {
+  // On one thread the traversal counts the components; on several they are
+  // counted by parts on every thread (on one part when they are many).
+  const bool one_part = detail::part_count(nt) == 1;
+  if (one_part) {
     std::fill(out.component.begin(), out.component.end(), kNone);
     for (uint32_t t = 0; t < nt; ++t)
-      if (out.component[t] == kNone) seeds.push_back(t), traverse(uint32_t(seeds.size() - 1));
+      if (component[t] == kNone) seeds.push_back(t), traverse(uint32_t(seeds.size() - 1), true);
   } else {
-    const std::vector<uint8_t> unorientable = link_components(partner, same, out.cut, out.component, flipped, seeds);
+    const std::vector<uint8_t> unorientable =
+        link_components(out.partner, pairs.same, out.cut, out.component, flipped, seeds);
     for (uint32_t c = 0; c < seeds.size(); ++c)
-      if (unorientable[c]) traverse(c);
+      if (unorientable[c]) traverse(c, false);
   }
   const size_t n = out.components = seeds.size();
-
-  // Each component's size, flipped triangles and whether it is open (a
-  // corner without a partner, or cut: every non-orientable one), counted by
-  // parts on every thread (on one part when the components are many).
-  const size_t parts = n * 64 <= nt ? detail::part_count(nt) : 1;
-  std::vector<uint32_t> size(parts * n, 0), nflip(parts * n, 0);
-  std::vector<uint8_t> open(parts * n, 0);
-  detail::for_each_part(parts, nt, [&](size_t p, size_t begin, size_t end) {
-    uint32_t *part_size = size.data() + p * n, *part_nflip = nflip.data() + p * n;
-    uint8_t* part_open = open.data() + p * n;
-    for (size_t t = begin; t < end; ++t) {
-      const uint32_t c = out.component[t];
-      ++part_size[c], part_nflip[c] += flipped[t];
-      if (!joined(uint32_t(3 * t)) || !joined(uint32_t(3 * t + 1)) || !joined(uint32_t(3 * t + 2))) part_open[c] = 1;
-    }
-  });
+  const size_t parts = one_part ? 0 : n * 64 <= nt ? detail::part_count(nt) : 1;
+  if (!one_part) {
+    size.assign(parts * n, 0), nflip.assign(parts * n, 0), open.assign(parts * n, 0);
+    detail::for_each_part(parts, nt, [&](size_t p, size_t begin, size_t end) {
+      uint32_t *part_size = size.data() + p * n, *part_nflip = nflip.data() + p * n;
+      uint8_t* part_open = open.data() + p * n;
+      for (size_t t = begin; t < end; ++t) {
+        const uint32_t c = component[t];
+        ++part_size[c], part_nflip[c] += flip[t];
+        if (!joined(3 * t) || !joined(3 * t + 1) || !joined(3 * t + 2)) part_open[c] = 1;
+      }
+    });
+  }
   for (size_t p = 1; p < parts; ++p)
     for (size_t c = 0; c < n; ++c) size[c] += size[p * n + c], nflip[c] += nflip[p * n + c], open[c] |= open[p * n + c];
   // Keep the orientation most of the file agreed on.
@@ -530,9 +552,8 @@ Orientation orient(std::vector<Triangle>& tris, const std::vector<Vec3>& points,
       if (flipped[t] != invert[out.component[t]]) {
         std::swap(tris[t][1], tris[t][2]);
         // Corner k of the swapped triangle: edges (0,2),(2,1),(1,0) — remap cut flags.
-        uint8_t* cut = &out.cut[3 * t];
-        std::swap(cut[0], cut[2]);
-        std::swap(out.partner[3 * t], out.partner[3 * t + 2]);
+        std::swap(cut[3 * t], cut[3 * t + 2]);
+        std::swap(partner[3 * t], partner[3 * t + 2]);
         std::swap(topology.triangle_edges[t][0], topology.triangle_edges[t][2]);
       }
   });
@@ -560,13 +581,12 @@ bool split_fans(std::vector<Triangle>& tris, std::vector<Vec3>& points, const Or
                 const std::vector<uint32_t>& triangles_at, const std::vector<uint32_t>& corner_at,
                 RepairReport& report) {
   const size_t nt = tris.size(), nv = triangles_at.size();
-  const UninitialisedVector<uint8_t>& cut = orientation.cut;
   const UninitialisedVector<uint32_t>& partner = orientation.partner;
   // The corner at v of the triangle across the edge of corner `edge` (a
   // corner of v's triangle), or kNone where the edge is cut or has no other.
   auto across = [&](uint32_t edge, uint32_t v) {
     const uint32_t other = partner[edge];
-    if (other == kNone || cut[edge]) return kNone;
+    if (other == kNone) return kNone;  // cut, or no other
     const uint32_t u = other / 3;
     return 3 * u + (tris[u][0] == v ? 0 : tris[u][1] == v ? 1 : 2);
   };
