@@ -10,6 +10,10 @@
 // 'cancelled' arriving.
 //   node bench/browser.mjs [--mesh large/dragon.glb] [--runs 3] [--rethresholds 4]
 //                          [--cancels 8] [--dist web/dist] [--json OUT.json] [--no-isolation]
+//                          [--pause MS]
+// --pause waits MS after the sample's lines before the drop (a user finding a
+// file; default 0). The `warm-up` column says whether the worker had warmed its
+// glTF reader up before the drop (web/src/worker/warm-up.js).
 // --no-isolation serves the app without COOP/COEP: the plain one-thread WASM
 // module instead of crestline-mt on every core (the table says which ran).
 // The mesh is a path under ../shared/meshes. Without Chromium, the meshes or
@@ -41,6 +45,7 @@ function parseArgs(argv) {
     else if (argv[i] === '--dist') args.dist = resolve(value());
     else if (argv[i] === '--json') args.json = value();
     else if (argv[i] === '--no-isolation') args.isolation = false;
+    else if (argv[i] === '--pause') args.pause = Math.max(0, Number(value()));
     else throw new Error(`unknown argument ${argv[i]}`);
   }
   return args;
@@ -225,6 +230,19 @@ function rethresholdSplit(t) {
   };
 }
 
+/** A global of every worker of the page; an idle pthread of crestline-mt waits in Atomics.wait and never answers: 2 s at most each. */
+function askWorkers(page, read) {
+  const within = (promise, ms) => Promise.race([promise, new Promise((resolve) => setTimeout(resolve, ms))]);
+  return Promise.all(
+    page.workers().map((w) =>
+      within(
+        w.evaluate(read).catch(() => undefined),
+        2000,
+      ),
+    ),
+  );
+}
+
 async function measureRun(args, server) {
   const browser = await launch();
   try {
@@ -237,6 +255,7 @@ async function measureRun(args, server) {
     await page.goto(`${origin}/`);
     await page.waitForFunction(() => window.crestline?.lastResult && document.body.dataset.state === 'ready', null, { timeout: 120000 });
     await page.evaluate(instrument);
+    if (args.pause) await page.waitForTimeout(args.pause);
     const loadBefore = load();
     const drop = await dropAndTime(page, `${origin}/meshes/${args.mesh}`, args.mesh.split('/').pop());
     const rethresholds = [];
@@ -246,18 +265,13 @@ async function measureRun(args, server) {
     const cancels = [];
     for (let i = 0; i < args.cancels; i++) cancels.push(await cancelAndTime(page, ((i + 0.5) / args.cancels) * rerun.runMs, i % 2 ? 1.5 : 1));
     if (errors.length) throw new Error(`the page failed: ${errors.join('; ')}`);
-    // An idle pthread of crestline-mt waits in Atomics.wait and never answers an evaluate: ask each worker for 2 s at most.
-    const within = (promise, ms) => Promise.race([promise, new Promise((resolve) => setTimeout(resolve, ms))]);
-    const threads = await Promise.all(
-      page.workers().map((w) =>
-        within(
-          w.evaluate(() => self.crestlineThreads).catch(() => undefined),
-          2000,
-        ),
-      ),
-    );
+    const threads = await askWorkers(page, () => self.crestlineThreads);
+    // Whether the worker's warm-up had ended before the drop (it waits while the worker is busy).
+    const pageOrigin = await page.evaluate(() => performance.timeOrigin);
+    const warmedUp = (await askWorkers(page, () => self.crestlineWarmedUp)).some((w) => w && w.at < pageOrigin + drop.start);
     return {
       threads: threads.find((t) => t !== undefined) ?? '?',
+      warmedUp,
       load: [loadBefore, load()],
       triangles: drop.result.stats.triangles,
       lines: drop.result.lineCount,
@@ -312,10 +326,10 @@ const DROP = [
   ['long tasks', 'longTasks'],
   ['surface draws', 'surfaceDraws'],
 ];
-const rows = [['run', 'load', ...DROP.map(([h]) => h), 'smoothing']];
-const row = (label, loadText, pick) => [label, loadText, ...DROP.map(([, k]) => f(pick((d) => d[k]))), f(pick((d) => d.stages.smoothing))];
-runs.forEach((r, i) => rows.push(row(String(i + 1), r.load.join('→'), (get) => get(r.drop))));
-rows.push(row('median', '', (get) => median(runs.map((r) => get(r.drop)))));
+const rows = [['run', 'load', 'warm-up', ...DROP.map(([h]) => h), 'smoothing']];
+const row = (label, loadText, warm, pick) => [label, loadText, warm, ...DROP.map(([, k]) => f(pick((d) => d[k]))), f(pick((d) => d.stages.smoothing))];
+runs.forEach((r, i) => rows.push(row(String(i + 1), r.load.join('→'), r.warmedUp ? 'done' : 'no', (get) => get(r.drop))));
+rows.push(row('median', '', '', (get) => median(runs.map((r) => get(r.drop)))));
 const mesh = `${args.mesh} (${runs[0].triangles} triangles, ${runs[0].lines} lines)`;
 console.log(
   `Browser: headless Chromium, ${mesh}, dropped on the app, WASM on ${runs[0].threads} thread(s); ms, page clock; load = 1-minute load average before→after`,

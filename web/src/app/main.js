@@ -15,7 +15,8 @@ import { pipelineParameters } from '../client/parameters.js';
 import { autoKey, createGui, defaultParams, pipelineOptions } from './gui.js';
 import { linkFragment, parseLink } from './link.js';
 
-const connection = sharedConnection();
+// The worker warms its glTF reader up after the sample's lines, for the first file dropped.
+const connection = sharedConnection({ warmUp: true });
 // The parameter table of the core: the panel's controls and defaults.
 const table = await connection.describe().catch((error) => {
   // The engine cannot start in this browser (no WebAssembly SIMD, a blocked

@@ -22,9 +22,13 @@ function startBrowserWorker() {
 /** @type {Connection | null} */
 let shared = null;
 
-/** The page's connection, shared by every viewer on it. */
-export function sharedConnection() {
-  shared ??= new Connection(startBrowserWorker);
+/**
+ * The page's connection, shared by every viewer on it. `warmUp` (the app,
+ * where files are dropped): see Connection; the first call makes it.
+ * @param {{warmUp?: boolean}} [options]
+ */
+export function sharedConnection({ warmUp = false } = {}) {
+  shared ??= new Connection(startBrowserWorker, { warmUp });
   return shared;
 }
 

@@ -89,13 +89,15 @@ const copyFiles = (files) => files.map(({ name, bytes }) => ({ name, bytes: byte
 export class Connection {
   /**
    * @param {() => WorkerLike} startWorker
-   * @param {{preload?: boolean}} [options] preload: the worker starts its
+   * @param {{preload?: boolean, warmUp?: boolean}} [options] preload: the worker starts its
    *   WASM module at once (default); false for a connection that may never
-   *   run the pipeline (the brush's surface indices)
+   *   run the pipeline (the brush's surface indices). warmUp: the worker warms
+   *   its glTF reader up once idle after its first result (the app, where files are dropped)
    */
-  constructor(startWorker, { preload = true } = {}) {
+  constructor(startWorker, { preload = true, warmUp = false } = {}) {
     this.startWorker = startWorker;
     this.preload = preload;
+    this.warmUp = warmUp;
     /** @type {Map<number, Session>} */
     this.sessions = new Map();
     this.nextId = 1;
@@ -170,7 +172,7 @@ export class Connection {
       for (const session of this.sessions.values()) session.fail({ message, kind: 'internal' });
       this.failRequests(message);
     };
-    this.worker.postMessage({ type: 'init', cancelFlag: this.cancelFlag, preload: this.preload }, []);
+    this.worker.postMessage({ type: 'init', cancelFlag: this.cancelFlag, preload: this.preload, warmUp: this.warmUp }, []);
   }
 
   /** @param {Reply} message */

@@ -8,6 +8,7 @@
 import { Engine, EngineError } from './engine.js';
 import { fetchFiles } from './fetch-files.js';
 import { SurfaceIndex } from './surface-index.js';
+import { warmUpReader } from './warm-up.js';
 
 /**
  * @typedef {import('./protocol.js').Request} Request
@@ -17,12 +18,16 @@ import { SurfaceIndex } from './surface-index.js';
 
 /**
  * @param {{startModule: () => Promise<CrestlineModule>, post: (message: Reply) => void,
- *          startDecoders?: () => Promise<import('./engine.js').GltfDecoders>}} io
+ *          startDecoders?: () => Promise<import('./engine.js').GltfDecoders>,
+ *          warmUp?: (module: CrestlineModule) => void, schedule?: (task: () => void) => void}} io
  *   post sends a message (transferring its typed arrays); startDecoders: the
  *   npm Draco and meshopt decoders, started when a compressed glTF first
- *   arrives (without them such a file gets the readers' sentence)
+ *   arrives (without them such a file gets the readers' sentence); warmUp:
+ *   what init's `warmUp` runs once, when the worker is first idle after a
+ *   result (warm-up.js: the glTF reader's first read); schedule: runs a task
+ *   after the messages already waiting (a macrotask: setTimeout)
  */
-export function createHandler({ startModule, post, startDecoders }) {
+export function createHandler({ startModule, post, startDecoders, warmUp = warmUpReader, schedule = (task) => setTimeout(task, 0) }) {
   /** @type {Promise<CrestlineModule> | null} */
   let starting = null;
   /** @type {Map<number, Engine>} */
@@ -39,6 +44,11 @@ export function createHandler({ startModule, post, startDecoders }) {
   let queue = Promise.resolve();
   /** @type {Map<Request, Promise<import('./protocol.js').NamedBytes[]>>} the fetches of 'open' messages with a URL, started as they arrive */
   const fetchedFiles = new Map();
+  /** Messages received and not yet handled (init aside): the warm-up runs only when there are none. */
+  let waiting = 0;
+  /** The warm-up: 'off' (init did not ask), 'wanted', 'scheduled' or 'done'. */
+  let warmUpState = 'off';
+  let resultPosted = false;
 
   /**
    * The module, started once. If it cannot start, every message is answered
@@ -88,6 +98,30 @@ export function createHandler({ startModule, post, startDecoders }) {
     if (result.cancelled) return post({ type: 'cancelled', id, job });
     const { ran, stats, lines, creases, kept, milliseconds } = result;
     post({ type: 'result', id, job, ran, stats, lines, creases, kept, milliseconds });
+    resultPosted = true;
+  }
+
+  /**
+   * Once a result is out (the page's sample: its lines are never delayed)
+   * and nothing waits, the warm-up runs, once. A message that arrives before
+   * its task goes first; the warm-up then waits for the queue to be empty
+   * again. It posts nothing and touches no session: a cancel finds the
+   * worker idle or in one short read (≈ 15 ms).
+   */
+  function warmUpWhenIdle() {
+    if (warmUpState !== 'wanted' || !resultPosted || waiting > 0) return;
+    warmUpState = 'scheduled';
+    schedule(() => {
+      if (waiting > 0) {
+        warmUpState = 'wanted'; // after the messages that came first
+        return;
+      }
+      warmUpState = 'done';
+      queue = queue
+        .then(theModule)
+        .then(warmUp)
+        .catch((error) => console.warn(`Crestline: the reader's warm-up failed (${error?.message ?? error}).`));
+    });
   }
 
   /**
@@ -181,6 +215,7 @@ export function createHandler({ startModule, post, startDecoders }) {
     handle(message) {
       if (message.type === 'init') {
         cancelFlag = message.cancelFlag ?? null;
+        if (message.warmUp && warmUpState === 'off') warmUpState = 'wanted';
         if (message.preload === false) return (queue = queue.then(() => post({ type: 'ready' })));
         const started = theModule();
         queue = queue.then(() =>
@@ -199,7 +234,13 @@ export function createHandler({ startModule, post, startDecoders }) {
         fetching.catch(() => {}); // reported when its turn comes
         fetchedFiles.set(message, fetching);
       }
-      queue = queue.then(() => handleOne(message));
+      waiting += 1;
+      queue = queue
+        .then(() => handleOne(message))
+        .then(() => {
+          waiting -= 1;
+          warmUpWhenIdle();
+        });
       return queue;
     },
   };

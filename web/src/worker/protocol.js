@@ -31,12 +31,14 @@
 
 /**
  * Page → worker.
- * @typedef {{type: 'init', cancelFlag?: Int32Array | null, preload?: boolean}} InitMessage
+ * @typedef {{type: 'init', cancelFlag?: Int32Array | null, preload?: boolean, warmUp?: boolean}} InitMessage
  *   cancelFlag (two Int32 over shared memory: cross-origin isolated pages,
  *   node): the page stores the job to cancel in [1], then its session id in
  *   [0]; the pipeline stops at its next progress report. preload (default
  *   true): start the WASM module now; false for a worker that may never need
- *   it (the brush's surface indices)
+ *   it (the brush's surface indices). warmUp (default false): once idle after
+ *   its first result, the worker reads a small generated GLB by itself
+ *   (warm-up.js) so that a first dropped glTF runs in optimised code
  * @typedef {{type: 'open', id: number, job: number, files?: NamedBytes[], url?: string,
  *            options: PipelineOptions}} OpenMessage
  *   read files (or fetch `url` and a .gltf's buffers) with the C++ readers, then run
