@@ -214,10 +214,12 @@ function received(session, result) {
   const upstream = ['presmooth', 'curvature', 'extremality', 'regularity', 'smoothing'];
   if (result.ran.some((s) => upstream.includes(s))) app.fields = null;
   render();
-  // The info box grew with the statistics: framed again, unless the user moved the camera meanwhile;
-  // after the frame that shows the lines, which draws the surface kept (three/surface-cache.js) where a
-  // new view draws it again (1.2 s of CPU for 871k triangles in SwiftShader).
-  if (firstLines && !shown.cameraMoved) viewer.afterFrame(() => state.shown === shown && !shown.cameraMoved && viewer.fitView());
+  // The statistics' lines are reserved in the info box (style.css), so it does not grow over the model
+  // and the picture stays: a new view would draw the surface again (three/surface-cache.js; ≈ 0.3 s for
+  // 871k triangles in SwiftShader). Where it did grow over it (a longer text, a narrow window), the model
+  // is framed again after the frame that shows the lines, unless the user moved the camera meanwhile.
+  const reframe = () => state.shown === shown && !shown.cameraMoved && !viewer.framingUncovered() && viewer.fitView();
+  if (firstLines && !shown.cameraMoved) viewer.afterFrame(reframe);
   if (!session.busy) applyView();
   release(shown);
 }

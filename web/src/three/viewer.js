@@ -110,6 +110,20 @@ export class Viewer {
     return uncoveredRect(w, h, this.covers());
   }
 
+  /**
+   * Whether the rectangle the model was last framed in (fitView) is still
+   * uncovered in a canvas of the same size: the page's boxes changed their
+   * contents but did not grow over it, so framing again would only move the
+   * picture (and draw the surface anew).
+   */
+  framingUncovered() {
+    const was = this.framedIn;
+    const { clientWidth: w, clientHeight: h } = this.container;
+    if (!was || was.width !== w || was.height !== h) return false;
+    const now = this.uncovered();
+    return now.left <= was.left && now.top <= was.top && now.right >= was.right && now.bottom >= was.bottom;
+  }
+
   /** Shifts the projection so that the orbit centre is the centre of the uncovered rectangle. */
   applyFrame() {
     const { clientWidth: w, clientHeight: h } = this.container;
@@ -129,6 +143,7 @@ export class Viewer {
     const radius = sphere.radius || 1;
     const { clientWidth: w, clientHeight: h } = this.container;
     const r = this.uncovered();
+    this.framedIn = { ...r, width: w, height: h };
     const area = w && h ? { width: (r.right - r.left) / w, height: (r.bottom - r.top) / h } : undefined;
     const distance = fitDistance(this.camera, radius, area);
     this.camera.near = distance / 100;
