@@ -75,6 +75,39 @@ static bool sharp_edge(const Topology& topology, const std::vector<Vec3>& n, con
   return topology.edge_triangles[e][1] != kNone && !degenerate && c <= cos_sharp;
 }
 
+enum : uint8_t { kOnWall = 1, kClean = 2, kCleanIfEqual = 4 };
+
+// A candidate vertex's state: at least two sharp edges, at least two flat
+// ones and none in between (counts up to 2; a degenerate edge means never
+// clean), or on a wall (a sharp edge and one in between), where `turn` is
+// set to the total turn over the in-between edges, added in edge order.
+static uint8_t crease_state(const Mesh& mesh, const Topology& topology, const std::vector<Vec3>& n,
+                            const UninitialisedVector<double>& n_norm, double cos_sharp, double cos_flat, uint32_t v,
+                            std::vector<uint32_t>& edges, double& turn) {
+  edges_at(mesh, topology, v, edges);
+  int sharp = 0, flat = 0, between = 0;
+  double sum = 0.0;
+  for (uint32_t e : edges) {
+    bool degenerate;
+    const double c = edge_cosine(topology, n, n_norm, e, degenerate);
+    if (topology.edge_triangles[e][1] == kNone) continue;
+    if (degenerate) {
+      between = 2;
+    } else if (c < cos_flat && c > cos_sharp) {
+      between += between < 1;
+      sum += portable_acos_of_complement(1 - c);
+    } else if (c <= cos_sharp) {
+      sharp += sharp < 2;
+    } else {
+      flat += flat < 2;
+    }
+  }
+  const bool on_wall = sharp > 0 && between == 1;
+  if (on_wall) turn = sum;
+  return uint8_t((on_wall ? kOnWall : 0) | (sharp == 2 && flat == 2 && !between ? kClean : 0) |
+                 (sharp == 2 && flat >= 1 && between == 1 ? kCleanIfEqual : 0));
+}
+
 // sharp: the sharp edges (sharp_edge) in ascending order; few on a smooth
 // mesh, so the rest is found only at their vertices.
 static std::vector<uint8_t> clean_crease_vertices(const Mesh& mesh, const Topology& topology,
@@ -92,59 +125,47 @@ static std::vector<uint8_t> clean_crease_vertices(const Mesh& mesh, const Topolo
   detail::place_kept(
       nv, [&](size_t v) { return state[v] != 0; }, [&](size_t count) { candidates.resize(count); },
       [&](size_t v, size_t rank) { candidates[rank] = uint32_t(v); });
-  // At each: at least two sharp edges, at least two flat ones and none in
-  // between (counts up to 2; a degenerate edge means never clean), or on a
-  // wall (a sharp edge and one in between): the total turn over the
-  // in-between edges, added in edge order (turn[i]: of candidates[i]).
-  enum : uint8_t { kOnWall = 1, kClean = 2, kCleanIfEqual = 4 };
+  // Each one's state (crease_state), its turn in turn[i] for candidates[i].
   std::vector<double> turn(candidates.size(), 0.0);
   auto turn_at = [&](uint32_t v) {
     return turn[std::lower_bound(candidates.begin(), candidates.end(), v) - candidates.begin()];
   };
-  std::vector<uint32_t> edges;
-  for (size_t i = 0; i < candidates.size(); ++i) {
-    const uint32_t v = candidates[i];
-    edges_at(mesh, topology, v, edges);
-    int sharp = 0, flat = 0, between = 0;
-    double sum = 0.0;
-    for (uint32_t e : edges) {
-      bool degenerate;
-      const double c = cosine(e, degenerate);
-      if (topology.edge_triangles[e][1] == kNone) continue;
-      if (degenerate) {
-        between = 2;
-      } else if (c < cos_flat && c > cos_sharp) {
-        between += between < 1;
-        sum += portable_acos_of_complement(1 - c);
-      } else if (c <= cos_sharp) {
-        sharp += sharp < 2;
-      } else {
-        flat += flat < 2;
-      }
-    }
-    const bool on_wall = sharp > 0 && between == 1;
-    state[v] = uint8_t((on_wall ? kOnWall : 0) | (sharp == 2 && flat == 2 && !between ? kClean : 0) |
-                       (sharp == 2 && flat >= 1 && between == 1 ? kCleanIfEqual : 0));
-    if (on_wall) turn[i] = sum;
-  }
+  // Each candidate on its own, on every thread (a scratch list per chunk).
+  parallel_for(
+      candidates.size(),
+      [&](size_t begin, size_t end) {
+        std::vector<uint32_t> edges;
+        for (size_t i = begin; i < end; ++i)
+          state[candidates[i]] =
+              crease_state(mesh, topology, n, n_norm, cos_sharp, cos_flat, candidates[i], edges, turn[i]);
+      },
+      256);
   // Clean where it qualified outright, or where two neighbours along sharp
   // edges turn by the same total.
-  for (uint32_t v : candidates) {
-    if (state[v] & kClean) out[v] = 1;
-    if (!(state[v] & kCleanIfEqual)) continue;
-    edges_at(mesh, topology, v, edges);
-    int equal = 0;
-    const double turn_v = turn_at(v);
-    for (uint32_t e : edges) {
-      bool degenerate;
-      const uint32_t w = topology.edges[e][0] ^ topology.edges[e][1] ^ v;
-      if (topology.edge_triangles[e][1] == kNone || !(cosine(e, degenerate) <= cos_sharp) || !(state[w] & kOnWall))
-        continue;
-      const double turn_w = turn_at(w);
-      equal += equal < 2 && std::abs(turn_v - turn_w) <= kEqualTurn * std::max(turn_v, turn_w);
-    }
-    out[v] = equal == 2;
-  }
+  parallel_for(
+      candidates.size(),
+      [&](size_t begin, size_t end) {
+        std::vector<uint32_t> edges;
+        for (size_t i = begin; i < end; ++i) {
+          const uint32_t v = candidates[i];
+          if (state[v] & kClean) out[v] = 1;
+          if (!(state[v] & kCleanIfEqual)) continue;
+          edges_at(mesh, topology, v, edges);
+          int equal = 0;
+          const double turn_v = turn[i];
+          for (uint32_t e : edges) {
+            bool degenerate;
+            const uint32_t w = topology.edges[e][0] ^ topology.edges[e][1] ^ v;
+            if (topology.edge_triangles[e][1] == kNone || !(cosine(e, degenerate) <= cos_sharp) ||
+                !(state[w] & kOnWall))
+              continue;
+            const double turn_w = turn_at(w);
+            equal += equal < 2 && std::abs(turn_v - turn_w) <= kEqualTurn * std::max(turn_v, turn_w);
+          }
+          out[v] = equal == 2;
+        }
+      },
+      256);
   return out;
 }
 
