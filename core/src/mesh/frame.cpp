@@ -29,13 +29,7 @@ ComponentFrames component_frames(const Mesh& mesh, const Topology& topology) {
   // number[r]: root r's component, set below. Not zero-filled: every entry
   // is set first.
   std::unique_ptr<std::atomic<uint32_t>[]> parent(new std::atomic<uint32_t>[nv]);
-  // Twice nv, the second half never touched: the work arrays then leave the
-  // same hole below the frames' vertex components (3 × 4 bytes per vertex)
-  // as the numbering before 1c4fb88 did, which a later per-vertex array
-  // reuses; with the CLI's 32 MB mmap threshold (main.cpp) a 4-byte array
-  // left too small a hole and the 1.1M-triangle peak rose by 4.8 MB (1 and
-  // 2 threads; the same peak as before with this).
-  UninitialisedVector<uint32_t> number(2 * nv);
+  UninitialisedVector<uint32_t> number(nv);
   parallel_for(nv, [&](size_t begin, size_t end) {
     for (size_t v = begin; v < end; ++v) parent[v].store(uint32_t(v), std::memory_order_relaxed), number[v] = kNone;
   });
