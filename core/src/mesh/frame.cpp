@@ -84,7 +84,7 @@ ComponentFrames component_frames(const Mesh& mesh, const Topology& topology) {
   ComponentFrames f;
   size_t n = 0;
   for (size_t count : roots) n += count;
-  for (size_t t = 0, numbered = 0; numbered < n; ++t) {
+  for (size_t t = 0, numbered = 0; numbered < n && t < nt; ++t) {
     uint32_t& c = number[root(mesh.triangles[t][0])];
     if (c == kNone) c = uint32_t(numbered++);
   }

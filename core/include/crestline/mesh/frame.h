@@ -40,9 +40,9 @@ struct ComponentFrames {
 
 /// Splits a repaired mesh into components and measures each one's frame;
 /// `topology` is the mesh's (build_topology), whose edges join the
-/// components and are each measured once. Never overflows or underflows for finite coordinates whose bounding
-/// box is finite: the mean edge is measured on coordinates first divided by
-/// the component's extent.
+/// components and are each measured once. Never overflows or underflows for
+/// finite coordinates whose bounding box is finite: the mean edge is
+/// measured on coordinates first divided by the component's extent.
 ComponentFrames component_frames(const Mesh& mesh, const Topology& topology);
 
 /// Each component's sum of its triangles' sides, length[e] for each edge e
