@@ -241,7 +241,12 @@ export function decompressGltf(bytes, io = {}) {
   return glb(json, binary);
 }
 
-function glb(json, binary) {
+/**
+ * A GLB of `json` and one BIN chunk `binary` (a Uint8Array whose length is a
+ * multiple of 4), the JSON chunk padded with spaces. Also the worker's
+ * warm-up mesh (web/src/worker/warm-up.js).
+ */
+export function glb(json, binary) {
   const text = new TextEncoder().encode(JSON.stringify(json));
   const jsonLength = (text.byteLength + 3) & ~3;
   const total = 12 + 8 + jsonLength + 8 + binary.byteLength;

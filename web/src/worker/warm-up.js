@@ -5,6 +5,7 @@
 // read stays in the baseline tier throughout (≈ 0.3 s of the dragon's first
 // read). Reading a small generated GLB once, through the same Session.loadFile,
 // makes the reader's loops hot before a user drops a file.
+import { glb } from '../../../wasm/gltf-decompress.mjs';
 
 /**
  * A closed torus of `rings` × `segments` quads (2 · rings · segments
@@ -50,25 +51,10 @@ export function torusGlb(rings, segments) {
       { bufferView: 1, componentType: 5125, count: indices.length, type: 'SCALAR' },
     ],
   };
-  let text = JSON.stringify(json);
-  text += ' '.repeat((4 - (text.length % 4)) % 4); // chunks are 4-byte aligned
-  const jsonBytes = new TextEncoder().encode(text);
-  const binLength = positions.byteLength + indices.byteLength; // a multiple of 4
-  const total = 12 + 8 + jsonBytes.length + 8 + binLength;
-  const glb = new Uint8Array(total);
-  const header = new DataView(glb.buffer);
-  header.setUint32(0, 0x46546c67, true); // 'glTF'
-  header.setUint32(4, 2, true);
-  header.setUint32(8, total, true);
-  header.setUint32(12, jsonBytes.length, true);
-  header.setUint32(16, 0x4e4f534a, true); // 'JSON'
-  glb.set(jsonBytes, 20);
-  const bin = 20 + jsonBytes.length;
-  header.setUint32(bin, binLength, true);
-  header.setUint32(bin + 4, 0x004e4942, true); // 'BIN\0'
-  glb.set(new Uint8Array(positions.buffer), bin + 8);
-  glb.set(new Uint8Array(indices.buffer), bin + 8 + positions.byteLength);
-  return glb;
+  const binary = new Uint8Array(positions.byteLength + indices.byteLength); // a multiple of 4
+  binary.set(new Uint8Array(positions.buffer));
+  binary.set(new Uint8Array(indices.buffer), positions.byteLength);
+  return glb(json, binary);
 }
 
 /** The warm-up mesh: 96 × 64 quads, 12,288 triangles (≈ 340 kB); reading and repairing them costs the worker ≈ 15-20 ms of CPU. */
