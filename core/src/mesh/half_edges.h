@@ -197,7 +197,7 @@ inline HalfEdgeOrder order_half_edges(const std::vector<Triangle>& tris, size_t 
 
 /// Topology's edge arrays numbered from order_half_edges' per-vertex edge
 /// counts: sizes them, and turns `first_edge` into each vertex's next edge
-/// number (the sum of the counts before it), for record_edge.
+/// number (the sum of the counts before it), for EdgeRecorder.
 inline void number_edges(std::vector<uint32_t>& first_edge, size_t triangle_count, Topology& topology) {
   const size_t nv = first_edge.size() - 1;
   for (size_t v = 0; v < nv; ++v) first_edge[v + 1] += first_edge[v];
@@ -235,12 +235,6 @@ class EdgeRecorder {
   std::array<uint32_t, 2>* edge_triangles_;
   std::array<uint32_t, 3>* triangle_edges_;
 };
-
-/// EdgeRecorder's record for one edge.
-inline uint32_t record_edge(std::vector<uint32_t>& first_edge, uint32_t near, uint32_t far, const uint64_t* first,
-                            const uint64_t* last, Topology& topology) {
-  return EdgeRecorder(first_edge, topology)(near, far, first, last);
-}
 
 /// The rest of build_topology once the edges are recorded: the triangles
 /// around each vertex and the boundary vertices. Shared with repair_mesh,

@@ -37,11 +37,12 @@ Topology build_topology(const Mesh& mesh) {
   std::vector<uint32_t> first_edge;
   const detail::HalfEdgeOrder order = detail::order_half_edges(mesh.triangles, nv, &first_edge);
   detail::number_edges(first_edge, nt, topo);
+  const detail::EdgeRecorder record(first_edge, topo);
   detail::for_bucket_ranges(order.start, [&](size_t begin, size_t end) {
     order.for_each_edge(begin, end, [&](uint32_t near, uint32_t far, const uint64_t* first, const uint64_t* last) {
       if (last - first > 2)
         throw Error(ErrorKind::InvalidInput, "the mesh has an edge shared by more than two triangles.");
-      detail::record_edge(first_edge, near, far, first, last, topo);
+      record(near, far, first, last);
     });
   });
   detail::add_vertex_triangles(mesh.triangles, nv, topo);
