@@ -1,9 +1,10 @@
+import { glb } from '../../wasm/gltf-decompress.mjs';
+
 // A minimal GLB writer for the browser tests: one triangle mesh (float32
 // positions, uint32 indices), for machines without ../shared/meshes.
 // `translations` ([x, y, z] each) places the mesh once per entry: one node
 // each, all sharing the mesh, as a scene of repeated parts does.
 export function glbFromSoup({ positions, indices }, { translations = null } = {}) {
-  const pad = (n) => (n + 3) & ~3;
   const vertexBytes = Float32Array.from(positions);
   const indexBytes = Uint32Array.from(indices);
   const min = [Infinity, Infinity, Infinity];
@@ -27,19 +28,8 @@ export function glbFromSoup({ positions, indices }, { translations = null } = {}
       { bufferView: 1, componentType: 5125, count: indexBytes.length, type: 'SCALAR' },
     ],
   };
-  const jsonBytes = Buffer.from(JSON.stringify(json).padEnd(pad(JSON.stringify(json).length), ' '));
-  const total = 12 + 8 + jsonBytes.length + 8 + pad(binLength);
-  const out = Buffer.alloc(total);
-  out.write('glTF', 0);
-  out.writeUInt32LE(2, 4);
-  out.writeUInt32LE(total, 8);
-  out.writeUInt32LE(jsonBytes.length, 12);
-  out.write('JSON', 16);
-  jsonBytes.copy(out, 20);
-  const bin = 20 + jsonBytes.length;
-  out.writeUInt32LE(pad(binLength), bin);
-  out.write('BIN\0', bin + 4);
-  Buffer.from(vertexBytes.buffer).copy(out, bin + 8);
-  Buffer.from(indexBytes.buffer).copy(out, bin + 8 + vertexBytes.byteLength);
-  return out;
+  const binary = new Uint8Array(binLength); // float32 and uint32: a multiple of 4
+  binary.set(new Uint8Array(vertexBytes.buffer));
+  binary.set(new Uint8Array(indexBytes.buffer), vertexBytes.byteLength);
+  return glb(json, binary);
 }
