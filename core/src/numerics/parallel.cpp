@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstdint>
 #include <exception>
 #include <vector>
 
@@ -22,11 +23,47 @@ std::atomic<int> g_threads{hardware_threads()};
 // in one runs on that thread alone.
 thread_local bool t_in_loop = false;
 
-// Threads kept waiting between loops: the solver's sweeps start a loop per
-// colour, thousands per run, and starting a thread costs tens of
-// microseconds (far more for a WASM worker). One loop runs at a time; a loop
+// Pieces a loop is cut into per thread. Each thread owns a contiguous run of
+// pieces and takes them in order, then takes what is left of the others'
+// runs: evenly paced threads each do their own run (the contiguous halves of
+// a static split), while a thread that starts late, or is descheduled (the
+// page's worker shares two cores with the browser's rasteriser), holds up
+// the loop by at most the piece it is in instead of by its whole share.
+constexpr size_t kPiecesPerThread = 4;
+
+// A thread checks a few times before it sleeps (a kept thread for the
+// next loop, the caller for the last piece), no longer: in the page the
+// pipeline's two threads share two cores with the browser's rasteriser,
+// which spinning would rob (a 50 µs spin showed no gain there).
+constexpr int kChecksBeforeSleep = 64;
+
+inline void cpu_relax() {
+#if defined(__x86_64__) || defined(__i386__)
+  __builtin_ia32_pause();
+#endif
+}
+
+// True if ready() became true within kChecksBeforeSleep checks.
+template <class Ready>
+bool soon(const Ready& ready) {
+  for (int i = 0; i < kChecksBeforeSleep; ++i) {
+    if (ready()) return true;
+    cpu_relax();
+  }
+  return ready();
+}
+
+// Threads kept waiting between loops (starting a thread costs tens of
+// microseconds, far more for a WASM worker). One loop runs at a time; a loop
 // started while another runs (from a second caller thread) runs on its
 // caller alone, which gives the same results.
+//
+// A loop is published as a generation: its pieces are claimed by
+// compare-and-swap on words holding the generation, the end of a thread's
+// run and its next piece, so a kept thread that wakes late cannot claim a
+// piece of a loop that ended (the word's generation moved on), and a loop
+// ends only once its every piece has run: what a thread reads of the loop
+// after a successful claim is that loop's.
 class Pool {
  public:
   ~Pool() {
@@ -38,74 +75,122 @@ class Pool {
     for (std::thread& worker : workers_) worker.join();
   }
 
-  // Runs chunk(i) for i in [0, parts), chunk 0 on the caller; false if the
-  // pool is busy with another caller's loop (nothing was run then).
-  bool run(size_t parts, const std::function<void(size_t)>& chunk) {
+  // Runs chunk(p) for p in [0, pieces) on up to `threads` threads (the
+  // caller and threads − 1 kept ones); false if the pool is busy with
+  // another caller's loop (nothing was run then).
+  bool run(size_t threads, size_t pieces, const std::function<void(size_t)>& chunk) {
     std::unique_lock<std::mutex> busy(busy_, std::try_to_lock);
     if (!busy.owns_lock()) return false;
+    while (workers_.size() + 1 < threads) {
+      const size_t index = workers_.size() + 1;
+      workers_.emplace_back([this, index] { work(index); });
+    }
+    const uint64_t generation = generation_.load(std::memory_order_relaxed) + 1;
+    chunk_.store(&chunk, std::memory_order_relaxed);
+    threads_.store(threads, std::memory_order_relaxed);
+    pieces_.store(pieces, std::memory_order_relaxed);
+    done_.store(0, std::memory_order_relaxed);
+    failed_.store(false, std::memory_order_relaxed);
+    for (size_t t = 0; t < threads; ++t)  // release: a claim reads the loop's description after it
+      next_[t].store(word(generation, run_begin(t + 1, threads, pieces), run_begin(t, threads, pieces)),
+                     std::memory_order_release);
+    generation_.store(generation, std::memory_order_seq_cst);
+    if (sleepers_.load(std::memory_order_seq_cst) > 0) {
+      // Under the mutex: a thread between its check and its wait is not missed.
+      std::lock_guard<std::mutex> lock(mutex_);
+      wake_.notify_all();
+    }
+    take_pieces(0, generation, threads);
+    const auto finished = [&] { return done_.load(std::memory_order_acquire) == pieces; };
+    if (!soon(finished)) {
+      std::unique_lock<std::mutex> lock(mutex_);
+      finished_.wait(lock, finished);
+    }
+    std::exception_ptr error;
     {
       std::lock_guard<std::mutex> lock(mutex_);
-      while (workers_.size() + 1 < parts) {
-        const size_t index = workers_.size() + 1;
-        workers_.emplace_back([this, index] { work(index); });
-      }
-      chunk_ = &chunk;
-      parts_ = parts;
-      pending_ = parts - 1;
-      error_ = nullptr;
-      ++generation_;
+      std::swap(error, error_);
     }
-    wake_.notify_all();
-    std::exception_ptr error;
-    try {
-      chunk(0);
-    } catch (...) {
-      error = std::current_exception();
-    }
-    std::unique_lock<std::mutex> lock(mutex_);
-    done_.wait(lock, [&] { return pending_ == 0; });
-    chunk_ = nullptr;
-    if (!error) error = error_;
-    lock.unlock();
     if (error) std::rethrow_exception(error);
     return true;
   }
 
  private:
-  void work(size_t index) {
-    t_in_loop = true;
-    uint64_t seen = 0;
-    std::unique_lock<std::mutex> lock(mutex_);
-    // A worker started for a loop already running takes part in it.
-    seen = generation_ - 1;
-    for (;;) {
-      wake_.wait(lock, [&] { return stop_ || generation_ != seen; });
-      if (stop_) return;
-      seen = generation_;
-      if (index >= parts_) continue;
-      const std::function<void(size_t)>* chunk = chunk_;
-      lock.unlock();
-      std::exception_ptr error;
-      try {
-        (*chunk)(index);
-      } catch (...) {
-        error = std::current_exception();
+  static constexpr size_t kMaxThreads = 64;
+
+  static size_t run_begin(size_t t, size_t threads, size_t pieces) { return pieces * t / threads; }
+  // generation (low 32 bits) << 32 | end of the run << 16 | next piece (pieces < 2^16).
+  static uint64_t word(uint64_t generation, size_t end, size_t next) {
+    return (generation & 0xffffffffu) << 32 | uint64_t{end} << 16 | next;
+  }
+
+  // Claims and runs pieces of loop `generation`: thread t's own run first,
+  // then what is left of the others' (`threads` may be a later loop's: a
+  // word of another generation is passed over). Returns once none is left.
+  void take_pieces(size_t t, uint64_t generation, size_t threads) {
+    for (size_t k = 0; k < threads; ++k) {
+      std::atomic<uint64_t>& next = next_[(t + k) % threads];
+      uint64_t w = next.load(std::memory_order_relaxed);
+      for (;;) {
+        if (w >> 32 != (generation & 0xffffffffu) || (w & 0xffff) >= (w >> 16 & 0xffff)) break;
+        if (!next.compare_exchange_weak(w, w + 1, std::memory_order_acq_rel, std::memory_order_relaxed)) continue;
+        run_piece(static_cast<size_t>(w & 0xffff));
+        w = next.load(std::memory_order_relaxed);
       }
-      lock.lock();
-      if (error && !error_) error_ = error;
-      if (--pending_ == 0) done_.notify_one();
     }
   }
 
-  std::mutex busy_;   // held by the caller of the running loop
-  std::mutex mutex_;  // guards everything below
-  std::condition_variable wake_, done_;
-  std::vector<std::thread> workers_;  // worker i runs chunk i + 1
-  const std::function<void(size_t)>* chunk_ = nullptr;
-  size_t parts_ = 0, pending_ = 0;
-  uint64_t generation_ = 0;
-  bool stop_ = false;
+  // Piece p, claimed: its loop cannot end before it is counted done.
+  void run_piece(size_t p) {
+    const size_t pieces = pieces_.load(std::memory_order_relaxed);
+    if (!failed_.load(std::memory_order_relaxed)) {
+      try {
+        (*chunk_.load(std::memory_order_relaxed))(p);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (!error_) error_ = std::current_exception();
+        failed_.store(true, std::memory_order_relaxed);  // the pieces left are skipped
+      }
+    }
+    if (done_.fetch_add(1, std::memory_order_acq_rel) + 1 == pieces) {
+      // The last piece: the caller may be asleep, or about to be.
+      std::lock_guard<std::mutex> lock(mutex_);
+      finished_.notify_one();
+    }
+  }
+
+  void work(size_t index) {
+    t_in_loop = true;
+    // A thread started for a loop already running takes part in it.
+    uint64_t seen = generation_.load(std::memory_order_acquire) - 1;
+    for (;;) {
+      const auto published = [&] { return generation_.load(std::memory_order_seq_cst) != seen; };
+      if (!soon(published)) {
+        std::unique_lock<std::mutex> lock(mutex_);
+        sleepers_.fetch_add(1, std::memory_order_seq_cst);
+        wake_.wait(lock, [&] { return stop_ || published(); });
+        sleepers_.fetch_sub(1, std::memory_order_relaxed);
+        if (stop_) return;
+      }
+      seen = generation_.load(std::memory_order_acquire);
+      const size_t threads = threads_.load(std::memory_order_relaxed);
+      if (index < threads) take_pieces(index, seen, threads);
+    }
+  }
+
+  std::mutex busy_;                   // held by the caller of the running loop
+  std::vector<std::thread> workers_;  // kept thread i owns run i of a loop
+  // The running loop.
+  std::atomic<uint64_t> generation_{0};
+  std::atomic<const std::function<void(size_t)>*> chunk_{nullptr};
+  std::atomic<size_t> threads_{0}, pieces_{0}, done_{0};
+  std::atomic<bool> failed_{false};
+  std::atomic<uint64_t> next_[kMaxThreads] = {};  // per run (see word())
+  std::atomic<int> sleepers_{0};
+  std::mutex mutex_;  // guards error_, stop_ and the sleeps
+  std::condition_variable wake_, finished_;
   std::exception_ptr error_;
+  bool stop_ = false;
 };
 
 Pool& pool() {
@@ -130,14 +215,16 @@ void set_max_threads(int threads) {
 
 void parallel_for(size_t count, const std::function<void(size_t, size_t)>& body, size_t min_chunk) {
   if (count == 0) return;
-  const size_t threads = std::min<size_t>(static_cast<size_t>(max_threads()), count / std::max<size_t>(min_chunk, 1));
+  const size_t most = count / std::max<size_t>(min_chunk, 1);
+  const size_t threads = std::min<size_t>({static_cast<size_t>(max_threads()), most, 64});
 #ifdef CRESTLINE_THREADS
   if (threads > 1 && !t_in_loop) {
-    // One contiguous chunk per thread: the loops are uniform, and contiguous
-    // ranges keep each thread's writes on its own cache lines.
-    const std::function<void(size_t)> chunk = [&](size_t i) {
+    // Contiguous pieces, each at least min_chunk long; each thread's run of
+    // them contiguous too, so that its writes stay on its own cache lines.
+    const size_t pieces = std::min(most, threads * kPiecesPerThread);
+    const std::function<void(size_t)> chunk = [&](size_t p) {
       t_in_loop = true;
-      body(count * i / threads, count * (i + 1) / threads);
+      body(count * p / pieces, count * (p + 1) / pieces);
     };
     struct Reset {
       ~Reset() { t_in_loop = false; }
@@ -145,7 +232,7 @@ void parallel_for(size_t count, const std::function<void(size_t, size_t)>& body,
     bool ran;
     {
       const Reset reset;
-      ran = pool().run(threads, chunk);
+      ran = pool().run(threads, pieces, chunk);
     }
     if (ran) return;
   }

@@ -22,13 +22,14 @@ struct ThreadLimit {
 };
 
 // Runs an outer loop of `count` indices with a nested loop of 4,096 in each
-// chunk; returns how often each outer index ran (all 1 if correct) and the
-// nested loops' total.
-std::vector<int> covered(size_t count, std::atomic<long>& nested) {
+// chunk; returns how often each outer index ran (all 1 if correct), the
+// nested loops' total and the outer chunks.
+std::vector<int> covered(size_t count, std::atomic<long>& nested, std::atomic<long>* chunks = nullptr) {
   std::vector<int> hits(count, 0);
   parallel_for(
       count,
       [&](size_t begin, size_t end) {
+        if (chunks) ++*chunks;
         for (size_t i = begin; i < end; ++i) ++hits[i];
         parallel_for(
             4096, [&](size_t b, size_t e) { nested += static_cast<long>(e - b); }, 16);
@@ -44,10 +45,11 @@ TEST_CASE("parallel_for runs every index once, nested loops included, on 1 to 4 
     INFO("threads " << threads);
     const ThreadLimit limit(threads);
     for (int repeat = 0; repeat < 50; ++repeat) {
-      std::atomic<long> nested{0};
-      const std::vector<int> hits = covered(1000, nested);
+      std::atomic<long> nested{0}, chunks{0};
+      const std::vector<int> hits = covered(1000, nested, &chunks);
       CHECK(std::count(hits.begin(), hits.end(), 1) == 1000);
-      CHECK(nested == 4096L * max_threads());  // one nested loop per chunk, each whole
+      CHECK(nested == 4096L * chunks);                    // one nested loop per chunk, each whole
+      CHECK(chunks == (threads == 1 ? 1 : 4 * threads));  // 4 pieces per thread
     }
   }
 }
