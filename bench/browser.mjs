@@ -153,7 +153,7 @@ function cancelAndTime(page, delay, timeStep) {
     async ({ delay, timeStep }) => {
       const app = window.crestline;
       const log = window.__bench;
-      log.messages.length = 0;
+      log.messages.length = log.longTasks.length = 0;
       const start = performance.now();
       app.update({ autoPresmoothSteps: false, presmoothSteps: 0, presmoothTimeStep: timeStep });
       // Waits `delay` ms, or less if the run ends first.
@@ -167,7 +167,13 @@ function cancelAndTime(page, delay, timeStep) {
       const reply = () => log.messages.find((m) => (m.type === 'cancelled' || m.type === 'result') && m.at >= at);
       for (const start = performance.now(); !reply(); await new Promise((resolve) => setTimeout(resolve, 5)))
         if (performance.now() - start > 60000) throw new Error(`no reply to a Cancel in 60 s (${log.messages.map((m) => m.type).join(' ')})`);
-      return { type: reply().type, ms: reply().at - at, stage };
+      // The main thread's long tasks meanwhile (a reply waits for them) and the
+      // time from the last progress message to the reply (the worker's gap).
+      const end = reply().at;
+      await new Promise((resolve) => setTimeout(resolve, 50)); // the long tasks' entries come late
+      const mainBusy = log.longTasks.filter((l) => l.at < end && l.at + l.ms > at).reduce((s, l) => s + Math.min(end, l.at + l.ms) - Math.max(at, l.at), 0);
+      const lastProgress = log.messages.findLast((m) => m.type === 'progress' && m.at < end);
+      return { type: reply().type, ms: end - at, stage, mainBusy, sinceProgress: lastProgress ? end - Math.max(at, lastProgress.at) : NaN };
     },
     { delay, timeStep },
   );
@@ -356,17 +362,19 @@ const stopped = runs.flatMap((r) => r.cancels).filter((c) => c.type === 'cancell
 if (stopped.length) {
   const slowest = stopped.reduce((a, b) => (b.ms > a.ms ? b : a));
   console.log(
-    `\nCancel (the whole pipeline re-run without pre-smoothing, Cancel pressed at ${args.cancels} moments spread over it, per run): ms from the click to 'cancelled'; re-run = the run's ms uncancelled`,
+    `\nCancel (the whole pipeline re-run without pre-smoothing, Cancel pressed at ${args.cancels} moments spread over it, per run): ms from the click to 'cancelled'; re-run = the run's ms uncancelled; at the slowest click, main busy = the page's long tasks between click and reply, since progress = from the last progress message (or the click) to the reply`,
   );
   console.log(
     table([
-      ['re-run', 'cancels', 'median', 'max', 'stage at max', 'finished first'],
+      ['re-run', 'cancels', 'median', 'max', 'stage at max', 'main busy at max', 'since progress at max', 'finished first'],
       [
         f(median(runs.map((r) => r.rerunMs))),
         String(stopped.length),
         f1(median(stopped.map((c) => c.ms))),
         f1(slowest.ms),
         slowest.stage,
+        f1(slowest.mainBusy),
+        f1(slowest.sinceProgress),
         String(runs.flatMap((r) => r.cancels).length - stopped.length),
       ],
     ]),
