@@ -93,9 +93,10 @@ inline Pair operator/(Pair x, Pair y) { return {x.a / y.a, x.b / y.b}; }
 
 // Σ a_ij v_j over entries [begin, end) of a row, both fields: weights holds
 // each entry's pair (σ_0 w, σ_1 w).
+// s, if given, is the sum so far (of a row's other part).
 template <typename Value>
-inline Pair accumulate(const uint32_t* columns, const float* weights, const Value* v, uint32_t begin, uint32_t end) {
-  Pair s = Pair::both(0.0);
+inline Pair accumulate(const uint32_t* columns, const float* weights, const Value* v, uint32_t begin, uint32_t end,
+                       Pair s = Pair::both(0.0)) {
   const float* w = weights + 2 * size_t{begin};
   for (const uint32_t *c = columns + begin, *last = columns + end; c != last; ++c, w += 2)
     s = s + Pair::widen(w) * Pair::load(v + 2 * size_t{*c});
@@ -223,12 +224,12 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix, bool two_level, cons
     std::vector<uint32_t> fill(colour_begin_.begin(), colour_begin_.end() - 1);
     for (const uint32_t i : bfs_order) position[i] = fill[colour[i]]++, order_[position[i]] = i;
   }
-  a_.diagonal.resize(n);
+  diagonal_.resize(n);
   roots_.resize(n);
   parallel_for(n, [&](size_t begin, size_t end) {
     for (size_t k = begin; k < end; ++k) {
-      a_.diagonal[k] = matrix.diagonal[order_[k]];
-      roots_[k] = std::sqrt(a_.diagonal[k]);
+      diagonal_[k] = matrix.diagonal[order_[k]];
+      roots_[k] = std::sqrt(diagonal_[k]);
     }
   });
   // The coarse level's test, what each row's diagonal exceeds its
@@ -254,58 +255,57 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix, bool two_level, cons
     pause();
   }
   std::vector<uint32_t>().swap(bfs_order);
-  // The permuted matrix: each row's entries to later colours (upper) in
-  // input order, then those to earlier colours (lower) in input order. A
+  // The permuted matrix in two parts, each by row: the entries to later
+  // colours (upper), read by the backward sweep, and those to earlier ones
+  // (lower), read by the forward sweep, each part's in input order. A
   // neighbour's colour is earlier exactly when its row comes before the
-  // first of this row's colour. A row keeps its input row's entry count, so
-  // the offsets are known first and the rows filled on every thread (the
-  // same bits for any number: each entry is computed alone). Input and
-  // output are held together, 24 bytes per entry: the peak of the passes
-  // this replaces (input, float weights and each entry's output row). Those
-  // passes read both ends' colours of every entry four times; with the
-  // colouring's bit words, the set-up went from ≈ 1,100 to ≈ 570
-  // instructions a row (callgrind, CLI defaults: bunny, 1.1M, dragon).
-  const size_t entries = matrix.columns.size();
-  a_.columns.resize(entries);
-  weights_.resize(2 * entries);
-  a_.offsets.resize(n + 1);
-  lower_begin_.resize(n);
-  a_.offsets[0] = 0;
-  uint32_t widest = 0;
-  for (size_t k = 0; k < n; ++k) {
-    const uint32_t count = matrix.offsets[order_[k] + 1] - matrix.offsets[order_[k]];
-    widest = std::max(widest, count);
-    a_.offsets[k + 1] = a_.offsets[k] + count;
+  // first of this row's colour. Each part streams alone: with both in one
+  // array a row's two halves shared cache lines, and each sweep brought in
+  // the whole matrix to read half of it (callgrind of the CLI at 1.1M, 1
+  // thread, a 32 MB last-level cache: the solves' last-level read misses
+  // 71.2 M → 57.7 M, the same instructions and bits). Each input row's
+  // lower entries are counted first, so the offsets are known and the rows
+  // filled on every thread (the same bits for any number: each entry is
+  // computed alone).
+  {
+    std::vector<uint32_t> lower_count(n);
+    parallel_for(n, [&](size_t begin, size_t end) {
+      for (size_t i = begin; i < end; ++i) {
+        uint32_t count = 0;
+        for (uint32_t e = matrix.offsets[i]; e < matrix.offsets[i + 1]; ++e)
+          count += colour[matrix.columns[e] & SignedPairMatrix::kColumnMask] < colour[i] ? 1 : 0;
+        lower_count[i] = count;
+      }
+    });
+    upper_.begin.resize(n + 1);
+    lower_.begin.resize(n + 1);
+    upper_.begin[0] = lower_.begin[0] = 0;
+    for (size_t k = 0; k < n; ++k) {
+      const size_t i = order_[k];
+      upper_.begin[k + 1] = upper_.begin[k] + (matrix.offsets[i + 1] - matrix.offsets[i] - lower_count[i]);
+      lower_.begin[k + 1] = lower_.begin[k] + lower_count[i];
+    }
   }
-  struct Entry {
-    uint32_t column;
-    float weight[2];
-  };
+  for (Part* part : {&upper_, &lower_}) {
+    part->columns.resize(part->begin[n]);
+    part->weights.resize(2 * size_t{part->begin[n]});
+  }
   parallel_for(n, [&](size_t begin, size_t end) {
-    std::vector<Entry> lower(widest);
     for (size_t k = begin; k < end; ++k) {
       const size_t i = order_[k];
       const uint32_t earlier = colour_begin_[colour[i]];
-      uint32_t next = a_.offsets[k];
-      size_t lowers = 0;
-      const auto put = [&](const Entry& entry) {
-        a_.columns[next] = entry.column;
-        weights_[2 * size_t{next}] = entry.weight[0], weights_[2 * size_t{next} + 1] = entry.weight[1];
-        ++next;
-      };
+      uint32_t next[2] = {upper_.begin[k], lower_.begin[k]};
       for (uint32_t e = matrix.offsets[i]; e < matrix.offsets[i + 1]; ++e) {
         const uint32_t column = matrix.columns[e], to = position[column & SignedPairMatrix::kColumnMask];
         // The product of the roots is the same both ways: A stays symmetric.
         // Rounding to float commutes with the sign.
         const float w = static_cast<float>(matrix.weights[e] / (roots_[k] * roots_[to]));
-        const Entry entry{to, {column >> 30 & 1 ? -w : w, column >> 31 ? -w : w}};
-        if (to < earlier)
-          lower[lowers++] = entry;
-        else
-          put(entry);
+        const int lower = to < earlier ? 1 : 0;
+        Part& part = lower ? lower_ : upper_;
+        const size_t at = next[lower]++;
+        part.columns[at] = to;
+        part.weights[2 * at] = column >> 30 & 1 ? -w : w, part.weights[2 * at + 1] = column >> 31 ? -w : w;
       }
-      lower_begin_[k] = next;
-      for (size_t l = 0; l < lowers; ++l) put(lower[l]);
     }
   });
   // Not read beyond here: Q is built without the input beside it.
@@ -416,7 +416,6 @@ void SignedPairSolver::coarse_solve(const double* g, double* y) const {
 // band, b = M x₀) keeps x₀ to the bit, not x₀ √d / √d.
 bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, double tolerance, int max_iterations,
                              const std::function<void(int)>& on_iteration) const {
-  const SignedPairMatrix& a = a_;
   const size_t n = roots_.size();
   // xp and rt are written before they are read: not zeroed first
   // (callgrind at 1.1M: 32 bytes a row and solve less to write).
@@ -440,15 +439,12 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
   // sweeps of every iteration: a store through Pair may alias anything, so
   // the compiler reloads whatever sits in memory, the closure's copies too,
   // once per row (bunny, solve: 830 M → 737 M instructions).
-  const double *const root = roots_.data(), *const diagonal = a.diagonal.data();
-  const uint32_t *const offsets = a.offsets.data(), *const lower = lower_begin_.data();
-  const uint32_t* const columns = a.columns.data();
-  const float* const weights = weights_.data();
+  const double *const root = roots_.data(), *const diagonal = diagonal_.data();
+  const uint32_t *const upper_begin = upper_.begin.data(), *const upper_columns = upper_.columns.data();
+  const uint32_t *const lower_begin = lower_.begin.data(), *const lower_columns = lower_.columns.data();
+  const float *const upper_weights = upper_.weights.data(), *const lower_weights = lower_.weights.data();
   double *const xv = xp.data(), *const rv = rt.data(), *const utv = ut.data(), *const uv = u.data();
   float* const tv = tf.data();
-  const auto row_sum = [columns, weights](const double* v, uint32_t begin, uint32_t end) {
-    return accumulate(columns, weights, v, begin, end);
-  };
   // r = b − A x₀ = b − D x₀ − S⁻¹ N̂ S⁻¹ x₀ and r̂ = S r, then r̃ = (I + L)⁻¹
   // r̂ in place, colour by colour.
   BlockSums rr = sweep(colour_begin_, false, partial, [=](size_t begin, size_t end, BlockSums& sums) {
@@ -456,9 +452,10 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
     for (size_t i = begin; i < end; ++i) {
       const Pair ri = Pair::both(root[i]);
       const Pair r = Pair::load(rv + 2 * i) - Pair::both(diagonal[i]) * Pair::load(xv + 2 * i) -
-                     ri * row_sum(uv, offsets[i], offsets[i + 1]);
+                     ri * accumulate(lower_columns, lower_weights, uv, lower_begin[i], lower_begin[i + 1],
+                                     accumulate(upper_columns, upper_weights, uv, upper_begin[i], upper_begin[i + 1]));
       rsum = rsum + r * r;
-      const Pair z = r / ri - row_sum(rv, lower[i], offsets[i + 1]);
+      const Pair z = r / ri - accumulate(lower_columns, lower_weights, rv, lower_begin[i], lower_begin[i + 1]);
       z.store(rv + 2 * i);
       dsum = dsum + z * z;
     }
@@ -525,8 +522,8 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
     const uint32_t *const q_begin = q_begin_.data(), *const q_columns = q_columns_.data();
     const float* const q_values = q_values_.data();
     const auto first = [=](auto with_coarse, size_t begin, size_t end, BlockSums& sums) {
-      const uint32_t *const offsets_ = offsets, *const lower_ = lower, *const columns_ = columns;
-      const float* const weights_ = weights;
+      const uint32_t *const begin_ = upper_begin, *const columns_ = upper_columns;
+      const float* const weights_ = upper_weights;
       double *const rv_ = rv, *const utv_ = utv;
       float* const tv_ = tv;
       const Pair keep_ = keep, beta_ = beta_pair;
@@ -537,7 +534,7 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
         if constexpr (decltype(with_coarse)::value)
           zi = zi + accumulate(q_columns, q_values, yv, q_begin[i], q_begin[i + 1]);
         const Pair pi = keep_ * (zi + beta_ * q);
-        const Pair uti = accumulate(columns_, weights_, tv_, offsets_[i], lower_[i]);
+        const Pair uti = accumulate(columns_, weights_, tv_, begin_[i], begin_[i + 1]);
         (pi - uti).store(tv_ + 2 * i);
         uti.store(utv_ + 2 * i);
         const Pair ti = Pair::load(tv_ + 2 * i);
@@ -559,8 +556,8 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
     // updated already, over the entries that u reads.
     const auto second = [=](auto form_residual, size_t begin, size_t end, BlockSums& s) {
       const double* const root_ = root;
-      const uint32_t *const offsets_ = offsets, *const lower_ = lower, *const columns_ = columns;
-      const float* const weights_ = weights;
+      const uint32_t *const begin_ = lower_begin, *const columns_ = lower_columns;
+      const float* const weights_ = lower_weights;
       double *const xv_ = xv, *const rv_ = rv, *const utv_ = utv, *const uv_ = uv;
       const float* const tv_ = tv;
       const Pair alpha_ = alpha_pair;
@@ -568,9 +565,9 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
       for (size_t i = begin; i < end; ++i) {
         Pair lu, lr;
         if constexpr (decltype(form_residual)::value)
-          accumulate2(columns_, weights_, uv_, rv_, lower_[i], offsets_[i + 1], lu, lr);
+          accumulate2(columns_, weights_, uv_, rv_, begin_[i], begin_[i + 1], lu, lr);
         else
-          lu = accumulate(columns_, weights_, uv_, lower_[i], offsets_[i + 1]);
+          lu = accumulate(columns_, weights_, uv_, begin_[i], begin_[i + 1]);
         const Pair ti = Pair::load(tv_ + 2 * i), ui = Pair::load(utv_ + 2 * i) - lu;
         ui.store(uv_ + 2 * i);
         (Pair::load(xv_ + 2 * i) + alpha_ * ti).store(xv_ + 2 * i);

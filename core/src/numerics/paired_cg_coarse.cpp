@@ -329,14 +329,14 @@ void SignedPairSolver::build_coarse_transfer(const Aggregation& aggregation) {
   q_begin_.assign(n + 1, 0);
   for (size_t r = 0; r < n; ++r) {
     row_columns.clear(), row_values.clear();
-    for (uint32_t e = lower_begin_[r]; e < a_.offsets[r + 1]; ++e) {
-      const uint32_t j = a_.columns[e], c = fine_aggregate[j];
+    for (uint32_t e = lower_.begin[r]; e < lower_.begin[r + 1]; ++e) {
+      const uint32_t j = lower_.columns[e], c = fine_aggregate[j];
       if (c == kNone) continue;
       if (slot[c] == kNone) {
         slot[c] = static_cast<uint32_t>(row_columns.size());
         row_columns.push_back(c), row_values.resize(row_values.size() + 2, 0.0);
       }
-      for (int k = 0; k < 2; ++k) row_values[2 * slot[c] + k] += double{weights_[2 * size_t{e} + k]} * p(j, k);
+      for (int k = 0; k < 2; ++k) row_values[2 * slot[c] + k] += double{lower_.weights[2 * size_t{e} + k]} * p(j, k);
     }
     for (const uint32_t c : row_columns) slot[c] = kNone;
     q_columns_.insert(q_columns_.end(), row_columns.begin(), row_columns.end());

@@ -298,11 +298,17 @@ class SignedPairSolver {
   // Q = L P and Qᵀ from the permuted float matrix, once the input is released.
   void build_coarse_transfer(const Aggregation& aggregation);
 
-  SignedPairMatrix a_;           // rows in colour order; entries: later colours | earlier ones;
-                                 // columns without sign bits, weights empty:
-  std::vector<float> weights_;   // (σ_0 w, σ_1 w) / √(a_ii a_jj) per entry, rounded to float
-  std::vector<uint32_t> order_;  // the input row of each row of a_
-  std::vector<uint32_t> colour_begin_, lower_begin_;
+  // One part of the permuted matrix (rows in colour order) by row: row k's
+  // entries are [begin[k], begin[k + 1]), each its column and (σ_0 w, σ_1 w)
+  // / √(a_ii a_jj) rounded to float.
+  struct Part {
+    std::vector<uint32_t> begin, columns;
+    std::vector<float> weights;
+  };
+  Part upper_, lower_;            // the entries to later colours, to earlier ones
+  std::vector<double> diagonal_;  // A(i,i)
+  std::vector<uint32_t> order_;   // the input row of each row of the solver's
+  std::vector<uint32_t> colour_begin_;
   std::vector<double> roots_;  // √A(i,i): the solver works on the system scaled to a unit diagonal
   // The coarse level (empty without one), scaled to a unit diagonal per field:
   // Q = L P by fine row (q_begin_, n + 1 offsets) and by coarse row
