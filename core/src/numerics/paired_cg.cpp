@@ -217,7 +217,7 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix, bool two_level, cons
   for (size_t i = 0; i < n; ++i) ++colour_begin_[colour[i] + 1];
   for (uint32_t c = 0; c < colours; ++c) colour_begin_[c + 1] += colour_begin_[c];
   order_.resize(n);
-  std::vector<uint32_t> position(n);
+  UninitialisedVector<uint32_t> position(n);
   pause();
   std::vector<uint32_t> bfs_order = locality_order(matrix);
   {
@@ -239,7 +239,7 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix, bool two_level, cons
   // the set-up's peak 289 -> 261 MB of heap, the solves' own level).
   Aggregation aggregation;
   if (two_level) {
-    std::vector<double> excess(n);
+    UninitialisedVector<double> excess(n);
     std::atomic<size_t> slow_rows{0};
     parallel_for(n, [&](size_t begin, size_t end) {
       size_t slow = 0;
@@ -268,7 +268,7 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix, bool two_level, cons
   // filled on every thread (the same bits for any number: each entry is
   // computed alone).
   {
-    std::vector<uint32_t> lower_count(n);
+    UninitialisedVector<uint32_t> lower_count(n);
     parallel_for(n, [&](size_t begin, size_t end) {
       for (size_t i = begin; i < end; ++i) {
         uint32_t count = 0;
@@ -420,8 +420,11 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
   // xp and rt are written before they are read: not zeroed first
   // (callgrind at 1.1M: 32 bytes a row and solve less to write).
   UninitialisedVector<double> xp(2 * n), rt(2 * n);
-  std::vector<double> ut(2 * n, 0.0);  // ut: U t
-  std::vector<float> tf(2 * n, 0.0f);
+  // ut (U t), t and the correction in xp start at 0: the first iteration
+  // reads none of them but adds to those zeros as any other would (at 1.1M,
+  // 22 MB a solve not zero-filled first).
+  UninitialisedVector<double> ut(2 * n);
+  UninitialisedVector<float> tf(2 * n);
   std::vector<double>& u = b;  // the caller's vector serves as scratch: S⁻¹ x₀ first
   parallel_for(n, [&](size_t begin, size_t end) {
     for (size_t k = begin; k < end; ++k)
@@ -461,7 +464,7 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
     }
     rsum.store(&sums[0]), dsum.store(&sums[2]);
   });
-  std::fill(xv, xv + 2 * n, 0.0);  // the correction S⁻¹ (x − x₀)
+  // xv now holds the correction S⁻¹ (x − x₀), 0 until the first iteration writes it.
   // With a coarse level, z = B̃⁻¹ r̃ = r̃ + Q y, y = Ac⁻¹ Qᵀ r̃ (the coarse
   // solve), and ⟨r̃, z⟩ = ⟨r̃, r̃⟩ + ⟨Qᵀ r̃, y⟩: y is formed after the pass
   // that updates r̃ and Q y gathered in the next pass that forms p.
@@ -507,6 +510,7 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
   bool check = false;  // whether the iteration forms the true residual
   for (int k = 0; k < 2; ++k) check = check || (active[k] && !(rr[k] > kNearFactor * kNearFactor * limit[k]));
   double beta[2] = {0, 0};
+  int iterations = 0;  // run: without any, the correction is 0
   for (int it = 0; it < max_iterations && (active[0] || active[1]); ++it) {
     const Pair keep = Pair::of(active[0] ? 1.0 : 0.0, active[1] ? 1.0 : 0.0), beta_pair = Pair::of(beta[0], beta[1]);
     // Last colour first: p = r̃ + β q with the last direction q = (I + U) t
@@ -521,7 +525,7 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
     const double* const yv = y.data();
     const uint32_t *const q_begin = q_begin_.data(), *const q_columns = q_columns_.data();
     const float* const q_values = q_values_.data();
-    const auto first = [=](auto with_coarse, size_t begin, size_t end, BlockSums& sums) {
+    const auto first = [=](auto with_coarse, auto fresh, size_t begin, size_t end, BlockSums& sums) {
       const uint32_t *const begin_ = upper_begin, *const columns_ = upper_columns;
       const float* const weights_ = upper_weights;
       double *const rv_ = rv, *const utv_ = utv;
@@ -529,11 +533,16 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
       const Pair keep_ = keep, beta_ = beta_pair;
       Pair sum = Pair::load(&sums[0]);
       for (size_t i = begin; i < end; ++i) {
-        const Pair q = Pair::load(tv_ + 2 * i) + Pair::load(utv_ + 2 * i);
         Pair zi = Pair::load(rv_ + 2 * i);
         if constexpr (decltype(with_coarse)::value)
           zi = zi + accumulate(q_columns, q_values, yv, q_begin[i], q_begin[i + 1]);
-        const Pair pi = keep_ * (zi + beta_ * q);
+        Pair pi;
+        if constexpr (decltype(fresh)::value) {
+          pi = keep_ * (zi + Pair::both(0.0));  // β q = 0 · 0
+        } else {
+          const Pair q = Pair::load(tv_ + 2 * i) + Pair::load(utv_ + 2 * i);
+          pi = keep_ * (zi + beta_ * q);
+        }
         const Pair uti = accumulate(columns_, weights_, tv_, begin_[i], begin_[i + 1]);
         (pi - uti).store(tv_ + 2 * i);
         uti.store(utv_ + 2 * i);
@@ -542,11 +551,15 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
       }
       sum.store(&sums[0]);
     };
-    const BlockSums pq =
-        coarse > 0 ? sweep(colour_begin_, true, partial,
-                           [=](size_t begin, size_t end, BlockSums& s) { first(std::true_type{}, begin, end, s); })
-                   : sweep(colour_begin_, true, partial,
-                           [=](size_t begin, size_t end, BlockSums& s) { first(std::false_type{}, begin, end, s); });
+    const auto backward = [&](auto fresh) {
+      return coarse > 0
+                 ? sweep(colour_begin_, true, partial,
+                         [=](size_t begin, size_t end, BlockSums& s) { first(std::true_type{}, fresh, begin, end, s); })
+                 : sweep(colour_begin_, true, partial, [=](size_t begin, size_t end, BlockSums& s) {
+                     first(std::false_type{}, fresh, begin, end, s);
+                   });
+    };
+    const BlockSums pq = it == 0 ? backward(std::true_type{}) : backward(std::false_type{});
     double alpha[2];
     for (int k = 0; k < 2; ++k) alpha[k] = active[k] ? rz[k] / pq[k] : 0.0;
     const Pair alpha_pair = Pair::of(alpha[0], alpha[1]);
@@ -554,7 +567,7 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
     // U t); x += α t, r̃ −= α Ã q; and, once the residual is near the tolerance, the true
     // residual r = (D + L) r̃, whose L part reads rows of earlier colours,
     // updated already, over the entries that u reads.
-    const auto second = [=](auto form_residual, size_t begin, size_t end, BlockSums& s) {
+    const auto second = [=](auto form_residual, auto fresh, size_t begin, size_t end, BlockSums& s) {
       const double* const root_ = root;
       const uint32_t *const begin_ = lower_begin, *const columns_ = lower_columns;
       const float* const weights_ = lower_weights;
@@ -570,7 +583,8 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
           lu = accumulate(columns_, weights_, uv_, begin_[i], begin_[i + 1]);
         const Pair ti = Pair::load(tv_ + 2 * i), ui = Pair::load(utv_ + 2 * i) - lu;
         ui.store(uv_ + 2 * i);
-        (Pair::load(xv_ + 2 * i) + alpha_ * ti).store(xv_ + 2 * i);
+        const Pair xi = decltype(fresh)::value ? Pair::both(0.0) : Pair::load(xv_ + 2 * i);
+        (xi + alpha_ * ti).store(xv_ + 2 * i);
         const Pair ri = Pair::load(rv_ + 2 * i) - alpha_ * (ti + ui);
         ri.store(rv_ + 2 * i);
         if constexpr (decltype(form_residual)::value) {
@@ -581,11 +595,17 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
       }
       norm.store(&s[0]), dot.store(&s[2]);
     };
-    const BlockSums sums =
-        check ? sweep(colour_begin_, false, partial,
-                      [=](size_t begin, size_t end, BlockSums& s) { second(std::true_type{}, begin, end, s); })
-              : sweep(colour_begin_, false, partial,
-                      [=](size_t begin, size_t end, BlockSums& s) { second(std::false_type{}, begin, end, s); });
+    const auto forward = [&](auto fresh) {
+      return check ? sweep(colour_begin_, false, partial,
+                           [=](size_t begin, size_t end, BlockSums& s) {
+                             second(std::true_type{}, fresh, begin, end, s);
+                           })
+                   : sweep(colour_begin_, false, partial, [=](size_t begin, size_t end, BlockSums& s) {
+                       second(std::false_type{}, fresh, begin, end, s);
+                     });
+    };
+    const BlockSums sums = it == 0 ? forward(std::true_type{}) : forward(std::false_type{});
+    ++iterations;
     bool near = false;
     for (int k = 0; k < 2; ++k) {
       if (check) {
@@ -613,7 +633,7 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
     for (size_t k = begin; k < end; ++k)
       for (int f = 0; f < 2; ++f) {
         double& v = x[2 * size_t{order_[k]} + f];
-        if (b2[f] != 0) v += xp[2 * k + f] / roots_[k];
+        if (b2[f] != 0) v += (iterations > 0 ? xp[2 * k + f] : 0.0) / roots_[k];
         part_finite = part_finite && std::isfinite(v);
       }
     if (!part_finite) finite = false;

@@ -34,9 +34,9 @@ uint32_t sign_change(const SignedPairMatrix& a, uint32_t e) {
 // mode smooth along that tree, ±1 in each field by the signs of the entries
 // crossed (±√a_ii in the scaled variables).
 SignedPairSolver::Aggregation SignedPairSolver::build_coarse_matrix(const SignedPairMatrix& a,
-                                                                    const std::vector<double>& excess,
+                                                                    const UninitialisedVector<double>& excess,
                                                                     const std::vector<uint32_t>& bfs_order,
-                                                                    const std::vector<uint32_t>& position) {
+                                                                    const UninitialisedVector<uint32_t>& position) {
   const size_t n = a.rows();
   std::vector<uint8_t> slow(n);
   for (size_t i = 0; i < n; ++i) slow[i] = detail::is_slow(a.diagonal[i], excess[i], a.offsets[i + 1] > a.offsets[i]);

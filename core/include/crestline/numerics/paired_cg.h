@@ -190,15 +190,17 @@
 #include <functional>
 #include <vector>
 
+#include "crestline/numerics/uninitialised.h"
+
 namespace crestline {
 
 /// A_k(i,i) = diagonal[i]; A_k(i,j) = ±weight for the off-diagonal entries of
 /// a CSR pattern with both triangles stored, negated in A_k where bit k of
 /// the entry's sign mask is set (k = 0, 1).
 struct SignedPairMatrix {
-  std::vector<uint32_t> offsets;  // rows + 1
-  std::vector<uint32_t> columns;  // column | sign mask << 30
-  std::vector<double> weights;
+  std::vector<uint32_t> offsets;          // rows + 1
+  UninitialisedVector<uint32_t> columns;  // column | sign mask << 30
+  UninitialisedVector<double> weights;    // (sized, then written in full: not zero-filled first)
   std::vector<double> diagonal;
 
   static constexpr uint32_t kColumnMask = (1u << 30) - 1;
@@ -293,8 +295,9 @@ class SignedPairSolver {
   // Aggregates the slow rows and builds Ac from the input matrix (by input
   // row), before the permuted matrix exists: the two are never held beside
   // the aggregation's work (paired_cg_coarse.cpp).
-  Aggregation build_coarse_matrix(const SignedPairMatrix& matrix, const std::vector<double>& excess,
-                                  const std::vector<uint32_t>& bfs_order, const std::vector<uint32_t>& position);
+  Aggregation build_coarse_matrix(const SignedPairMatrix& matrix, const UninitialisedVector<double>& excess,
+                                  const std::vector<uint32_t>& bfs_order,
+                                  const UninitialisedVector<uint32_t>& position);
   // Q = L P and Qᵀ from the permuted float matrix, once the input is released.
   void build_coarse_transfer(const Aggregation& aggregation);
 
@@ -302,14 +305,16 @@ class SignedPairSolver {
   // entries are [begin[k], begin[k + 1]), each its column and (σ_0 w, σ_1 w)
   // / √(a_ii a_jj) rounded to float.
   struct Part {
-    std::vector<uint32_t> begin, columns;
-    std::vector<float> weights;
+    UninitialisedVector<uint32_t> begin, columns;
+    UninitialisedVector<float> weights;
   };
-  Part upper_, lower_;            // the entries to later colours, to earlier ones
-  std::vector<double> diagonal_;  // A(i,i)
-  std::vector<uint32_t> order_;   // the input row of each row of the solver's
+  Part upper_, lower_;  // the entries to later colours, to earlier ones
+  // The arrays below and the parts above are written in full once sized:
+  // not zero-filled first (at 1.1M, 64 MB that the set-up wrote twice).
+  UninitialisedVector<double> diagonal_;  // A(i,i)
+  UninitialisedVector<uint32_t> order_;   // the input row of each row of the solver's
   std::vector<uint32_t> colour_begin_;
-  std::vector<double> roots_;  // √A(i,i): the solver works on the system scaled to a unit diagonal
+  UninitialisedVector<double> roots_;  // √A(i,i): the solver works on the system scaled to a unit diagonal
   // The coarse level (empty without one), scaled to a unit diagonal per field:
   // Q = L P by fine row (q_begin_, n + 1 offsets) and by coarse row
   // (qt_begin_), entries (column, field 0, field 1); Ac factored.
