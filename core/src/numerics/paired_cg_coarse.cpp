@@ -5,6 +5,7 @@
 // threads.
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "crestline/numerics/paired_cg.h"
@@ -319,8 +320,9 @@ void SignedPairSolver::build_coarse_transfer(const Aggregation& aggregation) {
   const size_t n = roots_.size();
   const uint32_t aggregates = static_cast<uint32_t>(coarse_rows());
   const std::vector<uint32_t>& fine_aggregate = aggregation.aggregate;
+  // In the solver's handedness: field 1's column of P negated where handed_.
   const auto p = [&](uint32_t j, int k) {
-    const double s = aggregation.flips[j] >> k & 1 ? -roots_[j] : roots_[j];
+    const double s = (aggregation.flips[j] >> k ^ (k == 1 ? handed_[j] : 0)) & 1 ? -roots_[j] : roots_[j];
     return s / aggregation.coarse_root[2 * size_t{fine_aggregate[j]} + k];
   };
   std::vector<uint32_t> slot(aggregates, kNone), row_columns;
@@ -336,7 +338,15 @@ void SignedPairSolver::build_coarse_transfer(const Aggregation& aggregation) {
         slot[c] = static_cast<uint32_t>(row_columns.size());
         row_columns.push_back(c), row_values.resize(row_values.size() + 2, 0.0);
       }
-      for (int k = 0; k < 2; ++k) row_values[2 * slot[c] + k] += double{lower_.weights[2 * size_t{e} + k]} * p(j, k);
+      // The entry's two values (paired_cg.cpp's parts).
+      uint32_t bits;
+      std::memcpy(&bits, &lower_.weights[e], sizeof bits);
+      const uint32_t flip = bits >> 30 & 1;
+      bits &= ~(uint32_t{1} << 30);
+      float value;
+      std::memcpy(&value, &bits, sizeof value);
+      const double a[2] = {value, flip ? -double{value} : double{value}};
+      for (int k = 0; k < 2; ++k) row_values[2 * slot[c] + k] += a[k] * p(j, k);
     }
     for (const uint32_t c : row_columns) slot[c] = kNone;
     q_columns_.insert(q_columns_.end(), row_columns.begin(), row_columns.end());

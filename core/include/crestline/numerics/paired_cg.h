@@ -4,12 +4,19 @@
 // and the cotan weights, and their matrices differ only in the signs σ_pq of
 // off-diagonal entries. Conjugate gradients on both in lockstep read each
 // matrix entry once for both fields, which is what a sparse matrix-vector
-// product is limited by. The solver stores an entry as its column and the
-// pair (σ_0 w, σ_1 w) / √(a_ii a_jj) in float (12 bytes, no sign to apply
-// per product; the system scaled to a unit diagonal, so that no sweep reads
-// a diagonal or its inverse: 32 of ≈ 340 bytes per row and iteration, and
-// bunny 397 M → 379 M instructions, last-level misses −18 %, the same
-// iterations on the bunny, 1.1M and the dragon): the
+// product is limited by. The solver stores an entry as its column and
+// σ_0 w / √(a_ii a_jj) in float, 8 bytes: with field 1's unknown negated at
+// the rows of one handedness (found by a breadth-first search, so that
+// σ_0 = σ_1 along its tree), both fields' entries are equal but for 0.2–2 %
+// of them (the 1.1M bunny, the dragon, the bunny), whose rows are marked and
+// whose floats carry a flip bit; negation is exact, so the iterates are the
+// same bits (all shared meshes). Before: the pair (σ_0 w, σ_1 w) in float,
+// 12 bytes (CLI at 1.1M, 1 thread, callgrind: smoothing 4.56 → 5.04 G
+// instructions, last-level read misses 62.2 M → 52.8 M with a 32 MB cache;
+// massif peak 260.9 → 250.4 MB). The system is scaled to a unit diagonal,
+// so that no sweep reads a diagonal or its inverse: 32 of ≈ 340 bytes per
+// row and iteration, and bunny 397 M → 379 M instructions, last-level
+// misses −18 %, the same iterations on the bunny, 1.1M and the dragon. The
 // system it solves differs from the double one by 2⁻²⁴ relative per entry,
 // a residual below 10⁻⁷ where the smoothing stops at 10⁻⁶ (measured on the
 // bunny, its 1.1M subdivision and the dragon: zero crossings against a 10⁻¹²
@@ -302,17 +309,22 @@ class SignedPairSolver {
   void build_coarse_transfer(const Aggregation& aggregation);
 
   // One part of the permuted matrix (rows in colour order) by row: row k's
-  // entries are [begin[k], begin[k + 1]), each its column and (σ_0 w, σ_1 w)
-  // / √(a_ii a_jj) rounded to float.
+  // entries are [begin[k], begin[k + 1]), each its column and σ_0 w /
+  // √(a_ii a_jj) rounded to float, field 1's value the same in the rows'
+  // handedness (handed_) or, where mixed[k] and bit 30 of the float is set,
+  // its negation (paired_cg.cpp).
   struct Part {
     UninitialisedVector<uint32_t> begin, columns;
     UninitialisedVector<float> weights;
+    UninitialisedVector<uint8_t> mixed;
   };
   Part upper_, lower_;  // the entries to later colours, to earlier ones
   // The arrays below and the parts above are written in full once sized:
   // not zero-filled first (at 1.1M, 64 MB that the set-up wrote twice).
   UninitialisedVector<double> diagonal_;  // A(i,i)
   UninitialisedVector<uint32_t> order_;   // the input row of each row of the solver's
+  UninitialisedVector<uint8_t> handed_;   // 1 where the solver iterates on −x₁ (paired_cg.cpp)
+  bool representable_ = true;             // every entry below 2 in magnitude
   std::vector<uint32_t> colour_begin_;
   UninitialisedVector<double> roots_;  // √A(i,i): the solver works on the system scaled to a unit diagonal
   // The coarse level (empty without one), scaled to a unit diagonal per field:
