@@ -357,34 +357,42 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix, bool two_level, cons
   }
   handed_.resize(n);
   std::atomic<bool> representable{true};
+  // Raw pointers in locals: a store through one may alias anything that
+  // lives in memory, the vectors' own pointers too.
+  uint32_t* const part_columns[2] = {upper_.columns.data(), lower_.columns.data()};
+  float* const part_weights[2] = {upper_.weights.data(), lower_.weights.data()};
   parallel_for(n, [&](size_t begin, size_t end) {
+    const uint32_t *const offsets = matrix.offsets.data(), *const columns = matrix.columns.data();
+    const double *const weights = matrix.weights.data(), *const root = roots_.data();
+    const uint32_t *const at_position = position.data(), *const input_row = order_.data();
+    const uint8_t* const hand = handed.data();
+    uint32_t* const cols[2] = {part_columns[0], part_columns[1]};
+    float* const values[2] = {part_weights[0], part_weights[1]};
     bool part_representable = true;
     for (size_t k = begin; k < end; ++k) {
-      const size_t i = order_[k];
-      handed_[k] = handed[i];
-      const uint32_t earlier = colour_begin_[colour[i]];
-      uint32_t next[2] = {upper_.begin[k], lower_.begin[k]};
-      uint8_t mixed[2] = {0, 0};
-      for (uint32_t e = matrix.offsets[i]; e < matrix.offsets[i + 1]; ++e) {
-        const uint32_t column = matrix.columns[e], j = column & SignedPairMatrix::kColumnMask, to = position[j];
+      const size_t i = input_row[k];
+      const uint32_t earlier = colour_begin_[colour[i]], hand_i = hand[i];
+      uint32_t next[2] = {upper_.begin[k], lower_.begin[k]}, mixed[2] = {0, 0};
+      for (uint32_t e = offsets[i]; e < offsets[i + 1]; ++e) {
+        const uint32_t column = columns[e], j = column & SignedPairMatrix::kColumnMask, to = at_position[j];
         // The product of the roots is the same both ways: A stays symmetric.
         // Rounding to float commutes with the sign.
-        const float w = static_cast<float>(matrix.weights[e] / (roots_[k] * roots_[to]));
+        const float w = static_cast<float>(weights[e] / (root[k] * root[to]));
         part_representable = part_representable && std::abs(w) < 2.0f;
         // Field 0's value, and whether field 1's, in the rows' handedness, is its negation.
         const float value = column >> 30 & 1 ? -w : w;
-        const uint32_t flip = (column >> 30 ^ column >> 31 ^ handed[i] ^ handed[j]) & 1;
+        const uint32_t flip = (column >> 30 ^ column >> 31 ^ hand_i ^ hand[j]) & 1;
         uint32_t bits;
         std::memcpy(&bits, &value, sizeof bits);
         bits |= flip << 30;
         const int lower = to < earlier ? 1 : 0;
-        Part& part = lower ? lower_ : upper_;
-        const size_t at = next[lower]++;
-        part.columns[at] = to;
-        std::memcpy(&part.weights[at], &bits, sizeof bits);
-        mixed[lower] = static_cast<uint8_t>(mixed[lower] | flip);
+        const uint32_t at = next[lower]++;
+        cols[lower][at] = to;
+        std::memcpy(values[lower] + at, &bits, sizeof bits);
+        mixed[lower] |= flip;
       }
-      upper_.mixed[k] = mixed[0], lower_.mixed[k] = mixed[1];
+      handed_[k] = static_cast<uint8_t>(hand_i);
+      upper_.mixed[k] = static_cast<uint8_t>(mixed[0]), lower_.mixed[k] = static_cast<uint8_t>(mixed[1]);
     }
     if (!part_representable) representable = false;
   });
