@@ -59,7 +59,15 @@ Pipeline::Pipeline(Mesh mesh, Topology topology) : input_(std::move(mesh)), topo
 
 const Topology& Pipeline::topology() const {
   if (!topology_valid_) topology_ = build_topology(input()), topology_valid_ = true;
+  // Without a cut it is also the working adjacency, whose triangle lists a run releases.
+  if (!cut_active_) restore_triangle_lists(local_input_valid_ ? local_input_ : input(), topology_);
   return topology_;
+}
+
+const Topology& Pipeline::working_topology() const {
+  if (!cut_active_) return topology();
+  restore_triangle_lists(cut_.mesh, cut_topology_);
+  return cut_topology_;
 }
 
 std::vector<Triangle> Pipeline::input_triangles() const {
@@ -323,6 +331,13 @@ void Pipeline::run(const ProgressCallback& progress) {
   // working frame's copy or the cut) has them; input() rebuilds them, the
   // same (12 bytes per triangle).
   input_.triangles = std::vector<Triangle>();
+  // The working adjacency's triangle lists are read by the stages up to the
+  // curvature, which releases them (26 bytes per triangle less through the
+  // smoothing's solves): restored, the same, only when one of those re-runs.
+  if (static_cast<int>(first_dirty_) <= static_cast<int>(Stage::Curvature))
+    restore_triangle_lists(smooth_input(), smooth_topology());
+  else
+    release_triangle_lists(smooth_topology());
   // The line graphs are rebuilt whenever tracing re-runs: released now, not
   // held through the smoothing solves, the peak of a re-run.
   if (static_cast<int>(first_dirty_) <= static_cast<int>(Stage::Tracing)) singular_ = SingularResult();
@@ -371,7 +386,7 @@ void Pipeline::run(const ProgressCallback& progress) {
     for (size_t v = 0; v < vertex_steps.size(); ++v) vertex_steps[v] = presmooth_steps_[component[v]];
     working_surface_.triangles = in.triangles;
     working_surface_.positions =
-        presmooth_surface(in, working_topology(), presmooth.time_step, vertex_steps, within(Stage::Presmooth));
+        presmooth_surface(in, smooth_topology(), presmooth.time_step, vertex_steps, within(Stage::Presmooth));
     // Each side of a crease smooths its copy of a crease vertex along the
     // crease; they meet again at the mean.
     if (cut_active_) merge_copies(cut_, working_surface_.positions);
@@ -381,11 +396,12 @@ void Pipeline::run(const ProgressCallback& progress) {
       surface_.positions[v] = frames_.to_user(working_surface_.positions[v], frames_.vertex_component[v]);
   });
   const Mesh& surface = working_surface();
-  const Topology& topology = working_topology();
+  Topology& topology = smooth_topology();
   step(Stage::Curvature, [&] {
     curvature_ = compute_curvature(surface, topology, within(Stage::Curvature));
     if (options_.averaging.rings > 0)
       curvature_ = average_shape_operator(surface, topology, curvature_, options_.averaging.rings);
+    release_triangle_lists(topology);
   });
   step(Stage::Extremality, [&] {
     raw_extremality_ = compute_extremality(surface, curvature_, within(Stage::Extremality));

@@ -133,7 +133,9 @@ class Pipeline {
   /// a run releases it before them; rebuilt here (the same) when asked for.
   const Topology& topology() const;
   /// working_surface()'s adjacency: topology() unless creases cut the mesh.
-  const Topology& working_topology() const { return cut_active_ ? cut_topology_ : topology(); }
+  /// A run releases its triangle lists after the curvature stage, the last
+  /// to read them (release_triangle_lists); restored here when asked for.
+  const Topology& working_topology() const;
   /// The cut along the boundary creases (no copies when there is none).
   const CutMesh& working_cut() const { return cut_; }
   /// The crease edges (into topology().edges, ascending) the smooth stages
@@ -192,6 +194,8 @@ class Pipeline {
   double select_crease_lines(std::optional<CreaseResult> automatic,
                              const std::function<void(double)>& measure_progress);
   const Mesh& smooth_input() const { return cut_active_ ? cut_.mesh : local_input_; }
+  // working_topology() as it stands (its triangle lists perhaps released).
+  Topology& smooth_topology() { return cut_active_ ? cut_topology_ : topology_; }
   const std::vector<uint32_t>& smooth_components() const {
     return cut_active_ ? cut_components_ : frames_.vertex_component;
   }
@@ -230,8 +234,8 @@ class Pipeline {
   // input's positions, which the lines are placed on).
   std::vector<CreaseSegment> boundary_segments_;
   bool cut_active_ = false;
-  CutMesh cut_;  // of local_input_, in the working frame
-  Topology cut_topology_;
+  CutMesh cut_;                           // of local_input_, in the working frame
+  mutable Topology cut_topology_;         // see working_topology()
   std::vector<uint32_t> cut_components_;  // component of each cut vertex
   CreaseAngles crease_angles_;
   // crease_angles_'s angle and support where either is not 0 (compact_crease_angles).

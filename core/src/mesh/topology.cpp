@@ -49,6 +49,29 @@ Topology build_topology(const Mesh& mesh) {
   return topo;
 }
 
+bool has_triangle_lists(const Topology& topology) {
+  return topology.edge_triangles.size() == topology.edges.size() &&
+         topology.vertex_offsets.size() == topology.boundary_vertex.size() + 1;
+}
+
+void release_triangle_lists(Topology& topology) {
+  // Assigning new vectors frees; clear() would keep the capacity.
+  topology.edge_triangles = std::vector<std::array<uint32_t, 2>>();
+  topology.vertex_offsets = std::vector<uint32_t>();
+  topology.vertex_triangles = std::vector<uint32_t>();
+}
+
+void restore_triangle_lists(const Mesh& mesh, Topology& topology) {
+  if (has_triangle_lists(topology)) return;
+  // build_topology takes an edge's triangles in corner order, so ascending:
+  // as a pass over the triangles in order meets them.
+  topology.edge_triangles.assign(topology.edges.size(), {kNone, kNone});
+  for (uint32_t t = 0; t < topology.triangle_edges.size(); ++t)
+    for (uint32_t e : topology.triangle_edges[t])
+      topology.edge_triangles[e][topology.edge_triangles[e][0] != kNone] = t;
+  detail::add_vertex_triangles(mesh.triangles, mesh.positions.size(), topology);
+}
+
 bool is_closed_outward(const Mesh& mesh, const Topology& topology) {
   if (mesh.triangles.empty()) return false;
   for (const auto& pair : topology.edge_triangles)
@@ -82,16 +105,20 @@ bool is_closed_outward(const Mesh& mesh, const Topology& topology) {
 
 std::vector<uint32_t> boundary_ring_distance(const Mesh& mesh, const Topology& topology, uint32_t max_rings) {
   std::vector<uint32_t> distance(mesh.positions.size(), max_rings);
-  std::vector<uint32_t> front, next;
+  if (max_rings == 0) return distance;
+  bool front = false;  // whether the last ring has a vertex
   for (uint32_t v = 0; v < distance.size(); ++v)
-    if (topology.boundary_vertex[v] && max_rings > 0) distance[v] = 0, front.push_back(v);
-  for (uint32_t ring = 1; ring < max_rings && !front.empty(); ++ring) {
-    next.clear();
-    for (uint32_t v : front)
-      for (uint32_t i = topology.vertex_offsets[v]; i < topology.vertex_offsets[v + 1]; ++i)
-        for (uint32_t w : mesh.triangles[topology.vertex_triangles[i]])
-          if (distance[w] > ring) distance[w] = ring, next.push_back(w);
-    front.swap(next);
+    if (topology.boundary_vertex[v]) distance[v] = 0, front = true;
+  // Each ring from the triangles with a corner on the one before: a pass
+  // over the triangles instead of the vertex fans, which the smoothing and
+  // the tracer, the callers, run without (release_triangle_lists).
+  for (uint32_t ring = 1; ring < max_rings && front; ++ring) {
+    front = false;
+    for (const Triangle& f : mesh.triangles) {
+      if (distance[f[0]] != ring - 1 && distance[f[1]] != ring - 1 && distance[f[2]] != ring - 1) continue;
+      for (uint32_t w : f)
+        if (distance[w] > ring) distance[w] = ring, front = true;
+    }
   }
   return distance;
 }

@@ -23,17 +23,23 @@ Topology topology_on(int threads, const Mesh& mesh) {
   return testing::on_threads(threads, [&] { return build_topology(mesh); });
 }
 
+// A wavy n × n grid with random diagonals (vertices of 3 to 9 triangles)
+// and a boundary.
+Mesh wavy_grid(int n) {
+  testing::GridOptions grid;
+  grid.nu = grid.nv = n;
+  grid.random_diagonals = true;
+  return repair_mesh(
+             testing::height_field([](double x, double y) { return 0.1 * std::sin(4 * x + 2 * y); }, 2, 2, grid))
+      .mesh;
+}
+
 }  // namespace
 
 TEST_CASE("topology matches a map of the edges and is the same on 1, 2 and 3 threads", "[topology][threads]") {
   // 45,000 triangles with random diagonals and a boundary: enough for the
   // counting sorts and the edge numbering to split over threads.
-  testing::GridOptions grid;
-  grid.nu = grid.nv = 150;
-  grid.random_diagonals = true;
-  const Mesh mesh =
-      repair_mesh(testing::height_field([](double x, double y) { return 0.1 * std::sin(4 * x + 2 * y); }, 2, 2, grid))
-          .mesh;
+  const Mesh mesh = wavy_grid(150);
   const Topology one = topology_on(1, mesh);
 
   // Reference: edges as (smaller, larger) in ascending order, their triangles
@@ -76,6 +82,45 @@ TEST_CASE("topology matches a map of the edges and is the same on 1, 2 and 3 thr
     INFO("threads: " << threads);
     testing::check_same_topology(topology_on(threads, mesh), one);
   }
+}
+
+TEST_CASE("released triangle lists come back as build_topology's; the ring distance reads none of them", "[topology]") {
+  const Mesh mesh = wavy_grid(40);
+  const Topology built = build_topology(mesh);
+  REQUIRE(has_triangle_lists(built));
+  Topology topology = built;
+  release_triangle_lists(topology);
+  CHECK(!has_triangle_lists(topology));
+  CHECK(topology.edge_triangles.capacity() == 0);
+  CHECK(topology.vertex_triangles.capacity() == 0);
+  CHECK(topology.edges == built.edges);
+  CHECK(topology.boundary_vertex == built.boundary_vertex);
+
+  // Rings by breadth-first search over the triangles around each vertex.
+  for (uint32_t rings : {0u, 1u, 2u, 3u, 30u}) {
+    INFO("rings: " << rings);
+    std::vector<uint32_t> want(mesh.vertex_count(), rings), front;
+    for (uint32_t v = 0; v < mesh.vertex_count(); ++v)
+      if (built.boundary_vertex[v] && rings > 0) want[v] = 0, front.push_back(v);
+    for (uint32_t ring = 1; ring < rings; ++ring) {
+      std::vector<uint32_t> next;
+      for (uint32_t v : front)
+        for (uint32_t i = built.vertex_offsets[v]; i < built.vertex_offsets[v + 1]; ++i)
+          for (uint32_t w : mesh.triangles[built.vertex_triangles[i]])
+            if (want[w] > ring) want[w] = ring, next.push_back(w);
+      front.swap(next);
+    }
+    CHECK(boundary_ring_distance(mesh, topology, rings) == want);
+  }
+  // 41 × 41 vertices: the centre 20 rings from the border, within 30.
+  const std::vector<uint32_t> far = boundary_ring_distance(mesh, topology, 30);
+  CHECK(*std::max_element(far.begin(), far.end()) == 20);
+
+  restore_triangle_lists(mesh, topology);
+  CHECK(has_triangle_lists(topology));
+  testing::check_same_topology(topology, built);
+  restore_triangle_lists(mesh, topology);  // present: unchanged
+  testing::check_same_topology(topology, built);
 }
 
 TEST_CASE("topology refuses an edge of three triangles on any thread count", "[topology][threads]") {

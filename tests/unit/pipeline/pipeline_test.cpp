@@ -26,6 +26,18 @@ TriangleSoup bumpy(double scale = 1.0, Vec3 shift = Vec3::Zero()) {
   return s;
 }
 
+// A fold along x = 1 (44° between the sides) in a bumpy field: a boundary
+// crease, along which the pipeline cuts the mesh.
+Mesh fold() {
+  testing::GridOptions grid;
+  grid.nu = grid.nv = 40;
+  return repair_mesh(
+             testing::height_field(
+                 [](double x, double y) { return 0.1 * std::cos(5 * x) * std::cos(4 * y) + 0.4 * std::abs(x - 1); }, 2,
+                 2, grid))
+      .mesh;
+}
+
 std::vector<Stage> stages_run(Pipeline& p) {
   std::vector<Stage> ran;
   p.run([&](Stage s, double fraction) {
@@ -111,14 +123,7 @@ TEST_CASE("with a crease cut, crease and boundary changes give the lines and cre
   // crease, so the pipeline cuts the mesh and releases the input in the
   // working frame, its adjacency and crease angles, which measuring and
   // selecting creases then rebuild.
-  testing::GridOptions grid;
-  grid.nu = grid.nv = 40;
-  const Mesh mesh = repair_mesh(testing::height_field(
-                                    [](double x, double y) {
-                                      return 0.1 * std::cos(5 * x) * std::cos(4 * y) + 0.4 * std::abs(x - 1);
-                                    },
-                                    2, 2, grid))
-                        .mesh;
+  const Mesh mesh = fold();
   auto same = [](const Pipeline& a, const Pipeline& b) {
     const std::vector<Polyline> la = a.all_kinds(), lb = b.all_kinds();
     REQUIRE(la.size() == lb.size());
@@ -175,6 +180,31 @@ TEST_CASE("with a crease cut, crease and boundary changes give the lines and cre
   filtered.set_options(o);
   filtered.run();
   same(p, filtered);
+}
+
+TEST_CASE("a re-run from the pre-smoothing after a run, with or without a crease cut, is a fresh run",
+          "[pipeline][cut]") {
+  // A run releases the working adjacency's triangle lists after the
+  // curvature stage; pre-smoothing and curvature need them again.
+  size_t cut = 0;
+  for (const Mesh& mesh : {fold(), repair_mesh(bumpy()).mesh}) {
+    Pipeline p(mesh);
+    p.run();
+    PipelineOptions o = p.options();
+    o.presmooth.steps = 1;
+    p.set_options(o);
+    CHECK(stages_run(p).front() == Stage::Presmooth);
+    Pipeline fresh(mesh);
+    fresh.set_options(o);
+    fresh.run();
+    REQUIRE(!fresh.lines().empty());
+    same_lines(p, fresh);
+    CHECK(p.curvature().kappa_max == fresh.curvature().kappa_max);
+    CHECK(p.working_cut().copy_of.size() == fresh.working_cut().copy_of.size());
+    cut += !fresh.working_cut().copy_of.empty();
+    testing::check_same_topology(p.working_topology(), build_topology(p.working_surface()));
+  }
+  CHECK(cut == 1);  // the fold's
 }
 
 TEST_CASE("cancelling leaves the pipeline usable", "[pipeline]") {
