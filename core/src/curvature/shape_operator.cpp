@@ -113,6 +113,11 @@ Curvature compute_curvature(const Mesh& mesh, const Topology& topology, const st
         1);
     report(kNormalsDone + (kEdgesDone - kNormalsDone) * double(end) / double(ne));
   }
+  // The triangles' normals and areas are done with: freed before the four
+  // fields below are made (32 bytes per triangle, the stage's peak).
+  std::vector<Vec3>().swap(normals);
+  std::vector<double>().swap(areas);
+  std::vector<EdgeTerm>().swap(terms);
 
   c.kappa_max.resize(nv);
   c.kappa_min.resize(nv);
