@@ -86,6 +86,19 @@ const Mesh& Pipeline::input() const {
   return input_;
 }
 
+const Mesh& Pipeline::surface() const {
+  if (!presmoothed_) return input();
+  // Nothing in the pipeline reads it: made here, not kept by a run (24 bytes
+  // per triangle through the smoothing's solves).
+  if (surface_.triangles.empty() && working_surface_.positions.size() >= input_.positions.size()) {
+    surface_.triangles = input_triangles();
+    surface_.positions.resize(input_.positions.size());
+    for (size_t v = 0; v < surface_.positions.size(); ++v)
+      surface_.positions[v] = frames_.to_user(working_surface_.positions[v], frames_.vertex_component[v]);
+  }
+  return surface_;
+}
+
 const Mesh& Pipeline::local_input() {
   if (!local_input_valid_) local_input_ = to_local(input(), frames_), local_input_valid_ = true;
   return local_input_;
@@ -233,7 +246,7 @@ void Pipeline::cut_along_boundaries(std::vector<uint32_t> edges) {
   boundary_edges_ = std::move(edges);
   mark_dirty(Stage::Presmooth);
   input();  // its triangles back from the cut before the cut goes
-  cut_ = CutMesh(), cut_active_ = false, cut_topology_ = Topology(), cut_components_.clear();
+  cut_ = CutMesh(), cut_active_ = false, cut_topology_ = Topology();
   // The cut takes over the input's mesh in the working frame and its
   // adjacency (no copy of either: at 1.1M triangles 24 and 50 bytes per
   // triangle); they are rebuilt, the same, when asked for again.
@@ -251,7 +264,6 @@ void Pipeline::cut_along_boundaries(std::vector<uint32_t> edges) {
   }
   topology_valid_ = false;
   cut_topology_ = cut_topology(std::move(topology_), cut_);
-  cut_components_ = on_cut_vertices(cut_, frames_.vertex_component);
 }
 
 double Pipeline::select_crease_lines(std::optional<CreaseResult> automatic,
@@ -331,6 +343,7 @@ void Pipeline::run(const ProgressCallback& progress) {
   // working frame's copy or the cut) has them; input() rebuilds them, the
   // same (12 bytes per triangle).
   input_.triangles = std::vector<Triangle>();
+  surface_ = Mesh();  // so is the pre-smoothed one in the input's coordinates (surface())
   // The working adjacency's triangle lists are read by the stages up to the
   // curvature, which releases them (26 bytes per triangle less through the
   // smoothing's solves): restored, the same, only when one of those re-runs.
@@ -377,23 +390,18 @@ void Pipeline::run(const ProgressCallback& progress) {
       // No copies: surface() and working_surface() are the input then
       // (48 bytes per triangle less).
       working_surface_ = Mesh();
-      surface_ = Mesh();
       return;
     }
     const Mesh& in = smooth_input();
-    const std::vector<uint32_t>& component = smooth_components();
     std::vector<int> vertex_steps(in.positions.size());
-    for (size_t v = 0; v < vertex_steps.size(); ++v) vertex_steps[v] = presmooth_steps_[component[v]];
+    for (size_t v = 0; v < vertex_steps.size(); ++v)
+      vertex_steps[v] = presmooth_steps_[frames_.vertex_component[cut_active_ ? cut_.source(uint32_t(v)) : v]];
     working_surface_.triangles = in.triangles;
     working_surface_.positions =
         presmooth_surface(in, smooth_topology(), presmooth.time_step, vertex_steps, within(Stage::Presmooth));
     // Each side of a crease smooths its copy of a crease vertex along the
     // crease; they meet again at the mean.
     if (cut_active_) merge_copies(cut_, working_surface_.positions);
-    surface_.triangles = input_triangles();
-    surface_.positions.resize(input_.positions.size());
-    for (size_t v = 0; v < surface_.positions.size(); ++v)
-      surface_.positions[v] = frames_.to_user(working_surface_.positions[v], frames_.vertex_component[v]);
   });
   const Mesh& surface = working_surface();
   Topology& topology = smooth_topology();
@@ -441,7 +449,11 @@ void Pipeline::run(const ProgressCallback& progress) {
   step(Stage::Polylines, [&] {
     PolylinesInput input;
     if (presmoothed_) input.place_on = &smooth_input();
-    input.vertex_component = &smooth_components();
+    // The components of the cut's vertices, made here (each copy is its
+    // vertex's) rather than kept through the solves; one component needs none.
+    std::vector<uint32_t> cut_components;
+    if (cut_active_ && frames_.count() > 1) cut_components = on_cut_vertices(cut_, frames_.vertex_component);
+    input.vertex_component = cut_active_ ? &cut_components : &frames_.vertex_component;
     input.components = frames_.count();
     PolylinesResult joined = build_polylines(singular_.lines.ridges, singular_.lines.valleys, surface, topology, input);
     if (cut_active_ && options_.clearance.distance > 0) {

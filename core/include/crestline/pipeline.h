@@ -122,7 +122,9 @@ class Pipeline {
   /// cut has them); rebuilt here (the same) when asked for.
   const Mesh& input_mesh() const { return input(); }
   /// The mesh after optional pre-smoothing, in the input's coordinates.
-  const Mesh& surface() const { return presmoothed_ ? surface_ : input(); }
+  /// Where pre-smoothed, made from working_surface() when asked for (a run
+  /// releases it).
+  const Mesh& surface() const;
   /// The same in the working frame: all curvature lives on it, and segments()
   /// lie on its edges. Its vertices are the input's, followed by one copy
   /// per extra side of each vertex on a boundary crease (working_cut()); the
@@ -196,9 +198,6 @@ class Pipeline {
   const Mesh& smooth_input() const { return cut_active_ ? cut_.mesh : local_input_; }
   // working_topology() as it stands (its triangle lists perhaps released).
   Topology& smooth_topology() { return cut_active_ ? cut_topology_ : topology_; }
-  const std::vector<uint32_t>& smooth_components() const {
-    return cut_active_ ? cut_components_ : frames_.vertex_component;
-  }
 
   PipelineOptions options_;
   Stage first_dirty_ = Stage::Presmooth;
@@ -207,7 +206,7 @@ class Pipeline {
   Mesh local_input_;  // input_ in the working frame; released while a cut serves (local_input())
   bool local_input_valid_ = false;
   Mesh working_surface_;       // pre-smoothed only; else local_input_ serves
-  Mesh surface_;               // pre-smoothed only; else input_ serves
+  mutable Mesh surface_;       // pre-smoothed only (see surface()); else input_ serves
   mutable Topology topology_;  // see topology()
   mutable bool topology_valid_ = false;
   double mean_edge_ = 0;
@@ -234,9 +233,8 @@ class Pipeline {
   // input's positions, which the lines are placed on).
   std::vector<CreaseSegment> boundary_segments_;
   bool cut_active_ = false;
-  CutMesh cut_;                           // of local_input_, in the working frame
-  mutable Topology cut_topology_;         // see working_topology()
-  std::vector<uint32_t> cut_components_;  // component of each cut vertex
+  CutMesh cut_;                    // of local_input_, in the working frame
+  mutable Topology cut_topology_;  // see working_topology()
   CreaseAngles crease_angles_;
   // crease_angles_'s angle and support where either is not 0 (compact_crease_angles).
   struct CreaseEdge {

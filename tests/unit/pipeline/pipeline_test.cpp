@@ -185,7 +185,8 @@ TEST_CASE("with a crease cut, crease and boundary changes give the lines and cre
 TEST_CASE("a re-run from the pre-smoothing after a run, with or without a crease cut, is a fresh run",
           "[pipeline][cut]") {
   // A run releases the working adjacency's triangle lists after the
-  // curvature stage; pre-smoothing and curvature need them again.
+  // curvature stage; pre-smoothing and curvature need them again. And the
+  // pre-smoothed surface in the input's coordinates is made on demand.
   size_t cut = 0;
   for (const Mesh& mesh : {fold(), repair_mesh(bumpy()).mesh}) {
     Pipeline p(mesh);
@@ -200,6 +201,12 @@ TEST_CASE("a re-run from the pre-smoothing after a run, with or without a crease
     REQUIRE(!fresh.lines().empty());
     same_lines(p, fresh);
     CHECK(p.curvature().kappa_max == fresh.curvature().kappa_max);
+    // The pre-smoothed surface in the input's coordinates, made when asked for.
+    CHECK(p.surface().triangles == mesh.triangles);
+    REQUIRE(p.surface().positions.size() == mesh.positions.size());
+    CHECK(p.surface().positions == fresh.surface().positions);
+    CHECK(p.surface().positions[7] == p.frames().to_user(p.working_surface().positions[7], 0));
+    CHECK(p.surface().positions[7] != mesh.positions[7]);
     CHECK(p.working_cut().copy_of.size() == fresh.working_cut().copy_of.size());
     cut += !fresh.working_cut().copy_of.empty();
     testing::check_same_topology(p.working_topology(), build_topology(p.working_surface()));
