@@ -55,6 +55,9 @@ Pipeline::Pipeline(Mesh mesh, Topology topology) : input_(std::move(mesh)), topo
     sum += frames_.scale[c] * frames_.triangle_count[c], count += frames_.triangle_count[c];
   mean_edge_ = count ? sum / count : 0;
   noise_levels_ = surface_noise_levels(local, topology_, frames_.vertex_component, frames_.count());
+  // With one component every vertex's is 0 (frames_.component()): not kept
+  // (4 bytes a vertex).
+  if (frames_.count() == 1) frames_.vertex_component = std::vector<uint32_t>();
 }
 
 const Topology& Pipeline::topology() const {
@@ -94,7 +97,7 @@ const Mesh& Pipeline::surface() const {
     surface_.triangles = input_triangles();
     surface_.positions.resize(input_.positions.size());
     for (size_t v = 0; v < surface_.positions.size(); ++v)
-      surface_.positions[v] = frames_.to_user(working_surface_.positions[v], frames_.vertex_component[v]);
+      surface_.positions[v] = frames_.to_user(working_surface_.positions[v], frames_.component(v));
   }
   return surface_;
 }
@@ -205,7 +208,7 @@ Pipeline::BoundarySelection Pipeline::select_boundaries(const std::function<void
     // Not on noisy components, where creases are not to be trusted.
     edges.erase(std::remove_if(edges.begin(), edges.end(),
                                [&](uint32_t e) {
-                                 const uint32_t c = frames_.vertex_component[topology.edges[e][0]];
+                                 const uint32_t c = frames_.component(topology.edges[e][0]);
                                  return noise_levels_[c] > kBoundaryNoiseLimit;
                                }),
                 edges.end());
@@ -238,7 +241,7 @@ void Pipeline::measure_boundary_segments(const Topology& topology, const Mesh& l
   for (uint32_t e : boundary_edges_) {
     const auto [a, b] = topology.edges[e];
     const double edge = std::min(1.0, (sum[slot[a]] + sum[slot[b]]) / (count[slot[a]] + count[slot[b]]));
-    boundary_segments_.push_back({{local.positions[a], local.positions[b]}, frames_.vertex_component[a], edge});
+    boundary_segments_.push_back({{local.positions[a], local.positions[b]}, frames_.component(a), edge});
   }
 }
 
@@ -278,7 +281,7 @@ double Pipeline::select_crease_lines(std::optional<CreaseResult> automatic,
                          : select_creases(local_input(), topology(), crease_angles_, options_.creases, 1.0,
                                           at_measure_end(measure_progress));
     for (size_t i = 0; i < creases_.lines.size(); ++i) {
-      const uint32_t component = frames_.vertex_component[creases_.line_vertex[i]];
+      const uint32_t component = frames_.component(creases_.line_vertex[i]);
       creases_.lines[i] = to_user(std::move(creases_.lines[i]), frames_, component);
     }
   }
@@ -395,7 +398,7 @@ void Pipeline::run(const ProgressCallback& progress) {
     const Mesh& in = smooth_input();
     std::vector<int> vertex_steps(in.positions.size());
     for (size_t v = 0; v < vertex_steps.size(); ++v)
-      vertex_steps[v] = presmooth_steps_[frames_.vertex_component[cut_active_ ? cut_.source(uint32_t(v)) : v]];
+      vertex_steps[v] = presmooth_steps_[frames_.component(cut_active_ ? cut_.source(uint32_t(v)) : v)];
     working_surface_.triangles = in.triangles;
     working_surface_.positions =
         presmooth_surface(in, smooth_topology(), presmooth.time_step, vertex_steps, within(Stage::Presmooth));

@@ -130,6 +130,7 @@ class Pipeline {
   /// per extra side of each vertex on a boundary crease (working_cut()); the
   /// per-vertex fields (curvature(), extremality()) have its vertex count.
   const Mesh& working_surface() const { return presmoothed_ ? working_surface_ : smooth_input(); }
+  /// Its vertex_component is empty where there is one component (component()).
   const ComponentFrames& frames() const { return frames_; }
   /// The input mesh's adjacency. While a crease cut serves the smooth stages
   /// a run releases it before them; rebuilt here (the same) when asked for.

@@ -174,7 +174,7 @@ Mesh to_local(const Mesh& mesh, const ComponentFrames& frames) {
   local.positions.resize(mesh.positions.size());
   parallel_for(mesh.positions.size(), [&](size_t begin, size_t end) {
     for (size_t v = begin; v < end; ++v) {
-      const uint32_t c = frames.vertex_component[v];
+      const uint32_t c = frames.component(v);
       local.positions[v] = (mesh.positions[v] - frames.centre[c]) / frames.scale[c];
     }
   });

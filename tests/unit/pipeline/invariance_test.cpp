@@ -272,6 +272,11 @@ TEST_CASE("a second, smaller object in the file changes neither object's lines",
   const Pipeline together = testing::run_pipeline(both);
   CHECK(alone.stats().components == 1);
   CHECK(together.stats().components == 2);
+  // One component needs no per-vertex numbers: not kept.
+  CHECK(alone.frames().vertex_component.empty());
+  CHECK(alone.frames().component(7) == 0);
+  REQUIRE(together.frames().vertex_component.size() == both.vertex_count());
+  CHECK(together.frames().component(offset) == 1);
   const Counts one = counts(alone.lines());
   REQUIRE(one.ridges >= 6);  // the rounded edges (some in several pieces)
   const Counts two = counts(together.lines());

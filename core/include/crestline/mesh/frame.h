@@ -25,13 +25,16 @@ namespace crestline {
 
 struct ComponentFrames {
   /// Component of each vertex (vertex-connected through triangles), numbered
-  /// in order of first appearance among the triangles.
+  /// in order of first appearance among the triangles. A holder may release
+  /// it (leave it empty) where there is one component: see component().
   std::vector<uint32_t> vertex_component;
   std::vector<Vec3> centre;            // per component, user coordinates
   std::vector<double> scale;           // per component: its mean edge length, user units
   std::vector<size_t> triangle_count;  // per component
 
   size_t count() const { return centre.size(); }
+  /// vertex_component[v], or 0 where it is released.
+  uint32_t component(size_t v) const { return vertex_component.empty() ? 0 : vertex_component[v]; }
   /// The component with the most triangles (the first of equals): the one
   /// single-valued statistics describe.
   uint32_t largest() const;
