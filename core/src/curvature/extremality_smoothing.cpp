@@ -37,7 +37,8 @@ double setup_share(int steps) { return 0.5 / ((1 + kTypicalIterations) * steps);
 // signs (two dot products) are found on every thread first; the additions
 // to its two rows stay in edge order on the calling thread.
 SignedPairMatrix signed_pair_matrix(const Topology& topology, const CotanWeights& cotan,
-                                    const std::vector<double>& edge_strength, const Curvature& curvature) {
+                                    const std::vector<double>& edge_strength, const Curvature& curvature,
+                                    const std::function<void()>& pause) {
   const size_t nv = cotan.vertex_mass.size(), ne = topology.edges.size();
   SignedPairMatrix a;
   a.diagonal = cotan.vertex_mass;
@@ -60,6 +61,7 @@ SignedPairMatrix signed_pair_matrix(const Topology& topology, const CotanWeights
     a.diagonal[q] += w;
   }
   for (size_t v = 0; v < nv; ++v) a.offsets[v + 1] += a.offsets[v];
+  pause();
   a.columns.resize(a.offsets[nv]);
   a.weights.resize(a.offsets[nv]);
   std::vector<uint32_t> fill(a.offsets.begin(), a.offsets.end() - 1);
@@ -89,7 +91,7 @@ bool smooth_fields_paired(const Topology& topology, const CotanWeights& cotan, s
     setup = 0.5 * (setup + share);
     if (progress) progress(setup);
   };
-  SignedPairMatrix matrix = signed_pair_matrix(topology, cotan, edge_strength, curvature);
+  SignedPairMatrix matrix = signed_pair_matrix(topology, cotan, edge_strength, curvature, pause);
   std::vector<double>().swap(edge_strength);  // before the solver copies the matrix
   pause();
   const SignedPairSolver solver(std::move(matrix), true, pause);
@@ -181,8 +183,10 @@ SmoothedExtremality smooth_extremality(const Mesh& mesh, const Topology& topolog
     if (!(w >= 0) || !std::isfinite(w))
       throw Error(ErrorKind::InvalidInput, "smoothing weights must be finite and not negative.");
 
+  // Chances to cancel before and after the cotan weights, and before the
+  // set-up's other parts (smooth_fields_paired).
+  if (progress) progress(0.25 * setup_share(options.steps));
   CotanWeights cotan = cotan_weights(mesh.positions, mesh, topology);
-  // A chance to cancel before the set-up's other parts (smooth_fields_paired).
   if (progress) progress(0.5 * setup_share(options.steps));
   const double h = mean_edge_length(mesh);
   const double t = options.time_step * h * h;

@@ -37,7 +37,8 @@ uint32_t sign_change(const SignedPairMatrix& a, uint32_t e) {
 SignedPairSolver::Aggregation SignedPairSolver::build_coarse_matrix(const SignedPairMatrix& a,
                                                                     const UninitialisedVector<double>& excess,
                                                                     const std::vector<uint32_t>& bfs_order,
-                                                                    const UninitialisedVector<uint32_t>& position) {
+                                                                    const UninitialisedVector<uint32_t>& position,
+                                                                    const std::function<void()>& pause) {
   const size_t n = a.rows();
   std::vector<uint8_t> slow(n);
   for (size_t i = 0; i < n; ++i) slow[i] = detail::is_slow(a.diagonal[i], excess[i], a.offsets[i + 1] > a.offsets[i]);
@@ -70,6 +71,7 @@ SignedPairSolver::Aggregation SignedPairSolver::build_coarse_matrix(const Signed
       if (strong(i, e)) any = true, free = free && aggregate[column(e)] == kNone;
     if (any && free) root(i);
   }
+  pause();
   const std::vector<uint32_t> first = aggregate;
   for (const uint32_t i : bfs_order) {
     if (!slow[i] || aggregate[i] != kNone) continue;
@@ -91,6 +93,7 @@ SignedPairSolver::Aggregation SignedPairSolver::build_coarse_matrix(const Signed
     if (any) root(i);
   }
   if (aggregated < detail::min_aggregated(n)) return {};
+  pause();
 
   // The members of each aggregate, in breadth-first order.
   std::vector<uint32_t> member_begin(aggregates + 1, 0), members(aggregated);

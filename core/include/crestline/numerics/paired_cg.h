@@ -301,10 +301,11 @@ class SignedPairSolver {
   };
   // Aggregates the slow rows and builds Ac from the input matrix (by input
   // row), before the permuted matrix exists: the two are never held beside
-  // the aggregation's work (paired_cg_coarse.cpp).
+  // the aggregation's work (paired_cg_coarse.cpp). `pause` is called between
+  // its passes (a chance to cancel).
   Aggregation build_coarse_matrix(const SignedPairMatrix& matrix, const UninitialisedVector<double>& excess,
-                                  const std::vector<uint32_t>& bfs_order,
-                                  const UninitialisedVector<uint32_t>& position);
+                                  const std::vector<uint32_t>& bfs_order, const UninitialisedVector<uint32_t>& position,
+                                  const std::function<void()>& pause);
   // Q = L P and Qᵀ from the permuted float matrix, once the input is released.
   void build_coarse_transfer(const Aggregation& aggregation);
 
