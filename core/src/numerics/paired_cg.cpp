@@ -99,29 +99,19 @@ inline Pair operator/(Pair x, Pair y) { return {x.a / y.a, x.b / y.b}; }
 
 // Σ a_ij v_j over entries [begin, end) of a row, both fields: weights holds
 // each entry's pair (σ_0 w, σ_1 w).
-// s, if given, is the sum so far (of a row's other part).
 template <typename Value>
-inline Pair accumulate(const uint32_t* columns, const float* weights, const Value* v, uint32_t begin, uint32_t end,
-                       Pair s = Pair::both(0.0)) {
+inline Pair accumulate(const uint32_t* columns, const float* weights, const Value* v, uint32_t begin, uint32_t end) {
+  Pair s = Pair::both(0.0);
   const float* w = weights + 2 * size_t{begin};
   for (const uint32_t *c = columns + begin, *last = columns + end; c != last; ++c, w += 2)
     s = s + Pair::widen(w) * Pair::load(v + 2 * size_t{*c});
   return s;
 }
 
-// A matrix entry of the solver's parts: one float, field 0's value; field 1's
-// is the same, but in a row marked mixed, where bit 30 (0 in any float of
-// magnitude below 2, and the entries of the unit-diagonal system are below
-// 1) says it is the negation.
-constexpr uint32_t kFlipBit = uint32_t{1} << 30;
+// Both fields' values of a stored entry of the solver's parts (detail::stored_entry).
 inline Pair flipped_entry(const float* p) {
-  uint32_t bits;
-  std::memcpy(&bits, p, sizeof bits);
-  const uint32_t flip = bits & kFlipBit;
-  bits ^= flip;
-  float f;
-  std::memcpy(&f, &bits, sizeof f);
-  const double d = f;
+  bool flip;
+  const double d = detail::entry_value(*p, flip);
   return Pair::of(d, flip ? -d : d);
 }
 
@@ -392,13 +382,10 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix, bool two_level, cons
           // Field 0's value, and whether field 1's, in the rows' handedness, is its negation.
           const float value = column >> 30 & 1 ? -w : w;
           const uint32_t flip = (column >> 30 ^ column >> 31 ^ hand_i ^ hand[j]) & 1;
-          uint32_t bits;
-          std::memcpy(&bits, &value, sizeof bits);
-          bits |= flip << 30;
           const int lower = to < earlier ? 1 : 0;
           const uint32_t at = next[lower]++;
           cols[lower][at] = to;
-          std::memcpy(values[lower] + at, &bits, sizeof bits);
+          values[lower][at] = detail::stored_entry(value, flip != 0);
           mixed[lower] |= flip;
         }
         handed_[k] = static_cast<uint8_t>(hand_i);

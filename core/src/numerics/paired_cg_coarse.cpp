@@ -5,7 +5,6 @@
 // threads.
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
 
 #include "crestline/numerics/paired_cg.h"
@@ -341,14 +340,10 @@ void SignedPairSolver::build_coarse_transfer(const Aggregation& aggregation) {
         slot[c] = static_cast<uint32_t>(row_columns.size());
         row_columns.push_back(c), row_values.resize(row_values.size() + 2, 0.0);
       }
-      // The entry's two values (paired_cg.cpp's parts).
-      uint32_t bits;
-      std::memcpy(&bits, &lower_.weights[e], sizeof bits);
-      const uint32_t flip = bits >> 30 & 1;
-      bits &= ~(uint32_t{1} << 30);
-      float value;
-      std::memcpy(&value, &bits, sizeof value);
-      const double a[2] = {value, flip ? -double{value} : double{value}};
+      // The entry's two values (detail::stored_entry).
+      bool flip;
+      const double value = detail::entry_value(lower_.weights[e], flip);
+      const double a[2] = {value, flip ? -value : value};
       for (int k = 0; k < 2; ++k) row_values[2 * slot[c] + k] += a[k] * p(j, k);
     }
     for (const uint32_t c : row_columns) slot[c] = kNone;

@@ -194,6 +194,7 @@
 // cost more than the misses saved. Instructions guide this solve here.
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <functional>
 #include <vector>
 
@@ -215,6 +216,29 @@ struct SignedPairMatrix {
 };
 
 namespace detail {
+/// A matrix entry of the solver's parts: one float, field 0's value, with
+/// bit 30 set where field 1's is its negation (0 in any float of magnitude
+/// below 2, and the entries of the unit-diagonal system are below 1).
+constexpr uint32_t kFlipBit = uint32_t{1} << 30;
+inline float stored_entry(float value, bool flip) {
+  uint32_t bits;
+  std::memcpy(&bits, &value, sizeof bits);
+  bits |= flip ? kFlipBit : 0;
+  float stored;
+  std::memcpy(&stored, &bits, sizeof stored);
+  return stored;
+}
+/// Field 0's value of a stored entry; `flip`: whether field 1's is its negation.
+inline float entry_value(float stored, bool& flip) {
+  uint32_t bits;
+  std::memcpy(&bits, &stored, sizeof bits);
+  flip = (bits & kFlipBit) != 0;
+  bits &= ~kFlipBit;
+  float value;
+  std::memcpy(&value, &bits, sizeof value);
+  return value;
+}
+
 /// Whether the sweeps smooth a row slowly, so that it takes part in the
 /// coarse level: its diagonal exceeds the sum of its off-diagonal magnitudes
 /// (`excess`) by less than a tenth of the diagonal (in the smoothing, m <
