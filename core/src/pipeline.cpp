@@ -114,6 +114,39 @@ void Pipeline::release_local_input() {
   if (cut_active_) local_input_ = Mesh(), local_input_valid_ = false;
 }
 
+void Pipeline::release_smooth_geometry() {
+  // The input's positions in the working frame, or the cut's, whose copies
+  // sit where their vertices do (cut.h): both follow from input_ and the
+  // frames. Not the pre-smoothed surface's, which would take its smoothing again.
+  Mesh& mesh = cut_active_ ? cut_.mesh : local_input_;
+  mesh.positions = std::vector<Vec3>();
+  Topology& topology = smooth_topology();
+  released_edges_ = topology.edges.size();
+  topology.edges = std::vector<std::array<uint32_t, 2>>();
+}
+
+void Pipeline::restore_smooth_geometry() {
+  Mesh& mesh = cut_active_ ? cut_.mesh : local_input_;
+  if (mesh.positions.empty() && !input_.positions.empty()) {
+    // to_local without copying the input's triangles (a run has released them).
+    std::vector<Triangle> triangles = std::move(input_.triangles);
+    std::vector<Vec3> positions = to_local(input_, frames_).positions;
+    input_.triangles = std::move(triangles);
+    mesh.positions = cut_active_ ? on_cut_vertices(cut_, std::move(positions)) : std::move(positions);
+  }
+  // Each edge is some triangle's side, (smaller end, larger end); written
+  // on one thread, as an edge's two triangles write it both.
+  Topology& topology = smooth_topology();
+  if (!topology.edges.empty() || released_edges_ == 0) return;
+  topology.edges.resize(released_edges_);
+  for (size_t t = 0; t < mesh.triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = mesh.triangles[t][k], b = mesh.triangles[t][(k + 1) % 3];
+      topology.edges[topology.triangle_edges[t][k]] = {std::min(a, b), std::max(a, b)};
+    }
+  released_edges_ = 0;
+}
+
 void Pipeline::mark_dirty(Stage from) {
   if (static_cast<int>(from) < static_cast<int>(first_dirty_)) first_dirty_ = from;
 }
@@ -430,8 +463,23 @@ void Pipeline::run(const ProgressCallback& progress) {
     // made take the weight of the vertex they split from.
     std::vector<double>& weights = smoothing.vertex_weights;
     if (cut_active_ && weights.size() == cut_.input_vertices) weights = on_cut_vertices(cut_, std::move(weights));
-    extremality_ =
-        smooth_extremality(surface, topology, curvature_, raw_extremality_, smoothing, within(Stage::Smoothing));
+    const std::function<void(double)> report = within(Stage::Smoothing);
+    ExtremalitySmoothingSystem system = extremality_smoothing_system(surface, topology, curvature_, smoothing, report);
+    // The solves read neither the positions nor the edges: released through
+    // them (at 1.1M triangles 24 bytes per triangle at the run's peak) and
+    // made again, the same, after them or a cancel.
+    release_smooth_geometry();
+    PairedSmoothing paired;
+    try {
+      paired = solve_extremality_smoothing(std::move(system), raw_extremality_, report);
+    } catch (...) {
+      restore_smooth_geometry();
+      throw;
+    }
+    restore_smooth_geometry();
+    extremality_ = paired.converged ? std::move(paired.smoothed)
+                                    : smooth_extremality_unpaired(surface, topology, curvature_, raw_extremality_,
+                                                                  smoothing, paired.smoothed.solver_iterations);
   });
   step(Stage::Tracing, [&] {
     traced_ = trace_regular_triangles(surface, topology, curvature_, extremality_, regularity_, options_.trace,

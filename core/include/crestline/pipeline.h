@@ -73,6 +73,8 @@ const char* stage_name(Stage stage);  // "presmooth", "curvature", …
 
 /// Called between and inside stages; return false to cancel (run() then
 /// throws Cancelled and the pipeline stays valid up to the last finished stage).
+/// During the smoothing's solves the working mesh's positions and edges are
+/// released (Pipeline::run): the callback must not read the Pipeline.
 using ProgressCallback = std::function<bool(Stage stage, double fraction)>;
 
 struct Cancelled : std::exception {
@@ -197,6 +199,11 @@ class Pipeline {
   double select_crease_lines(std::optional<CreaseResult> automatic,
                              const std::function<void(double)>& measure_progress);
   const Mesh& smooth_input() const { return cut_active_ ? cut_.mesh : local_input_; }
+  // smooth_input()'s positions and smooth_topology()'s edges, which the
+  // smoothing's solves do not read: released through them, then restored
+  // from input_, the frames and the triangles (the same values).
+  void release_smooth_geometry();
+  void restore_smooth_geometry();
   // working_topology() as it stands (its triangle lists perhaps released).
   Topology& smooth_topology() { return cut_active_ ? cut_topology_ : topology_; }
 
@@ -206,6 +213,7 @@ class Pipeline {
   ComponentFrames frames_;
   Mesh local_input_;  // input_ in the working frame; released while a cut serves (local_input())
   bool local_input_valid_ = false;
+  size_t released_edges_ = 0;  // smooth_topology()'s edge count while its edges are released
   Mesh working_surface_;       // pre-smoothed only; else local_input_ serves
   mutable Mesh surface_;       // pre-smoothed only (see surface()); else input_ serves
   mutable Topology topology_;  // see topology()

@@ -36,12 +36,12 @@ double setup_share(int steps) { return 0.5 / ((1 + kTypicalIterations) * steps);
 // diagonal sums in edge order exactly as smooth_field's does. Each edge's
 // signs (two dot products) are found on every thread first; the additions
 // to its two rows stay in edge order on the calling thread.
-SignedPairMatrix signed_pair_matrix(const Topology& topology, const CotanWeights& cotan,
+SignedPairMatrix signed_pair_matrix(const Topology& topology, const std::vector<double>& vertex_mass,
                                     const std::vector<double>& edge_strength, const Curvature& curvature,
                                     const std::function<void()>& pause) {
-  const size_t nv = cotan.vertex_mass.size(), ne = topology.edges.size();
+  const size_t nv = vertex_mass.size(), ne = topology.edges.size();
   SignedPairMatrix a;
-  a.diagonal = cotan.vertex_mass;
+  a.diagonal = vertex_mass;
   a.offsets.assign(nv + 1, 0);
   // Bit k of an edge's mask: σ = −1 in field k.
   std::vector<uint8_t> mask(ne);
@@ -76,25 +76,24 @@ SignedPairMatrix signed_pair_matrix(const Topology& topology, const CotanWeights
   return a;
 }
 
-// Both fields in lockstep; false if CG does not converge (out's
-// solver_iterations then holds what was spent). Releases edge_strength once
-// the matrix holds it (the solve's peak memory).
-bool smooth_fields_paired(const Topology& topology, const CotanWeights& cotan, std::vector<double>& edge_strength,
-                          const Curvature& curvature, const Extremality& in, int steps,
+// Both fields in lockstep from the system's matrix (the solver takes it
+// over); false if CG does not converge (out's solver_iterations then holds
+// what was spent).
+bool smooth_fields_paired(ExtremalitySmoothingSystem& system, const Extremality& in,
                           const std::function<void(double)>& progress, SmoothedExtremality& out) {
-  const size_t nv = cotan.vertex_mass.size();
+  const std::vector<double>& mass = system.vertex_mass;
+  const size_t nv = mass.size();
+  const int steps = system.steps;
   // The set-up's parts report fractions rising towards setup_share(steps)
-  // from half of it (smooth_extremality's report): a chance to cancel each.
+  // from where extremality_smoothing_system left them: a chance to cancel each.
   const double share = setup_share(steps);
-  double setup = 0.5 * share;
+  double setup = 0.75 * share;
   const auto pause = [&] {
     setup = 0.5 * (setup + share);
     if (progress) progress(setup);
   };
-  SignedPairMatrix matrix = signed_pair_matrix(topology, cotan, edge_strength, curvature, pause);
-  std::vector<double>().swap(edge_strength);  // before the solver copies the matrix
   pause();
-  const SignedPairSolver solver(std::move(matrix), true, pause);
+  const SignedPairSolver solver(std::move(system.matrix), true, pause);
   pause();
   std::vector<double> x(2 * nv), b(2 * nv);
   parallel_for(nv, [&](size_t begin, size_t end) {
@@ -103,7 +102,7 @@ bool smooth_fields_paired(const Topology& topology, const CotanWeights& cotan, s
   for (int step = 0; step < steps; ++step) {
     parallel_for(nv, [&](size_t begin, size_t end) {
       for (size_t v = begin; v < end; ++v) {
-        const double m = cotan.vertex_mass[v];
+        const double m = mass[v];
         b[2 * v] = m * x[2 * v], b[2 * v + 1] = m * x[2 * v + 1];
       }
     });
@@ -167,14 +166,12 @@ std::vector<double> banded_weights(const Mesh& mesh, const Topology& topology,
   return banded;
 }
 
-}  // namespace
-
-SmoothedExtremality smooth_extremality(const Mesh& mesh, const Topology& topology, const Curvature& curvature,
-                                       const Extremality& extremality, const ExtremalitySmoothingOptions& options,
-                                       const std::function<void(double)>& progress) {
-  if (options.steps <= 0 || options.time_step <= 0) return {extremality};
+// The vertex weights the edge strengths read (banded_weights or the
+// options'), checked; `banded` holds the banded ones.
+const std::vector<double>& checked_weights(const Mesh& mesh, const Topology& topology,
+                                           const ExtremalitySmoothingOptions& options, std::vector<double>& banded) {
   const size_t nv = mesh.positions.size();
-  std::vector<double> banded = banded_weights(mesh, topology, options);
+  banded = banded_weights(mesh, topology, options);
   const std::vector<double>& weights = options.frozen_boundary_rings > 0 ? banded : options.vertex_weights;
   if (!weights.empty() && weights.size() != nv)
     throw Error(ErrorKind::InvalidInput, "the smoothing weights have " + std::to_string(weights.size()) +
@@ -182,42 +179,86 @@ SmoothedExtremality smooth_extremality(const Mesh& mesh, const Topology& topolog
   for (double w : weights)
     if (!(w >= 0) || !std::isfinite(w))
       throw Error(ErrorKind::InvalidInput, "smoothing weights must be finite and not negative.");
+  return weights;
+}
 
-  // Chances to cancel before and after the cotan weights, and before the
-  // set-up's other parts (smooth_fields_paired).
-  if (progress) progress(0.25 * setup_share(options.steps));
-  CotanWeights cotan = cotan_weights(mesh.positions, mesh, topology);
-  if (progress) progress(0.5 * setup_share(options.steps));
+// t times each edge's cotan weight and strength: an edge is smoothed as
+// strongly as its weaker end, so a region with weight 0 is frozen and
+// exchanges nothing with its surroundings. Scaled in place: the cotan
+// weights are not needed apart from it.
+std::vector<double> edge_strengths(const Mesh& mesh, const Topology& topology, const std::vector<double>& weights,
+                                   double time_step, std::vector<double> cotan_weight) {
   const double h = mean_edge_length(mesh);
-  const double t = options.time_step * h * h;
-  // An edge is smoothed as strongly as its weaker end, so a region with
-  // weight 0 is frozen and exchanges nothing with its surroundings. Scaled
-  // in place: the cotan weights are not needed apart from it.
-  auto strengths = [&](std::vector<double> cotan_weight) {
-    parallel_for(topology.edges.size(), [&](size_t begin, size_t end) {
-      for (size_t e = begin; e < end; ++e) {
-        const double s = weights.empty() ? 1.0 : std::min(weights[topology.edges[e][0]], weights[topology.edges[e][1]]);
-        cotan_weight[e] = t * s * cotan_weight[e];
-      }
-    });
-    return cotan_weight;
-  };
-  std::vector<double> edge_strength = strengths(std::move(cotan.edge_weight));
-  // Not needed during the solves, where the peak memory is (8 bytes a
-  // vertex); the fallback below makes it again.
-  std::vector<double>().swap(banded);
+  const double t = time_step * h * h;
+  parallel_for(topology.edges.size(), [&](size_t begin, size_t end) {
+    for (size_t e = begin; e < end; ++e) {
+      const double s = weights.empty() ? 1.0 : std::min(weights[topology.edges[e][0]], weights[topology.edges[e][1]]);
+      cotan_weight[e] = t * s * cotan_weight[e];
+    }
+  });
+  return cotan_weight;
+}
 
+}  // namespace
+
+ExtremalitySmoothingSystem extremality_smoothing_system(const Mesh& mesh, const Topology& topology,
+                                                        const Curvature& curvature,
+                                                        const ExtremalitySmoothingOptions& options,
+                                                        const std::function<void(double)>& progress) {
+  ExtremalitySmoothingSystem system;
+  if (options.steps <= 0 || options.time_step <= 0) return system;
+  system.steps = options.steps;
+  std::vector<double> banded;
+  const std::vector<double>& weights = checked_weights(mesh, topology, options, banded);
+  // Chances to cancel before and after the cotan weights, and between the
+  // matrix's parts.
+  const double share = setup_share(options.steps);
+  if (progress) progress(0.25 * share);
+  CotanWeights cotan = cotan_weights(mesh.positions, mesh, topology);
+  if (progress) progress(0.5 * share);
+  std::vector<double> edge_strength =
+      edge_strengths(mesh, topology, weights, options.time_step, std::move(cotan.edge_weight));
+  system.vertex_mass = std::move(cotan.vertex_mass);
+  // Not needed beyond here (8 bytes a vertex).
+  std::vector<double>().swap(banded);
+  if (system.vertex_mass.size() > SignedPairMatrix::kColumnMask) return system;  // no paired solve
+  system.matrix = signed_pair_matrix(topology, system.vertex_mass, edge_strength, curvature, [&] {
+    if (progress) progress(0.75 * share);
+  });
+  return system;
+}
+
+PairedSmoothing solve_extremality_smoothing(ExtremalitySmoothingSystem system, const Extremality& extremality,
+                                            const std::function<void(double)>& progress) {
+  PairedSmoothing out;
+  if (system.steps <= 0) {
+    out.smoothed = {extremality};
+    out.converged = true;
+    return out;
+  }
   // Both fields in lockstep wherever it converges: each matrix entry is read
   // once for both, the rows are split over the threads, and the arithmetic
   // is the same as the single-threaded WASM build's.
+  if (system.matrix.rows() == system.vertex_mass.size())
+    out.converged = smooth_fields_paired(system, extremality, progress, out.smoothed);
+  return out;
+}
+
+SmoothedExtremality smooth_extremality_unpaired(const Mesh& mesh, const Topology& topology, const Curvature& curvature,
+                                                const Extremality& extremality,
+                                                const ExtremalitySmoothingOptions& options, size_t iterations_spent) {
   SmoothedExtremality out;
-  if (nv <= SignedPairMatrix::kColumnMask &&
-      smooth_fields_paired(topology, cotan, edge_strength, curvature, extremality, options.steps, progress, out))
+  out.solver_iterations = iterations_spent;
+  if (options.steps <= 0 || options.time_step <= 0) {
+    static_cast<Extremality&>(out) = extremality;
     return out;
-  if (edge_strength.empty()) {
-    banded = banded_weights(mesh, topology, options);
-    edge_strength = strengths(cotan_weights(mesh.positions, mesh, topology).edge_weight);
   }
+  const size_t nv = mesh.positions.size();
+  std::vector<double> banded;
+  const std::vector<double>& weights = checked_weights(mesh, topology, options, banded);
+  CotanWeights cotan = cotan_weights(mesh.positions, mesh, topology);
+  const std::vector<double> edge_strength =
+      edge_strengths(mesh, topology, weights, options.time_step, std::move(cotan.edge_weight));
   // The two fields are independent systems: one thread each where there are two.
   const std::vector<Vec3>* directions[2] = {&curvature.dir_max, &curvature.dir_min};
   const std::vector<double>* values[2] = {&extremality.e_max, &extremality.e_min};
@@ -232,6 +273,16 @@ SmoothedExtremality smooth_extremality(const Mesh& mesh, const Topology& topolog
   out.e_max.assign(smoothed[0].data(), smoothed[0].data() + nv);
   out.e_min.assign(smoothed[1].data(), smoothed[1].data() + nv);
   return out;
+}
+
+SmoothedExtremality smooth_extremality(const Mesh& mesh, const Topology& topology, const Curvature& curvature,
+                                       const Extremality& extremality, const ExtremalitySmoothingOptions& options,
+                                       const std::function<void(double)>& progress) {
+  PairedSmoothing paired = solve_extremality_smoothing(
+      extremality_smoothing_system(mesh, topology, curvature, options, progress), extremality, progress);
+  if (paired.converged) return std::move(paired.smoothed);
+  return smooth_extremality_unpaired(mesh, topology, curvature, extremality, options,
+                                     paired.smoothed.solver_iterations);
 }
 
 }  // namespace crestline

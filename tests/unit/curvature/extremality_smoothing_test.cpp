@@ -188,3 +188,42 @@ TEST_CASE("inhomogeneous smoothing: weight 0 freezes, larger weights smooth more
   wrong.vertex_weights.assign(3, 1.0);
   CHECK_THROWS(smooth_extremality(f.mesh, f.topology, f.curvature, f.extremality, wrong));
 }
+
+TEST_CASE("the smoothing's two phases and its unpaired solve give smooth_extremality's values", "[smoothing]") {
+  const Fixture f = noisy_bump();
+  ExtremalitySmoothingOptions options;
+  options.frozen_boundary_rings = 2;
+  const SmoothedExtremality whole = smooth_extremality(f.mesh, f.topology, f.curvature, f.extremality, options);
+  // The second phase reads nothing of the mesh, the adjacency or the curvature.
+  ExtremalitySmoothingSystem system = extremality_smoothing_system(f.mesh, f.topology, f.curvature, options);
+  CHECK(system.steps == options.steps);
+  CHECK(system.matrix.rows() == f.mesh.vertex_count());
+  const PairedSmoothing paired = solve_extremality_smoothing(std::move(system), f.extremality);
+  REQUIRE(paired.converged);
+  CHECK(paired.smoothed.e_max == whole.e_max);
+  CHECK(paired.smoothed.e_min == whole.e_min);
+  CHECK(paired.smoothed.solver_iterations == whole.solver_iterations);
+  CHECK(paired.smoothed.solver_iterations > 0);
+
+  // Each field alone (the fallback) solves the same systems, to its own tolerance.
+  const SmoothedExtremality unpaired =
+      smooth_extremality_unpaired(f.mesh, f.topology, f.curvature, f.extremality, options, 7);
+  CHECK(unpaired.solver_iterations == 7);
+  REQUIRE(unpaired.e_max.size() == whole.e_max.size());
+  double largest = 0, scale = 0;
+  for (size_t v = 0; v < whole.e_max.size(); ++v) {
+    largest =
+        std::max({largest, std::abs(unpaired.e_max[v] - whole.e_max[v]), std::abs(unpaired.e_min[v] - whole.e_min[v])});
+    scale = std::max({scale, std::abs(whole.e_max[v]), std::abs(whole.e_min[v])});
+  }
+  CHECK(largest < 1e-4 * scale);
+
+  // Smoothing off: the values as they are, from either phase.
+  options.steps = 0;
+  ExtremalitySmoothingSystem off = extremality_smoothing_system(f.mesh, f.topology, f.curvature, options);
+  CHECK(off.steps == 0);
+  const PairedSmoothing same = solve_extremality_smoothing(std::move(off), f.extremality);
+  CHECK(same.converged);
+  CHECK(same.smoothed.e_max == f.extremality.e_max);
+  CHECK(same.smoothed.solver_iterations == 0);
+}

@@ -320,6 +320,44 @@ TEST_CASE("curvature, extremality and the smoothing's set-up report progress, an
   }
 }
 
+TEST_CASE("the working positions and edges, released through the smoothing's solves, come back the same",
+          "[pipeline][cut]") {
+  // With a crease cut (the fold) and without one (its cut off), each after
+  // a whole run and after a cancel in the first solve's iterations.
+  for (const bool boundaries : {true, false}) {
+    INFO("boundaries " << boundaries);
+    PipelineOptions o;
+    o.creases.boundaries = boundaries;
+    Pipeline reference(fold());
+    reference.set_options(o);
+    // The positions as the smoothing starts, before it releases them.
+    std::vector<Vec3> positions;
+    reference.run([&](Stage s, double fraction) {
+      if (s == Stage::Smoothing && fraction == 0) positions = reference.working_surface().positions;
+      return true;
+    });
+    REQUIRE(reference.working_cut().copy_of.empty() == !boundaries);
+    REQUIRE(!positions.empty());
+    const Mesh& surface = reference.working_surface();
+    CHECK(surface.positions == positions);
+    const std::vector<std::array<uint32_t, 2>> edges = build_topology(surface).edges;
+    CHECK(reference.working_topology().edges == edges);
+
+    Pipeline p(fold());
+    p.set_options(o);
+    // The smoothing's first report past its set-up's share (1/66): an iteration.
+    int calls = 0;
+    CHECK_THROWS_AS(
+        p.run([&](Stage s, double fraction) { return !(s == Stage::Smoothing && fraction > 0.02 && ++calls == 1); }),
+        Cancelled);
+    CHECK(p.working_surface().positions == positions);
+    CHECK(p.working_topology().edges == edges);
+    p.run();
+    same_lines(p, reference);
+    CHECK(p.working_surface().positions == positions);
+  }
+}
+
 TEST_CASE("the crease measure and selection report before the smooth stages, and a cancel there keeps nothing",
           "[pipeline]") {
   // 45,000 triangles, 67,650 edges: the measure reports after the noise
