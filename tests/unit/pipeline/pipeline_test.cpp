@@ -301,10 +301,10 @@ TEST_CASE("curvature, extremality and the smoothing's set-up report progress, an
   CHECK(curvature.back() == 1.0);
   CHECK(extremality == std::vector<double>{1.0});
   // Before and after the cotan weights, inside and after the matrix, in the
-  // solver's set-up (seven points without a coarse level, as here: after the
-  // colouring, the locality order, the coarse level's test and each of the
-  // fill's four slices), after it.
-  CHECK(setup == 12);
+  // solver's set-up (eight points without a coarse level, as here: after the
+  // colouring, the locality order, the coarse level's test, the entries'
+  // scaling and each of the fill's four slices), after it.
+  CHECK(setup == 13);
   CHECK(iterations > 3);
 
   // A cancel inside each: the stage is not kept, and the next run gives the same lines.
