@@ -422,19 +422,24 @@ void Pipeline::run(const ProgressCallback& progress) {
       if (presmooth.time_step > 0)
         presmooth_steps_[c] = presmooth.steps ? *presmooth.steps : automatic_presmooth_steps(noise_levels_[c]);
     presmoothed_ = *std::max_element(presmooth_steps_.begin(), presmooth_steps_.end()) > 0;
-    if (!presmoothed_) {
-      // No copies: surface() and working_surface() are the input then
-      // (48 bytes per triangle less).
-      working_surface_ = Mesh();
-      return;
-    }
+    // The last run's surface is not held through this one's solves; without
+    // pre-smoothing there are no copies: surface() and working_surface() are
+    // the input then (48 bytes per triangle less).
+    working_surface_ = Mesh();
+    if (!presmoothed_) return;
     const Mesh& in = smooth_input();
     std::vector<int> vertex_steps(in.positions.size());
     for (size_t v = 0; v < vertex_steps.size(); ++v)
       vertex_steps[v] = presmooth_steps_[frames_.component(cut_active_ ? cut_.source(uint32_t(v)) : v)];
-    working_surface_.triangles = in.triangles;
+    // The triangle lists, which pre-smoothing does not read, are released
+    // through its solves and restored for the curvature (26 bytes per
+    // triangle; a cancel leaves them to the next run, which restores them);
+    // the triangles are copied after them (12).
+    release_triangle_lists(smooth_topology());
     working_surface_.positions =
         presmooth_surface(in, smooth_topology(), presmooth.time_step, vertex_steps, within(Stage::Presmooth));
+    restore_triangle_lists(in, smooth_topology());
+    working_surface_.triangles = in.triangles;
     // Each side of a crease smooths its copy of a crease vertex along the
     // crease; they meet again at the mean.
     if (cut_active_) merge_copies(cut_, working_surface_.positions);

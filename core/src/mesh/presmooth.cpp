@@ -361,10 +361,15 @@ struct BoundaryNeighbours {
 };
 }  // namespace
 
+// A boundary edge is a side of one triangle: counted from triangle_edges,
+// so that the triangle lists are not read (a caller may release them).
 static BoundaryNeighbours boundary_neighbours(const Topology& topology, size_t nv) {
   BoundaryNeighbours along;
+  std::vector<uint8_t> sides(topology.edges.size(), 0);
+  for (const auto& edges : topology.triangle_edges)
+    for (const uint32_t e : edges) sides[e] = static_cast<uint8_t>(std::min(sides[e] + 1, 2));
   for (size_t e = 0; e < topology.edges.size(); ++e) {
-    if (!topology.is_boundary_edge(static_cast<uint32_t>(e))) continue;
+    if (sides[e] != 1) continue;
     if (along.empty()) along.offsets.assign(nv + 1, 0);
     ++along.offsets[topology.edges[e][0] + 1], ++along.offsets[topology.edges[e][1] + 1];
   }
@@ -373,7 +378,7 @@ static BoundaryNeighbours boundary_neighbours(const Topology& topology, size_t n
   along.neighbours.resize(along.offsets[nv]);
   std::vector<uint32_t> fill(along.offsets.begin(), along.offsets.end() - 1);
   for (size_t e = 0; e < topology.edges.size(); ++e) {
-    if (!topology.is_boundary_edge(static_cast<uint32_t>(e))) continue;
+    if (sides[e] != 1) continue;
     const uint32_t p = topology.edges[e][0], q = topology.edges[e][1];
     along.neighbours[fill[p]++] = q, along.neighbours[fill[q]++] = p;
   }

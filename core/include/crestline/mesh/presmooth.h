@@ -83,7 +83,9 @@ std::vector<Vec3> presmooth_surface(const Mesh& mesh, const Topology& topology, 
 /// set, is called on the calling thread after each step's set-up, between
 /// the solver's set-up parts and after every iteration of its solves, with
 /// fractions of all steps that rise strictly, and may throw to abandon the
-/// smoothing (nothing is kept; the mesh is not touched).
+/// smoothing (nothing is kept; the mesh is not touched). Reads the
+/// adjacency's edges, triangle_edges and boundary_vertex, not its triangle
+/// lists (which a caller may release: topology.h).
 std::vector<Vec3> presmooth_surface(const Mesh& mesh, const Topology& topology, double time_step,
                                     const std::vector<int>& vertex_steps,
                                     const std::function<void(double)>& progress = {});
