@@ -65,19 +65,20 @@ uint32_t node_on(FeatureGraph& graph, uint32_t edge) {
 // Triangles between two progress reports.
 constexpr uint32_t kProgressStride = 1u << 15;
 
-// The edges (k, k + 1) of triangle t that carry a segment of the field's
-// line, as 1 + first + 3 · second (first < second); 0 where there is none.
-// `code`: the triangle's regularity_code (nonzero), whose signs are
-// consistent_signs' of the field's directions.
-uint8_t segment_edges(const Mesh& mesh, const Field& field, uint32_t t, uint8_t code) {
+// Bit k set where corner k's consistently signed value s_k · nonzero(e_k)
+// is positive: e_k ≥ 0 where s_k = 1 (nonzero makes ±0 positive), e_k < 0
+// where s_k = −1, and neither for NaN. `code`'s bits 1 and 2 are s_1, s_2 < 0.
+inline unsigned positive_corners(const Field& field, const Triangle& f, uint8_t code) {
+  const double e0 = field.e[f[0]], e1 = field.e[f[1]], e2 = field.e[f[2]];
+  return unsigned(e0 >= 0) | unsigned(code & 2u ? e1 < 0 : e1 >= 0) << 1 | unsigned(code & 4u ? e2 < 0 : e2 >= 0) << 2;
+}
+
+// segment_edges for a triangle whose line crosses edges first < second.
+uint8_t crossing_segment(const Mesh& mesh, const Field& field, uint32_t t, uint8_t code, int first, int second) {
   const std::vector<Vec3>& x = mesh.positions;
   const Triangle& f = mesh.triangles[t];
   const std::array<double, 3> s = code_signs(code);
   const double v[3] = {s[0] * nonzero(field.e[f[0]]), s[1] * nonzero(field.e[f[1]]), s[2] * nonzero(field.e[f[2]])};
-  int crossed[2], n = 0;
-  for (int k = 0; k < 3; ++k)
-    if ((v[k] > 0) != (v[(k + 1) % 3] > 0)) crossed[n++] = k;
-  if (n != 2) return 0;
 
   // Conditions (5) and (6) on the consistently signed linear function.
   const Vec3 normal = (x[f[1]] - x[f[0]]).cross(x[f[2]] - x[f[0]]);
@@ -99,7 +100,22 @@ uint8_t segment_edges(const Mesh& mesh, const Field& field, uint32_t t, uint8_t 
   if (!extremum || !(std::abs(own) > kDominance * std::abs(other))) return 0;
   const double mean_own = own / 3;
   if (!(std::abs(slope) > kStrictExtremum * direction.norm() * std::abs(mean_own * mean_own * mean_own))) return 0;
-  return static_cast<uint8_t>(1 + crossed[0] + 3 * crossed[1]);
+  return static_cast<uint8_t>(1 + first + 3 * second);
+}
+
+// The edges (k, k + 1) of triangle t that carry a segment of the field's
+// line, as 1 + first + 3 · second (first < second); 0 where there is none.
+// `code`: the triangle's regularity_code (nonzero), whose signs are
+// consistent_signs' of the field's directions. The signs alone decide most
+// triangles (no crossing), inline; a crossing edge is one whose ends' signs
+// differ, and a triangle has none or two.
+inline uint8_t segment_edges(const Mesh& mesh, const Field& field, uint32_t t, uint8_t code) {
+  const unsigned positive = positive_corners(field, mesh.triangles[t], code);
+  if (positive == 0 || positive == 7) return 0;
+  // Edge k crosses where bits k and k + 1 (mod 3) differ.
+  const unsigned crossing = (positive ^ (positive >> 1 | positive << 2)) & 7;
+  const int first = crossing & 1 ? 0 : 1, second = crossing & 4 ? 2 : 1;
+  return crossing_segment(mesh, field, t, code, first, second);
 }
 
 // The tests run on every thread, block by block; the segments and their

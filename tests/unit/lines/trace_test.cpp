@@ -1,5 +1,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <functional>
+#include <limits>
 #include <vector>
 
 #include "analytic_meshes.h"
@@ -123,4 +125,50 @@ TEST_CASE("traced nodes: numbered along the segments, placed on every thread, th
       CHECK(a.trisector == b.trisector);
       CHECK(a.segments == b.segments);
     }
+}
+
+TEST_CASE("tracer: a vertex's e of +0 or -0 counts as a tiny positive value, whatever its direction's sign",
+          "[trace]") {
+  // A flat 8×8 grid on [0, 1]², the principal direction ±x (flipped at
+  // every other vertex, so that the triangles' consistent signs take both
+  // values) and e = ±(½ − x) with the direction's sign: a ridge at x = ½ (e
+  // falls along the direction), through the vertex column there, whose e is
+  // exactly +0 or −0.
+  testing::GridOptions grid;
+  grid.nu = grid.nv = 8;
+  grid.random_diagonals = true;
+  const Mesh mesh = repair_mesh(testing::height_field([](double, double) { return 0.0; }, 1, 1, grid)).mesh;
+  const Topology topology = build_topology(mesh);
+  const size_t nv = mesh.positions.size();
+  auto sign = [](size_t v) { return v % 2 ? -1.0 : 1.0; };
+  Curvature curvature;
+  curvature.vertex_normals.assign(nv, Vec3::UnitZ());
+  curvature.kappa_max.assign(nv, 1.0), curvature.kappa_min.assign(nv, 0.0);
+  curvature.dir_min.assign(nv, Vec3::UnitY()), curvature.star_area.assign(nv, 1.0);
+  for (size_t v = 0; v < nv; ++v) curvature.dir_max.push_back(sign(v) * Vec3::UnitX());
+  const Regularity regularity = classify_triangles(mesh, curvature);
+  TraceOptions options;
+  options.boundary_rings = 0;
+  auto trace = [&](const std::function<double(size_t v)>& e) {
+    Extremality extremality;
+    extremality.e_min.assign(nv, 1.0);  // no valleys
+    for (size_t v = 0; v < nv; ++v) extremality.e_max.push_back(e(v));
+    return trace_regular_triangles(mesh, topology, curvature, extremality, regularity, options).ridges;
+  };
+  auto on_line = [&](size_t v) { return mesh.positions[v].x() == 0.5; };
+  size_t zeros = 0, negative_zeros = 0;
+  auto signed_zeros = [&](size_t v) { return sign(v) * (0.5 - mesh.positions[v].x()); };
+  for (size_t v = 0; v < nv; ++v)
+    if (on_line(v)) ++zeros, negative_zeros += std::signbit(signed_zeros(v));
+  REQUIRE(zeros == 9);
+  REQUIRE(negative_zeros > 0);
+  REQUIRE(negative_zeros < zeros);
+  const FeatureGraph with_zeros = trace(signed_zeros);
+  const FeatureGraph with_tiny =
+      trace([&](size_t v) { return on_line(v) ? std::numeric_limits<double>::denorm_min() : signed_zeros(v); });
+  CHECK(with_zeros.segments.size() >= 8);
+  CHECK(with_zeros.segments == with_tiny.segments);
+  CHECK(with_zeros.source == with_tiny.source);
+  CHECK(with_zeros.edge_parameter == with_tiny.edge_parameter);
+  CHECK(with_zeros.points == with_tiny.points);
 }
