@@ -60,10 +60,12 @@ Curvature compute_curvature(const Mesh& mesh, const Topology& topology, const st
     double weight[2];  // of its two ends
     bool used;         // false on boundary and degenerate edges
   };
+  // Blocks of 8,192 edges: their terms (590 kB) stay in a core's cache
+  // until they are added. Progress every kProgressBlocks blocks.
   const size_t ne = topology.edges.size();
-  constexpr size_t kBlock = size_t{1} << 14;
+  constexpr size_t kBlock = size_t{1} << 13, kProgressBlocks = 2;
   std::vector<EdgeTerm> terms(std::min(ne, kBlock));
-  const size_t parts = ne < 4 * kBlock ? 1 : std::min<size_t>(size_t(max_threads()), 8);
+  const size_t parts = ne < 8 * kBlock ? 1 : std::min<size_t>(size_t(max_threads()), 8);
   for (size_t begin = 0; begin < ne; begin += kBlock) {
     const size_t end = std::min(ne, begin + kBlock);
     parallel_for(end - begin, [&](size_t first, size_t last) {
@@ -106,12 +108,20 @@ Curvature compute_curvature(const Mesh& mesh, const Topology& topology, const st
               for (int end_k = 0; end_k < 2; ++end_k) {
                 const uint32_t v = topology.edges[e][end_k];
                 if (parts > 1 && (v >> 6) % parts != part) continue;
-                for (int k = 0; k < 6; ++k) shape[v][k] += term.weight[end_k] * term.s_e[k];
+                // The products first, in locals, then the sums: the same
+                // operations, which the compiler can pair up in vector
+                // registers once the stores cannot alias the terms.
+                const double w = term.weight[end_k];
+                double add[6];
+                for (int k = 0; k < 6; ++k) add[k] = w * term.s_e[k];
+                double* sum = shape[v].data();
+                for (int k = 0; k < 6; ++k) sum[k] += add[k];
               }
             }
         },
         1);
-    report(kNormalsDone + (kEdgesDone - kNormalsDone) * double(end) / double(ne));
+    if (end == ne || (end / kBlock) % kProgressBlocks == 0)
+      report(kNormalsDone + (kEdgesDone - kNormalsDone) * double(end) / double(ne));
   }
   // The triangles' normals and areas are done with: freed before the four
   // fields below are made (32 bytes per triangle, the stage's peak).
