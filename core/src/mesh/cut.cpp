@@ -5,6 +5,8 @@
 #include <numeric>
 #include <utility>
 
+#include "crestline/numerics/parallel.h"
+
 namespace crestline {
 
 CutMesh cut_along_edges(Mesh mesh, const Topology& topology, const std::vector<uint32_t>& edges) {
@@ -151,29 +153,34 @@ Topology cut_topology(Topology topology, const CutMesh& cut) {
   // build_topology numbers edges by (smaller end, larger end): the unchanged
   // edges keep their order, in runs between the removed edges and the
   // pieces' places, and the pieces are merged in.
+  // Appended to, not sized first: every entry is written once (no zero fill).
   const size_t count = ne - removed.size() + pieces.size();
-  std::vector<std::array<uint32_t, 2>> edges(count), edge_triangles(count);
+  std::vector<std::array<uint32_t, 2>> edges, edge_triangles;
+  edges.reserve(count), edge_triangles.reserve(count);
   size_t read = 0, write = 0, next_piece = 0, next_removed = 0;
   while (read < ne || next_piece < pieces.size()) {
     size_t stop = next_removed < removed.size() ? removed[next_removed] : ne;
     if (next_piece < pieces.size()) stop = std::min<size_t>(stop, pieces[next_piece].at);
-    std::copy(topology.edges.begin() + read, topology.edges.begin() + stop, edges.begin() + write);
-    std::copy(topology.edge_triangles.begin() + read, topology.edge_triangles.begin() + stop,
-              edge_triangles.begin() + write);
+    edges.insert(edges.end(), topology.edges.begin() + read, topology.edges.begin() + stop);
+    edge_triangles.insert(edge_triangles.end(), topology.edge_triangles.begin() + read,
+                          topology.edge_triangles.begin() + stop);
     // Once copied, an input edge's first slot holds its new number: the
     // renumbering table costs no fresh memory (4 bytes per edge otherwise).
     for (; read < stop; ++read, ++write) topology.edges[read][0] = static_cast<uint32_t>(write);
     for (; next_piece < pieces.size() && pieces[next_piece].at == read; ++next_piece, ++write) {
       Piece& x = pieces[next_piece];
       x.index = static_cast<uint32_t>(write);
-      edges[write] = {uint32_t(x.key >> 32), uint32_t(x.key)};
-      edge_triangles[write] = x.triangles;
+      edges.push_back({uint32_t(x.key >> 32), uint32_t(x.key)});
+      edge_triangles.push_back(x.triangles);
     }
     if (next_removed < removed.size() && removed[next_removed] == read) ++read, ++next_removed;
   }
-  // The half-edges of removed edges get the pieces' numbers below.
-  for (std::array<uint32_t, 3>& te : topology.triangle_edges)
-    for (uint32_t& e : te) e = topology.edges[e][0];
+  // The half-edges of removed edges get the pieces' numbers below. Each
+  // triangle's entries alone, on every thread.
+  parallel_for(topology.triangle_edges.size(), [&](size_t begin, size_t end) {
+    for (size_t t = begin; t < end; ++t)
+      for (uint32_t& e : topology.triangle_edges[t]) e = topology.edges[e][0];
+  });
   topology.edges = std::move(edges);
   topology.edge_triangles = std::move(edge_triangles);
   for (const Piece& x : pieces)
