@@ -14,21 +14,26 @@ Regularity classify_triangles(const Mesh& mesh, const Curvature& curvature) {
   // Each triangle writes only its own flags; the counts are integers, exact
   // in any order.
   std::atomic<size_t> singular_max{0}, singular_min{0};
-  parallel_for(nt, [&](size_t begin, size_t end) {
-    std::array<double, 3> signs;
-    size_t count_max = 0, count_min = 0;
-    for (size_t t = begin; t < end; ++t) {
-      const Triangle& f = mesh.triangles[t];
-      r.regular_max[t] = regularity_code(
-          consistent_signs(curvature.dir_max[f[0]], curvature.dir_max[f[1]], curvature.dir_max[f[2]], signs), signs);
-      r.regular_min[t] = regularity_code(
-          consistent_signs(curvature.dir_min[f[0]], curvature.dir_min[f[1]], curvature.dir_min[f[2]], signs), signs);
-      count_max += !r.regular_max[t];
-      count_min += !r.regular_min[t];
-    }
-    singular_max += count_max;
-    singular_min += count_min;
-  });
+  // The arrays by address: a byte store may alias anything, so the vectors'
+  // data would be reloaded after each.
+  parallel_for(nt,
+               [&, tris = mesh.triangles.data(), dir_max = curvature.dir_max.data(), dir_min = curvature.dir_min.data(),
+                regular_max = r.regular_max.data(), regular_min = r.regular_min.data()](size_t begin, size_t end) {
+                 std::array<double, 3> signs;
+                 size_t count_max = 0, count_min = 0;
+                 for (size_t t = begin; t < end; ++t) {
+                   const Triangle f = tris[t];
+                   const uint8_t code_max =
+                       regularity_code(consistent_signs(dir_max[f[0]], dir_max[f[1]], dir_max[f[2]], signs), signs);
+                   const uint8_t code_min =
+                       regularity_code(consistent_signs(dir_min[f[0]], dir_min[f[1]], dir_min[f[2]], signs), signs);
+                   regular_max[t] = code_max, regular_min[t] = code_min;
+                   count_max += !code_max;
+                   count_min += !code_min;
+                 }
+                 singular_max += count_max;
+                 singular_min += count_min;
+               });
   r.singular_max = singular_max;
   r.singular_min = singular_min;
   return r;

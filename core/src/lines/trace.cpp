@@ -68,8 +68,8 @@ constexpr uint32_t kProgressStride = 1u << 15;
 // Bit k set where corner k's consistently signed value s_k · nonzero(e_k)
 // is positive: e_k ≥ 0 where s_k = 1 (nonzero makes ±0 positive), e_k < 0
 // where s_k = −1, and neither for NaN. `code`'s bits 1 and 2 are s_1, s_2 < 0.
-inline unsigned positive_corners(const Field& field, const Triangle& f, uint8_t code) {
-  const double e0 = field.e[f[0]], e1 = field.e[f[1]], e2 = field.e[f[2]];
+inline unsigned positive_corners(const double* e, const Triangle& f, uint8_t code) {
+  const double e0 = e[f[0]], e1 = e[f[1]], e2 = e[f[2]];
   return unsigned(e0 >= 0) | unsigned(code & 2u ? e1 < 0 : e1 >= 0) << 1 | unsigned(code & 4u ? e2 < 0 : e2 >= 0) << 2;
 }
 
@@ -109,8 +109,9 @@ uint8_t crossing_segment(const Mesh& mesh, const Field& field, uint32_t t, uint8
 // consistent_signs' of the field's directions. The signs alone decide most
 // triangles (no crossing), inline; a crossing edge is one whose ends' signs
 // differ, and a triangle has none or two.
-inline uint8_t segment_edges(const Mesh& mesh, const Field& field, uint32_t t, uint8_t code) {
-  const unsigned positive = positive_corners(field, mesh.triangles[t], code);
+inline uint8_t segment_edges(const Mesh& mesh, const Field& field, const Triangle& f, uint32_t t, uint8_t code,
+                             const double* e) {
+  const unsigned positive = positive_corners(e, f, code);
   if (positive == 0 || positive == 7) return 0;
   // Edge k crosses where bits k and k + 1 (mod 3) differ.
   const unsigned crossing = (positive ^ (positive >> 1 | positive << 2)) & 7;
@@ -132,10 +133,14 @@ void trace_field(const Mesh& mesh, const Topology& topology, const Field& field,
   for (uint32_t begin = 0; begin < nt; begin += kProgressStride) {
     if (progress && begin > 0) progress(double(begin) / nt);
     const uint32_t end = std::min(nt, begin + kProgressStride);
-    parallel_for(end - begin, [&](size_t first, size_t last) {
+    // The arrays by address: a byte store may alias anything, so the
+    // vectors' data would be reloaded after each.
+    parallel_for(end - begin, [&, tris = mesh.triangles.data(), e = field.e.data(), skip = excluded.data(),
+                               regular = field.regular.data(), out = code.data()](size_t first, size_t last) {
       for (size_t i = first; i < last; ++i) {
         const uint32_t t = begin + static_cast<uint32_t>(i);
-        code[i] = excluded[t] || !field.regular[t] ? 0 : segment_edges(mesh, field, t, field.regular[t]);
+        const uint8_t c = regular[t];
+        out[i] = skip[t] || !c ? 0 : segment_edges(mesh, field, tris[t], t, c, e);
       }
     });
     for (uint32_t t = begin; t < end; ++t) {
