@@ -10,7 +10,6 @@ namespace crestline {
 Extremality compute_extremality(const Mesh& mesh, const Curvature& curvature,
                                 const std::function<void(double)>& progress) {
   const size_t nv = mesh.positions.size(), nt = mesh.triangles.size();
-  const std::vector<Vec3>& x = mesh.positions;
   Extremality out;
   out.e_max.assign(nv, 0.0);
   out.e_min.assign(nv, 0.0);
@@ -25,28 +24,35 @@ Extremality compute_extremality(const Mesh& mesh, const Curvature& curvature,
   std::vector<double> term_max(3 * std::min(nt, kBlock)), term_min(term_max.size());
   std::vector<uint8_t> adds(std::min(nt, kBlock));  // 0 for degenerate triangles, which add nothing
   const size_t parts = nt < 4 * kBlock ? 1 : std::min<size_t>(size_t(max_threads()), 8);
+  // The arrays by address, captured by value: the byte store of `adds` may
+  // alias anything, so the vectors' data would be reloaded after it.
+  const Triangle* tris = mesh.triangles.data();
+  const Vec3 *x = mesh.positions.data(), *dir_max = curvature.dir_max.data(), *dir_min = curvature.dir_min.data();
+  const double *kappa_max = curvature.kappa_max.data(), *kappa_min = curvature.kappa_min.data();
+  double *max_terms = term_max.data(), *min_terms = term_min.data();
+  uint8_t* adding = adds.data();
   for (size_t begin = 0; begin < nt; begin += kBlock) {
     const size_t end = std::min(nt, begin + kBlock);
-    parallel_for(end - begin, [&](size_t first, size_t last) {
+    parallel_for(end - begin, [=](size_t first, size_t last) {
       for (size_t i = first; i < last; ++i) {
-        const Triangle& f = mesh.triangles[begin + i];
+        const Triangle& f = tris[begin + i];
         const Vec3 n = (x[f[1]] - x[f[0]]).cross(x[f[2]] - x[f[0]]);
         const double twice_area = n.norm();
-        adds[i] = twice_area > 0;
-        if (!adds[i]) continue;
+        adding[i] = twice_area > 0;
+        if (!(twice_area > 0)) continue;
         // ∇κ(T) = Σ_k κ_k ∇φ_k with ∇φ_k = N × (opposite edge) / (2 area).
         const Vec3 unit = n / twice_area;
         Vec3 grad_max = Vec3::Zero(), grad_min = Vec3::Zero();
         for (int k = 0; k < 3; ++k) {
           const Vec3 g = unit.cross(x[f[(k + 2) % 3]] - x[f[(k + 1) % 3]]) / twice_area;
-          grad_max += curvature.kappa_max[f[k]] * g;
-          grad_min += curvature.kappa_min[f[k]] * g;
+          grad_max += kappa_max[f[k]] * g;
+          grad_min += kappa_min[f[k]] * g;
         }
         // Eq. (4): area-weighted, divided by area(star) below.
         const double area = 0.5 * twice_area;
         for (int k = 0; k < 3; ++k) {
-          term_max[3 * i + k] = area * grad_max.dot(curvature.dir_max[f[k]]);
-          term_min[3 * i + k] = area * grad_min.dot(curvature.dir_min[f[k]]);
+          max_terms[3 * i + k] = area * grad_max.dot(dir_max[f[k]]);
+          min_terms[3 * i + k] = area * grad_min.dot(dir_min[f[k]]);
         }
       }
     });

@@ -773,19 +773,21 @@ RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options)
   };
   UninitialisedVector<uint8_t> status(input_nt);
   std::atomic<size_t> nonfinite{0}, degenerate{0};
-  parallel_for(input_nt, [&](size_t begin, size_t end) {
+  // The arrays by address: the status byte stores may alias anything, so
+  // the vectors' data would be reloaded after each.
+  parallel_for(input_nt, [&, indices = soup.indices.data(), to = rep.data(), is_finite = finite.data(),
+                          p = points.data(), out = status.data()](size_t begin, size_t end) {
     size_t part_nonfinite = 0, part_degenerate = 0;
     for (size_t t = begin; t < end; ++t) {
-      const Triangle f = welded(t);
-      if (!finite[f[0]] || !finite[f[1]] || !finite[f[2]])
-        status[t] = kNonFinite, ++part_nonfinite;
+      const Triangle f = {to[indices[3 * t]], to[indices[3 * t + 1]], to[indices[3 * t + 2]]};
+      if (!is_finite[f[0]] || !is_finite[f[1]] || !is_finite[f[2]])
+        out[t] = kNonFinite, ++part_nonfinite;
       else if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2] ||
-               !(((points[f[1]] - points[f[0]]) * inv_diagonal)
-                     .cross((points[f[2]] - points[f[0]]) * inv_diagonal)
-                     .norm() > kMinRelativeDoubleArea))
-        status[t] = kDegenerate, ++part_degenerate;
+               !(((p[f[1]] - p[f[0]]) * inv_diagonal).cross((p[f[2]] - p[f[0]]) * inv_diagonal).norm() >
+                 kMinRelativeDoubleArea))
+        out[t] = kDegenerate, ++part_degenerate;
       else
-        status[t] = kKeep;
+        out[t] = kKeep;
     }
     nonfinite += part_nonfinite, degenerate += part_degenerate;
   });
