@@ -1,9 +1,22 @@
 #include "crestline/lines/fairing.h"
 
+#include <cmath>
+
 #include "crestline/numerics/parallel.h"
 
 namespace crestline {
 namespace {
+
+// A squared length below which a length is surely at most `bound`: bound²
+// less a relative margin of 2⁻⁵⁰, more than the roundings of bound² and of
+// the product (2⁻⁵³ each), so that s < clear_below(bound) implies
+// sqrt(s) ≤ bound exactly (the square root is correctly rounded and
+// monotonic, `bound` representable). 0 (no shortcut) where bound² is not
+// a normal number far from the range's ends.
+double clear_below(double bound) {
+  const double squared = bound * bound;
+  return squared >= 0x1p-1000 && squared <= 0x1p1000 ? squared * (1 - 0x1p-50) : 0;
+}
 
 // Lines a thread takes at least: a line costs about its length times the
 // iterations, and most are short.
@@ -17,7 +30,8 @@ constexpr size_t kLinesPerThread = 64;
 // a pass filling an array Δx and a second one filling Δ²x, without their
 // memory traffic. A closed line's Δx at its last point and at its first is
 // taken before the first point moves. Needs n ≥ 3 (open) or n ≥ 4 (closed).
-void fair_step(std::vector<Vec3>& x, const std::vector<Vec3>& original, bool closed, double bound) {
+// `clear`: clear_below(bound).
+void fair_step(std::vector<Vec3>& x, const std::vector<Vec3>& original, bool closed, double bound, double clear) {
   const size_t n = x.size();
   auto laplacian = [&x](size_t i, size_t prev, size_t next) -> Vec3 { return 0.5 * (x[prev] + x[next]) - x[i]; };
   auto move = [&](size_t i, const Vec3& bilaplacian) {
@@ -25,9 +39,15 @@ void fair_step(std::vector<Vec3>& x, const std::vector<Vec3>& original, bool clo
     // Each vertex stays within `bound` of where it was, so every point of
     // the faired polyline is within `bound` of the matching point of the
     // original (same edge parameter) and vice versa: Hausdorff ≤ bound.
+    // The distance (norm() is the square root of squaredNorm()) is taken
+    // only where the squared one is not clearly below bound²: nearly every
+    // point moves far less.
     const Vec3 moved = p - original[i];
-    const double d = moved.norm();
-    if (d > bound) p = original[i] + moved * (bound / d);
+    const double squared = moved.squaredNorm();
+    if (!(squared < clear)) {
+      const double d = std::sqrt(squared);
+      if (d > bound) p = original[i] + moved * (bound / d);
+    }
     x[i] = p;
   };
   if (closed) {
@@ -55,6 +75,7 @@ std::vector<Polyline> fair_polylines(const std::vector<Polyline>& lines, double 
   std::vector<Polyline> out = lines;
   const double bound = options.hausdorff_bound * mean_edge_length;
   if (!(bound > 0) || options.iterations <= 0) return out;
+  const double clear = clear_below(bound);
   // Lines are faired independently, each writing only itself.
   parallel_for(
       out.size(),
@@ -64,7 +85,7 @@ std::vector<Polyline> fair_polylines(const std::vector<Polyline>& lines, double 
           const size_t n = line.points.size();
           if (n < (line.closed ? 4u : 3u)) continue;
           const std::vector<Vec3> original = line.points;
-          for (int it = 0; it < options.iterations; ++it) fair_step(line.points, original, line.closed, bound);
+          for (int it = 0; it < options.iterations; ++it) fair_step(line.points, original, line.closed, bound, clear);
           // The strength stays that of the traced line (it measures the surface,
           // not the drawing); only the length follows the faired points.
           const double strength = line.strength;
