@@ -60,12 +60,10 @@ Curvature compute_curvature(const Mesh& mesh, const Topology& topology, const st
     double weight[2];  // of its two ends
     bool used;         // false on boundary and degenerate edges
   };
-  // Blocks of 8,192 edges: their terms (590 kB) stay in a core's cache
-  // until they are added. Progress every kProgressBlocks blocks.
   const size_t ne = topology.edges.size();
-  constexpr size_t kBlock = size_t{1} << 13, kProgressBlocks = 2;
+  constexpr size_t kBlock = size_t{1} << 14;
   std::vector<EdgeTerm> terms(std::min(ne, kBlock));
-  const size_t parts = ne < 8 * kBlock ? 1 : std::min<size_t>(size_t(max_threads()), 8);
+  const size_t parts = ne < 4 * kBlock ? 1 : std::min<size_t>(size_t(max_threads()), 8);
   for (size_t begin = 0; begin < ne; begin += kBlock) {
     const size_t end = std::min(ne, begin + kBlock);
     parallel_for(end - begin, [&](size_t first, size_t last) {
@@ -120,8 +118,7 @@ Curvature compute_curvature(const Mesh& mesh, const Topology& topology, const st
             }
         },
         1);
-    if (end == ne || (end / kBlock) % kProgressBlocks == 0)
-      report(kNormalsDone + (kEdgesDone - kNormalsDone) * double(end) / double(ne));
+    report(kNormalsDone + (kEdgesDone - kNormalsDone) * double(end) / double(ne));
   }
   // The triangles' normals and areas are done with: freed before the four
   // fields below are made (32 bytes per triangle, the stage's peak).
