@@ -39,7 +39,7 @@ const views = () =>
       progress: !document.getElementById('progress').hidden,
       stats: text('stats'),
       surfaceVertices: viewer.surface.mesh.geometry.getAttribute('position').count,
-      linePoints: viewer.lines.group.children.reduce((n, o) => n + (o.geometry.getAttribute('instanceStart')?.count ?? 0), 0),
+      linePoints: viewer.lines.group.children.reduce((n, o) => n + (o.geometry.segmentCount ?? 0), 0),
     };
   });
 

@@ -299,12 +299,14 @@ export class Session {
 
   /**
    * Dropped or picked files, read by the C++ readers in the worker (a
-   * .gltf's buffers beside it). A copy is kept in case the worker restarts.
+   * .gltf's buffers beside it). The session keeps `files` (not a copy: the
+   * caller must leave them as they are) in case the worker restarts; the
+   * worker gets a copy (transferred).
    * @param {NamedBytes[]} files
    * @param {PipelineOptions} [options]
    */
   open(files, options = this.options) {
-    this.startMesh({ kind: 'files', files: copyFiles(files) }, pickMainFile(files)?.name ?? '', options);
+    this.startMesh({ kind: 'files', files: [...files] }, pickMainFile(files)?.name ?? '', options);
   }
 
   /** A mesh URL (absolute), fetched by the worker. @param {string} url @param {string} name @param {PipelineOptions} [options] */

@@ -15,7 +15,17 @@
 // vertices fewer to draw. Only where the dropped cap's depth (its start
 // point's) decided a depth test against another object may a pixel differ
 // (tests/browser/line-layer.test.mjs bounds it).
-import { BufferAttribute, BufferGeometry, Color, Group, InstancedInterleavedBuffer, InterleavedBuffer, InterleavedBufferAttribute } from 'three';
+import {
+  BufferAttribute,
+  BufferGeometry,
+  Color,
+  Group,
+  InstancedInterleavedBuffer,
+  InterleavedBuffer,
+  InterleavedBufferAttribute,
+  Sphere,
+  Vector3,
+} from 'three';
 import { LineMaterial } from 'three/examples/jsm/lines/LineMaterial.js';
 import { LineSegments2 } from 'three/examples/jsm/lines/LineSegments2.js';
 import { LineSegmentsGeometry } from 'three/examples/jsm/lines/LineSegmentsGeometry.js';
@@ -51,14 +61,15 @@ export function segmentPositions(lines, type, origin) {
     const first = offsets[l];
     const last = offsets[l + 1] - 1;
     const segments = segmentCount(lines, l);
-    for (let s = 0; s < segments; s++) {
-      const a = first + s;
-      const b = a === last ? first : a + 1;
-      for (const p of [a, b]) {
-        out[o++] = points[3 * p] - origin[0];
-        out[o++] = points[3 * p + 1] - origin[1];
-        out[o++] = points[3 * p + 2] - origin[2];
-      }
+    for (let s = 0; s < segments; s++, o += 6) {
+      const a = 3 * (first + s);
+      const b = first + s === last ? 3 * first : a + 3;
+      out[o] = points[a] - origin[0];
+      out[o + 1] = points[a + 1] - origin[1];
+      out[o + 2] = points[a + 2] - origin[2];
+      out[o + 3] = points[b] - origin[0];
+      out[o + 4] = points[b + 1] - origin[1];
+      out[o + 5] = points[b + 2] - origin[2];
     }
   }
   return out;
@@ -95,7 +106,6 @@ export class SegmentGeometry extends BufferGeometry {
     const count = positions.length / 6;
     this.segmentCount = count;
     const ends = new Float32Array(count * SEGMENT_VERTICES * 6);
-    const index = new Uint32Array(JOINED_INDICES * count + START_CAP * runs.length);
     for (let s = 0, o = 0; s < count; s++) {
       // The segment's end points (6 floats) on each of its vertices.
       const p = 6 * s;
@@ -108,6 +118,15 @@ export class SegmentGeometry extends BufferGeometry {
         ends[o + 5] = positions[p + 5];
       }
     }
+    // An open run's start caps: its first segment's, and its first non-degenerate one's after degenerate ones.
+    let caps = 0;
+    for (const [start, length, closed] of runs) {
+      if (closed || !length) continue;
+      let s = start;
+      while (s < start + length - 1 && degenerate(positions, s)) s++;
+      caps += s - start + 1;
+    }
+    const index = new Uint32Array(JOINED_INDICES * count + START_CAP * caps);
     /** Run r's last index + 1. */
     this.runEnds = new Uint32Array(runs.length);
     let i = 0,
@@ -115,16 +134,37 @@ export class SegmentGeometry extends BufferGeometry {
     runs.forEach(([start, length, closed], r) => {
       let capped = closed;
       for (let s = start; s < start + length; s++) {
-        const first = s * SEGMENT_VERTICES;
-        const drawn = capped ? JOINED_INDICES : SEGMENT_INDEX.length;
-        for (let k = 0; k < drawn; k++) index[i++] = first + SEGMENT_INDEX[k];
-        capped ||= !degenerate(positions, s);
+        // SEGMENT_INDEX written out: the end cap and the body, then the start cap where the line starts.
+        const v = s * SEGMENT_VERTICES;
+        index[i] = v;
+        index[i + 1] = v + 2;
+        index[i + 2] = v + 1;
+        index[i + 3] = v + 2;
+        index[i + 4] = v + 3;
+        index[i + 5] = v + 1;
+        index[i + 6] = v + 2;
+        index[i + 7] = v + 4;
+        index[i + 8] = v + 3;
+        index[i + 9] = v + 4;
+        index[i + 10] = v + 5;
+        index[i + 11] = v + 3;
+        i += JOINED_INDICES;
+        if (!capped) {
+          index[i] = v + 4;
+          index[i + 1] = v + 6;
+          index[i + 2] = v + 5;
+          index[i + 3] = v + 6;
+          index[i + 4] = v + 7;
+          index[i + 5] = v + 5;
+          i += START_CAP;
+          capped = !degenerate(positions, s);
+        }
       }
       covered += length;
       this.runEnds[r] = i;
     });
     if (covered !== count) throw new Error('SegmentGeometry: the runs do not cover every segment once');
-    this.setIndex(new BufferAttribute(i < index.length ? index.subarray(0, i) : index, 1));
+    this.setIndex(new BufferAttribute(index, 1));
     const buffer = new InterleavedBuffer(ends, 6);
     this.setAttribute('instanceStart', new InterleavedBufferAttribute(buffer, 3, 0));
     this.setAttribute('instanceEnd', new InterleavedBufferAttribute(buffer, 3, 3));
@@ -141,9 +181,34 @@ export class SegmentGeometry extends BufferGeometry {
     this.boundingBox = this.segments.boundingBox.clone();
   }
 
+  /**
+   * LineSegmentsGeometry's sphere (the box's centre, the farthest end point),
+   * the same numbers by one loop over the floats instead of its attribute
+   * accessors (the renderer asks for it at the first draw: 141k segments).
+   */
   computeBoundingSphere() {
-    this.segments.computeBoundingSphere();
-    this.boundingSphere = this.segments.boundingSphere.clone();
+    // A segment's end points: the first 6 of its vertices' 8 × 6 floats.
+    const floats = this.getAttribute('instanceStart').data.array;
+    const stride = 6 * SEGMENT_VERTICES;
+    const min = new Vector3(Infinity, Infinity, Infinity);
+    const max = new Vector3(-Infinity, -Infinity, -Infinity);
+    for (let s = 0; s < floats.length; s += stride) {
+      for (let f = s; f < s + 6; f += 3) {
+        min.set(Math.min(min.x, floats[f]), Math.min(min.y, floats[f + 1]), Math.min(min.z, floats[f + 2]));
+        max.set(Math.max(max.x, floats[f]), Math.max(max.y, floats[f + 1]), Math.max(max.z, floats[f + 2]));
+      }
+    }
+    const center = floats.length ? min.add(max).multiplyScalar(0.5) : new Vector3();
+    let radiusSq = 0;
+    for (let s = 0; s < floats.length; s += stride) {
+      for (let f = s; f < s + 6; f += 3) {
+        const dx = center.x - floats[f];
+        const dy = center.y - floats[f + 1];
+        const dz = center.z - floats[f + 2];
+        radiusSq = Math.max(radiusSq, dx * dx + dy * dy + dz * dz);
+      }
+    }
+    this.boundingSphere = new Sphere(center, Math.sqrt(radiusSq));
   }
 
   /** Shows (1) or hides (0) segments [first, first + count); the caller marks the upload range. */

@@ -1,0 +1,63 @@
+// The line layer's geometry in node (three.js without a renderer): the
+// segments' end points on their vertices, the index's triangles and the
+// bounding sphere, against what they are defined to be.
+import assert from 'node:assert/strict';
+import { test } from 'node:test';
+import { LineSegmentsGeometry } from 'three/examples/jsm/lines/LineSegmentsGeometry.js';
+import { SEGMENT_VERTICES, SegmentGeometry, segmentPositions } from '../../web/src/three/line-layer.js';
+
+// An open ridge of 3 points, a closed valley of 3 points, an open ridge of 2.
+const LINES = {
+  points: Float64Array.from([0, 0, 0, 1, 0, 0, 1, 2, 0, 5, 5, 5, 6, 5, 5, 5, 6, 5, -1, -1, -1, -2, -1, -1]),
+  offsets: Uint32Array.from([0, 3, 6, 8]),
+  types: Uint8Array.from([0, 1, 0]),
+  closed: Uint8Array.from([0, 1, 0]),
+};
+
+test('segmentPositions: each segment’s two end points minus the origin, a closed line’s last back to its first', () => {
+  const origin = [1, 0, 0];
+  assert.deepEqual([...segmentPositions(LINES, 0, origin)], [-1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2, 0, -2, -1, -1, -3, -1, -1]);
+  assert.deepEqual([...segmentPositions(LINES, 1, origin)], [4, 5, 5, 5, 5, 5, 5, 5, 5, 4, 6, 5, 4, 6, 5, 4, 5, 5]);
+});
+
+test('SegmentGeometry: the end points on every vertex, a start cap only where an open line starts', () => {
+  const positions = segmentPositions(LINES, 0, [0, 0, 0]);
+  // Runs: the 2-segment line (its first segment degenerate: the cap goes with the next), then the 1-segment one.
+  positions.set([0, 0, 0, 0, 0, 0], 0);
+  const geometry = new SegmentGeometry(positions, [
+    [0, 2, false],
+    [2, 1, false],
+  ]);
+  // Each segment's 8 vertices carry its two end points.
+  const ends = geometry.getAttribute('instanceStart').data.array;
+  assert.equal(ends.length, 3 * SEGMENT_VERTICES * 6);
+  for (let s = 0; s < 3; s++)
+    for (let k = 0; k < SEGMENT_VERTICES; k++)
+      assert.deepEqual([...ends.subarray(6 * (8 * s + k), 6 * (8 * s + k) + 6)], [...positions.subarray(6 * s, 6 * s + 6)]);
+  assert.equal(geometry.getAttribute('instanceShown').count, 3 * SEGMENT_VERTICES);
+  const triangles = (s, withStart) => {
+    const v = s * SEGMENT_VERTICES;
+    const joined = [v, v + 2, v + 1, v + 2, v + 3, v + 1, v + 2, v + 4, v + 3, v + 4, v + 5, v + 3];
+    return withStart ? [...joined, v + 4, v + 6, v + 5, v + 6, v + 7, v + 5] : joined;
+  };
+  assert.deepEqual([...geometry.index.array], [...triangles(0, true), ...triangles(1, true), ...triangles(2, true)]);
+  assert.deepEqual([...geometry.runEnds], [36, 54]);
+  const closed = new SegmentGeometry(segmentPositions(LINES, 1, [0, 0, 0]), [[0, 3, true]]);
+  assert.deepEqual([...closed.index.array], [...triangles(0, false), ...triangles(1, false), ...triangles(2, false)]);
+});
+
+test('SegmentGeometry: the bounding sphere is LineSegmentsGeometry’s, to the bit', () => {
+  let seed = 7;
+  const random = () => ((seed = (seed * 16807) % 2147483647) / 2147483647) * 9 - 3;
+  for (const count of [0, 1, 4, 5000]) {
+    const positions = Float32Array.from({ length: 6 * count }, random);
+    const geometry = new SegmentGeometry(positions);
+    geometry.computeBoundingSphere();
+    const reference = new LineSegmentsGeometry();
+    reference.setPositions(positions);
+    reference.computeBoundingSphere();
+    const got = [...geometry.boundingSphere.center.toArray(), geometry.boundingSphere.radius];
+    const want = [...reference.boundingSphere.center.toArray(), reference.boundingSphere.radius];
+    assert.deepEqual(got, want, `${count} segments`);
+  }
+});
