@@ -16,6 +16,10 @@
 namespace crestline::cli {
 
 void write_file_atomically(const std::string& path, const std::string& text) {
+  write_file_atomically(path, [&text](const io::TextSink& sink) { sink(text); });
+}
+
+void write_file_atomically(const std::string& path, const std::function<void(const io::TextSink&)>& write) {
   const std::string temporary = path + ".tmp";
   auto fail = [&](const char* what) {
     const std::string reason = std::strerror(errno);
@@ -26,7 +30,13 @@ void write_file_atomically(const std::string& path, const std::string& text) {
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     if (!out) fail("the file cannot be created");
-    out.write(text.data(), static_cast<std::streamsize>(text.size()));
+    try {
+      write([&out](std::string_view piece) { out.write(piece.data(), static_cast<std::streamsize>(piece.size())); });
+    } catch (...) {
+      out.close();
+      std::remove(temporary.c_str());
+      throw;
+    }
     out.close();
     if (!out) fail("the file cannot be written");
   }

@@ -1,9 +1,11 @@
 #pragma once
 // The CLI's only contact with the filesystem besides io::read_mesh.
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
+#include "crestline/io/write_lines.h"
 #include "crestline/mesh/mesh.h"
 
 namespace crestline::cli {
@@ -12,6 +14,9 @@ namespace crestline::cli {
 /// `path`, so a failure never leaves a partial output behind. Throws
 /// Error(Io) without a file name (the caller knows it).
 void write_file_atomically(const std::string& path, const std::string& text);
+/// The same with the text made by `write`, which hands it to its sink in
+/// pieces: written as they come, never held whole.
+void write_file_atomically(const std::string& path, const std::function<void(const io::TextSink&)>& write);
 
 /// The most bytes read from a weights file for a mesh of `vertices` input
 /// vertices: 100 per vertex plus 1 MiB for comments.

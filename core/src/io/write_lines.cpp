@@ -113,11 +113,30 @@ size_t text_parts(size_t count) {
   return std::min<size_t>({count / kItemsPerPart + 1, size_t(max_threads()), 8});
 }
 
-// Appends format(i, text) for i in [0, count) to out, in order: part p,
-// items [first[p], first[p + 1]), formatted on its own thread into its own
-// string, then the parts joined, so the text is the same for any thread
-// count. Formatting the numbers is nearly all of a large file's writing
-// (≈ 700 instructions a coordinate; 364 M for the 1.1M mesh's JSON at
+// The text being written: appended to `text` and, with a sink, handed to it
+// and cleared after each batch of items that leaves it kFlushBytes or longer,
+// so that a streamed file is never held whole (the 1.1M mesh's JSON is 23.6
+// MB, the CLI's largest block at the end of a run).
+constexpr size_t kFlushBytes = size_t{1} << 20;
+// Items (or, weighted, their weight: a line's points) per batch with a sink:
+// ≈ 2 MB of JSON or OBJ text.
+constexpr size_t kBatchWeight = size_t{1} << 15;
+struct Output {
+  std::string text;
+  const TextSink* sink = nullptr;
+  void batch_done() {
+    if (sink && text.size() >= kFlushBytes) (*sink)(text), text.clear();
+  }
+  void finish() {
+    if (sink && !text.empty()) (*sink)(text), text.clear();
+  }
+};
+
+// Appends format(i, text) for i in [first[0], first.back()) to out, in
+// order: part p, items [first[p], first[p + 1]), formatted on its own thread
+// into its own string, then the parts joined, so the text is the same for any
+// thread count. Formatting the numbers is nearly all of a large file's
+// writing (≈ 700 instructions a coordinate; 364 M for the 1.1M mesh's JSON at
 // af4309a, all on the calling thread).
 template <typename Format>
 void append_parts(std::string& out, const std::vector<size_t>& first, const Format& format) {
@@ -136,27 +155,30 @@ void append_parts(std::string& out, const std::vector<size_t>& first, const Form
   for (const std::string& t : text) out += t;
 }
 
-// append_parts over parts of as many items each.
-template <typename Format>
-void append_in_parts(std::string& out, size_t count, const Format& format) {
-  const size_t parts = text_parts(count);
-  std::vector<size_t> first(parts + 1);
-  for (size_t p = 0; p <= parts; ++p) first[p] = count * p / parts;
-  append_parts(out, first, format);
+// append_parts over items [begin, end), in batches of about kBatchWeight
+// weight (weight(i): a line's points; 1 an item without one) where the
+// output streams, else in one; each batch in parts of about equal weight.
+// Every item's text is its own, so the bytes do not depend on the batches.
+template <typename Weight, typename Format>
+void append_in_parts(Output& out, size_t count, const Weight& weight, const Format& format) {
+  for (size_t begin = 0, end = 0; begin < count; begin = end) {
+    size_t total = 0;
+    for (end = begin; end < count && (!out.sink || end == begin || total < kBatchWeight); ++end) total += weight(end);
+    const size_t parts = text_parts(end - begin);
+    std::vector<size_t> first(parts + 1, end);
+    first[0] = begin;
+    for (size_t i = begin, p = 1, sum = 0; i < end && p < parts; sum += weight(i++))
+      while (p < parts && sum >= total * p / parts) first[p++] = i;
+    append_parts(out.text, first, format);
+    out.batch_done();
+  }
 }
 
-// append_parts over parts of about equal weight, the sum of weight(i) (a
-// line's points).
-template <typename Weight, typename Format>
-void append_in_parts(std::string& out, size_t count, const Weight& weight, const Format& format) {
-  const size_t parts = text_parts(count);
-  size_t total = 0;
-  for (size_t i = 0; i < count; ++i) total += weight(i);
-  std::vector<size_t> first(parts + 1, count);
-  first[0] = 0;
-  for (size_t i = 0, p = 1, sum = 0; i < count && p < parts; sum += weight(i++))
-    while (p < parts && sum >= total * p / parts) first[p++] = i;
-  append_parts(out, first, format);
+// append_in_parts with every item of weight 1.
+template <typename Format>
+void append_in_parts(Output& out, size_t count, const Format& format) {
+  append_in_parts(
+      out, count, [](size_t) { return size_t{1}; }, format);
 }
 
 // Ridges first, then valleys, then creases, each in input order: the OBJ
@@ -179,7 +201,7 @@ void append_vertex(std::string& out, const Vec3& p) {
 // The line part of the OBJ contract: `v` lines, then `o ridges` and
 // `o valleys` with one `l` per polyline. `vertices_before` is how many `v`
 // lines the file already holds (the line vertices are numbered after them).
-void append_lines_obj(std::string& out, const std::vector<Polyline>& lines, size_t vertices_before) {
+void append_lines_obj(Output& out, const std::vector<Polyline>& lines, size_t vertices_before) {
   // Vertices in the order ridges-then-valleys so that indices grow along the file.
   std::vector<size_t> first_index(lines.size(), 0);
   std::vector<std::vector<size_t>> of_type(std::size(kTypes));  // each type's lines with a segment
@@ -202,9 +224,9 @@ void append_lines_obj(std::string& out, const std::vector<Polyline>& lines, size
   for (size_t k = 0; k < std::size(kTypes); ++k) {
     // Ridges and valleys always have their object; creases only when there are any.
     if (kTypes[k] == LineType::Crease && of_type[k].empty()) continue;
-    out += "o ";
-    out += group_name(kTypes[k]);
-    out += '\n';
+    out.text += "o ";
+    out.text += group_name(kTypes[k]);
+    out.text += '\n';
     append_in_parts(
         out, of_type[k].size(), [&](size_t j) { return lines[of_type[k][j]].points.size(); },
         [&](size_t j, std::string& text) {
@@ -223,17 +245,14 @@ void append_lines_obj(std::string& out, const std::vector<Polyline>& lines, size
   }
 }
 
-}  // namespace
-
-std::string write_lines_obj(const std::vector<Polyline>& lines) {
-  std::string out = "# crestline feature lines: o ridges, o valleys (, o creases); one l per polyline\n";
+void lines_obj(Output& out, const std::vector<Polyline>& lines) {
+  out.text += "# crestline feature lines: o ridges, o valleys (, o creases); one l per polyline\n";
   append_lines_obj(out, lines, 0);
-  return out;
 }
 
-std::string write_mesh_and_lines_obj(const Mesh& mesh, const std::vector<Polyline>& lines) {
-  std::string out = "# crestline surface and feature lines: o surface, o ridges, o valleys\n";
-  out += "o surface\n";
+void mesh_and_lines_obj(Output& out, const Mesh& mesh, const std::vector<Polyline>& lines) {
+  out.text += "# crestline surface and feature lines: o surface, o ridges, o valleys\n";
+  out.text += "o surface\n";
   append_in_parts(out, mesh.positions.size(),
                   [&](size_t v, std::string& text) { append_vertex(text, mesh.positions[v]); });
   append_in_parts(out, mesh.triangles.size(), [&](size_t t, std::string& text) {
@@ -245,8 +264,9 @@ std::string write_mesh_and_lines_obj(const Mesh& mesh, const std::vector<Polylin
     text += '\n';
   });
   append_lines_obj(out, lines, mesh.positions.size());
-  return out;
 }
+
+}  // namespace
 
 std::string stats_json(const PipelineStats& stats) {
   const std::pair<const char*, size_t> counts[] = {{"vertices", stats.vertices},
@@ -288,13 +308,15 @@ std::string stats_json(const PipelineStats& stats) {
   return out;
 }
 
-std::string write_lines_json(const std::vector<Polyline>& lines, const PipelineStats& stats) {
-  std::string out = "{";
+namespace {
+
+void lines_json(Output& out, const std::vector<Polyline>& lines, const PipelineStats& stats) {
+  out.text += '{';
   for (LineType type : kTypes) {
-    if (type != kTypes[0]) out += ",\n";
-    out += '"';
-    out += group_name(type);
-    out += "\":[";
+    if (type != kTypes[0]) out.text += ",\n";
+    out.text += '"';
+    out.text += group_name(type);
+    out.text += "\":[";
     std::vector<const Polyline*> of_type;
     for (const Polyline& line : lines)
       if (line.type == type) of_type.push_back(&line);
@@ -323,12 +345,48 @@ std::string write_lines_json(const std::vector<Polyline>& lines, const PipelineS
           if (type == LineType::Crease) text += line.convex ? ",\"convex\":true" : ",\"convex\":false";
           text += '}';
         });
-    out += ']';
+    out.text += ']';
   }
-  out += ",\n\"stats\":";
-  out += stats_json(stats);
-  out += "}\n";
-  return out;
+  out.text += ",\n\"stats\":";
+  out.text += stats_json(stats);
+  out.text += "}\n";
+}
+
+// The whole text as one string (no sink: one batch), or streamed to `sink`.
+template <typename Write>
+std::string whole_text(const Write& write) {
+  Output out;
+  write(out);
+  return std::move(out.text);
+}
+template <typename Write>
+void streamed_text(const TextSink& sink, const Write& write) {
+  Output out{{}, &sink};
+  write(out);
+  out.finish();
+}
+
+}  // namespace
+
+std::string write_lines_obj(const std::vector<Polyline>& lines) {
+  return whole_text([&](Output& out) { lines_obj(out, lines); });
+}
+void write_lines_obj(const std::vector<Polyline>& lines, const TextSink& sink) {
+  streamed_text(sink, [&](Output& out) { lines_obj(out, lines); });
+}
+
+std::string write_mesh_and_lines_obj(const Mesh& mesh, const std::vector<Polyline>& lines) {
+  return whole_text([&](Output& out) { mesh_and_lines_obj(out, mesh, lines); });
+}
+void write_mesh_and_lines_obj(const Mesh& mesh, const std::vector<Polyline>& lines, const TextSink& sink) {
+  streamed_text(sink, [&](Output& out) { mesh_and_lines_obj(out, mesh, lines); });
+}
+
+std::string write_lines_json(const std::vector<Polyline>& lines, const PipelineStats& stats) {
+  return whole_text([&](Output& out) { lines_json(out, lines, stats); });
+}
+void write_lines_json(const std::vector<Polyline>& lines, const PipelineStats& stats, const TextSink& sink) {
+  streamed_text(sink, [&](Output& out) { lines_json(out, lines, stats); });
 }
 
 }  // namespace crestline::io

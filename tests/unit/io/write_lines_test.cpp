@@ -393,3 +393,48 @@ TEST_CASE("OBJ numbers are the shortest of %.15g, %.16g, %.17g that reads back, 
   CHECK(differing == 0);
   CHECK(written == expected);
 }
+
+TEST_CASE("streamed text is the same bytes as the writers' strings, in pieces of about a megabyte", "[io][writers]") {
+  // 40,000 lines of 1-12 points (≈ 260 k points, ≈ 15 MB of JSON) and a
+  // 100,000-vertex surface: several batches and pieces in every writer.
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> coordinate(-2, 2);
+  std::vector<Polyline> lines;
+  for (int i = 0; i < 40000; ++i) {
+    std::vector<Vec3> points(size_t(1 + random() % 12));
+    for (Vec3& p : points) p = Vec3(coordinate(random), coordinate(random), coordinate(random));
+    lines.push_back(make_line(static_cast<LineType>(random() % 3), std::move(points), random() % 4 == 0, 1.5));
+  }
+  crestline::Mesh mesh;
+  for (uint32_t v = 0; v < 100000; ++v) {
+    mesh.positions.emplace_back(coordinate(random), coordinate(random), coordinate(random));
+    mesh.triangles.push_back({v, (v + 1) % 100000, (v + 7) % 100000});
+  }
+  crestline::PipelineStats stats;
+  stats.ridges = 3, stats.threshold = 0.25;
+  const int before = crestline::max_threads();
+  for (int threads : {1, 2}) {
+    crestline::set_max_threads(threads);
+    std::string streamed;
+    size_t pieces = 0, largest = 0;
+    const crestline::io::TextSink sink = [&](std::string_view piece) {
+      streamed += piece, ++pieces, largest = std::max(largest, piece.size());
+    };
+    const auto check = [&](const std::string& whole) {
+      INFO(threads << " threads, " << pieces << " pieces");
+      CHECK(streamed == whole);
+      CHECK(pieces >= whole.size() / (4 << 20));
+      CHECK(largest < (4u << 20));
+      streamed.clear(), pieces = 0, largest = 0;
+    };
+    crestline::io::write_lines_json(lines, stats, sink);
+    check(crestline::io::write_lines_json(lines, stats));
+    crestline::io::write_lines_obj(lines, sink);
+    check(crestline::io::write_lines_obj(lines));
+    crestline::io::write_mesh_and_lines_obj(mesh, lines, sink);
+    check(crestline::io::write_mesh_and_lines_obj(mesh, lines));
+    crestline::io::write_lines_json({}, stats, sink);
+    check(crestline::io::write_lines_json({}, stats));
+  }
+  crestline::set_max_threads(before);
+}

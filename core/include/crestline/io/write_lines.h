@@ -1,10 +1,13 @@
 #pragma once
-// Output formats for feature lines. Each returns the file's text; the
-// caller writes it (the core never touches the filesystem in a stage).
+// Output formats for feature lines. Each returns the file's text, or hands
+// it to a sink in pieces; the caller writes it (the core never touches the
+// filesystem in a stage).
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "crestline/lines/polylines.h"
@@ -23,10 +26,16 @@ constexpr const char* kCreaseColor = "#e08a00";
 /// `o valleys` likewise, then `o creases` likewise if there are any.
 std::string write_lines_obj(const std::vector<Polyline>& lines);
 
+/// Receives a text writer's output in order, in pieces of about 1 MB (the
+/// last one shorter): the same bytes as the writer's string, never held whole.
+using TextSink = std::function<void(std::string_view piece)>;
+void write_lines_obj(const std::vector<Polyline>& lines, const TextSink& sink);
+
 /// The welded surface and the lines in one OBJ: `o surface` with its `v` and
 /// `f` lines (1-based, in mesh order), then the lines exactly as in
 /// write_lines_obj with their indices numbered after the surface's vertices.
 std::string write_mesh_and_lines_obj(const Mesh& mesh, const std::vector<Polyline>& lines);
+void write_mesh_and_lines_obj(const Mesh& mesh, const std::vector<Polyline>& lines, const TextSink& sink);
 
 /// A glTF 2.0 binary (GLB): one buffer; float32 POSITION accessors with
 /// min/max and uint32 indices. With a mesh, node "surface" holds it as one
@@ -41,6 +50,7 @@ std::vector<uint8_t> write_glb(const Mesh* mesh, const std::vector<Polyline>& li
 /// {"ridges":[{"points":[[x,y,z],…],"strength":s,"length":l,"closed":b}…],"valleys":[…],
 ///  "creases":[{…,"convex":b}…],"stats":{…}} — "creases" is always there (maybe empty).
 std::string write_lines_json(const std::vector<Polyline>& lines, const PipelineStats& stats);
+void write_lines_json(const std::vector<Polyline>& lines, const PipelineStats& stats, const TextSink& sink);
 
 /// The stats object alone (also what `crestline --stats` prints).
 std::string stats_json(const PipelineStats& stats);
