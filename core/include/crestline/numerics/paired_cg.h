@@ -351,7 +351,9 @@ class SignedPairSolver {
   UninitialisedVector<uint8_t> handed_;   // 1 where the solver iterates on −x₁ (paired_cg.cpp)
   bool representable_ = true;             // every entry below 2 in magnitude
   std::vector<uint32_t> colour_begin_;
-  UninitialisedVector<double> roots_;  // √A(i,i): the solver works on the system scaled to a unit diagonal
+  // √A(i,i): the solver works on the system scaled to a unit diagonal. Kept
+  // through the set-up only; the solves take the roots of diagonal_.
+  UninitialisedVector<double> roots_;
   // The coarse level (empty without one), scaled to a unit diagonal per field:
   // Q = L P by fine row (q_begin_, n + 1 offsets) and by coarse row
   // (qt_begin_), entries (column, field 0, field 1); Ac factored.
