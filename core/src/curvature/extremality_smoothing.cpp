@@ -32,6 +32,10 @@ constexpr double kTypicalIterations = 10;
 // that the fractions keep rising for any step count.
 double setup_share(int steps) { return 0.5 / ((1 + kTypicalIterations) * steps); }
 
+// Whether the options smooth at all: without steps or without time the
+// values are returned as they are (the system then has no steps).
+bool smooths(const ExtremalitySmoothingOptions& options) { return options.steps > 0 && options.time_step > 0; }
+
 // Both fields' matrices M − t L_σ in one pattern (numerics/paired_cg.h); the
 // diagonal sums in edge order exactly as smooth_field's does. Each edge's
 // signs (two dot products) are found on every thread first; the additions
@@ -206,7 +210,7 @@ ExtremalitySmoothingSystem extremality_smoothing_system(const Mesh& mesh, const 
                                                         const ExtremalitySmoothingOptions& options,
                                                         const std::function<void(double)>& progress) {
   ExtremalitySmoothingSystem system;
-  if (options.steps <= 0 || options.time_step <= 0) return system;
+  if (!smooths(options)) return system;
   system.steps = options.steps;
   std::vector<double> banded;
   const std::vector<double>& weights = checked_weights(mesh, topology, options, banded);
@@ -231,7 +235,7 @@ ExtremalitySmoothingSystem extremality_smoothing_system(const Mesh& mesh, const 
 PairedSmoothing solve_extremality_smoothing(ExtremalitySmoothingSystem system, const Extremality& extremality,
                                             const std::function<void(double)>& progress) {
   PairedSmoothing out;
-  if (system.steps <= 0) {
+  if (system.steps <= 0) {  // !smooths(options): extremality_smoothing_system left it at 0
     out.smoothed = {extremality};
     out.converged = true;
     return out;
@@ -249,7 +253,7 @@ SmoothedExtremality smooth_extremality_unpaired(const Mesh& mesh, const Topology
                                                 const ExtremalitySmoothingOptions& options, size_t iterations_spent) {
   SmoothedExtremality out;
   out.solver_iterations = iterations_spent;
-  if (options.steps <= 0 || options.time_step <= 0) {
+  if (!smooths(options)) {
     static_cast<Extremality&>(out) = extremality;
     return out;
   }
