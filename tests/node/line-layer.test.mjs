@@ -4,7 +4,7 @@
 import assert from 'node:assert/strict';
 import { test } from 'node:test';
 import { LineSegmentsGeometry } from 'three/examples/jsm/lines/LineSegmentsGeometry.js';
-import { SEGMENT_VERTICES, SegmentGeometry, segmentPositions } from '../../web/src/three/line-layer.js';
+import { JOINED_INDICES, SEGMENT_INDEX, SEGMENT_VERTICES, SegmentGeometry, segmentPositions } from '../../web/src/three/line-layer.js';
 
 // An open ridge of 3 points, a closed valley of 3 points, an open ridge of 2.
 const LINES = {
@@ -35,11 +35,8 @@ test('SegmentGeometry: the end points on every vertex, a start cap only where an
     for (let k = 0; k < SEGMENT_VERTICES; k++)
       assert.deepEqual([...ends.subarray(6 * (8 * s + k), 6 * (8 * s + k) + 6)], [...positions.subarray(6 * s, 6 * s + 6)]);
   assert.equal(geometry.getAttribute('instanceShown').count, 3 * SEGMENT_VERTICES);
-  const triangles = (s, withStart) => {
-    const v = s * SEGMENT_VERTICES;
-    const joined = [v, v + 2, v + 1, v + 2, v + 3, v + 1, v + 2, v + 4, v + 3, v + 4, v + 5, v + 3];
-    return withStart ? [...joined, v + 4, v + 6, v + 5, v + 6, v + 7, v + 5] : joined;
-  };
+  // SegmentGeometry writes SEGMENT_INDEX out as literal stores: they must be the table's, offset by the segment's first vertex.
+  const triangles = (s, withStart) => SEGMENT_INDEX.slice(0, withStart ? SEGMENT_INDEX.length : JOINED_INDICES).map((k) => s * SEGMENT_VERTICES + k);
   assert.deepEqual([...geometry.index.array], [...triangles(0, true), ...triangles(1, true), ...triangles(2, true)]);
   assert.deepEqual([...geometry.runEnds], [36, 54]);
   const closed = new SegmentGeometry(segmentPositions(LINES, 1, [0, 0, 0]), [[0, 3, true]]);

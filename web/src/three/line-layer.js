@@ -75,11 +75,17 @@ export function segmentPositions(lines, type, origin) {
   return out;
 }
 
-/** The vertices of a segment (LineSegmentsGeometry's template) and its triangles: end cap, body, start cap. */
+/**
+ * The vertices of a segment (LineSegmentsGeometry's template) and its
+ * triangles: end cap, body, start cap. SegmentGeometry writes these indices
+ * out as literal stores, not by a loop over this table (the loop took 1.4×
+ * as long for 141k segments in node); tests/node/line-layer.test.mjs checks
+ * the stores against the table.
+ */
 export const SEGMENT_VERTICES = 8;
-const SEGMENT_INDEX = [0, 2, 1, 2, 3, 1, 2, 4, 3, 4, 5, 3, 4, 6, 5, 6, 7, 5];
+export const SEGMENT_INDEX = Object.freeze([0, 2, 1, 2, 3, 1, 2, 4, 3, 4, 5, 3, 4, 6, 5, 6, 7, 5]);
 /** The indices of a segment without its start cap (rows 0 and -1 of the template: vertices 4-7). */
-const JOINED_INDICES = 12;
+export const JOINED_INDICES = 12;
 
 const START_CAP = SEGMENT_INDEX.length - JOINED_INDICES;
 
@@ -134,7 +140,7 @@ export class SegmentGeometry extends BufferGeometry {
     runs.forEach(([start, length, closed], r) => {
       let capped = closed;
       for (let s = start; s < start + length; s++) {
-        // SEGMENT_INDEX written out: the end cap and the body, then the start cap where the line starts.
+        // SEGMENT_INDEX written out (see there): the end cap and the body, then the start cap where the line starts.
         const v = s * SEGMENT_VERTICES;
         index[i] = v;
         index[i + 1] = v + 2;
