@@ -8,9 +8,12 @@
 // to its end, then --cancels times with Cancel pressed at moments spread
 // evenly over that run's time, each timed from the click to the worker's
 // 'cancelled' arriving.
-//   node bench/browser.mjs [--mesh large/dragon.glb] [--runs 3] [--rethresholds 4]
+//   node bench/browser.mjs [--mesh large/dragon.glb] [--runs 3] [--drops 1] [--rethresholds 4]
 //                          [--cancels 8] [--dist web/dist] [--json OUT.json] [--no-isolation]
 //                          [--pause MS]
+// --drops N drops the mesh N times in each page, one after the other's lines
+// (a row each: run.drop); a second drop runs the code V8 optimised during the
+// first (see the README's performance notes).
 // --pause waits MS after the sample's lines before the drop (a user finding a
 // file; default 0). The `warm-up` column says whether the worker had warmed its
 // glTF reader up before the drop (web/src/worker/warm-up.js).
@@ -21,12 +24,17 @@
 // Every time is the page's (performance.now() on the main thread), except the
 // worker's own figures: `read+repair` (Session.loadFile) and `pipeline`
 // (Session.run and the copies of lines and creases out of the WASM heap),
-// with the stage split of its --stats.
+// with the stage split of its --stats. The `cpu` columns are the CPU
+// milliseconds Chromium's parts spent from the drop to its lines' frame
+// (cpu-time.mjs; Linux): the renderer's workers, its thread pool (V8's
+// background compiles and GC), its main thread, the GPU process, and all of
+// Chromium; less moved by other work on the machine than the wall clock.
 import { existsSync, writeFileSync } from 'node:fs';
 import { loadavg } from 'node:os';
 import { join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { CHROMIUM, launch } from '../tests/browser/browser.mjs';
+import { browserCpu, cpuSpent } from './cpu-time.mjs';
 import { serve } from '../tests/browser/server.mjs';
 import { median, table } from './table.mjs';
 
@@ -35,11 +43,12 @@ const MESHES = resolve(ROOT, '../shared/meshes');
 const STAGES = ['presmooth', 'curvature', 'extremality', 'regularity', 'smoothing', 'tracing', 'singular', 'polylines', 'fairing', 'filter', 'creases'];
 
 function parseArgs(argv) {
-  const args = { mesh: 'large/dragon.glb', runs: 3, rethresholds: 4, cancels: 8, dist: join(ROOT, 'web/dist') };
+  const args = { mesh: 'large/dragon.glb', runs: 3, drops: 1, rethresholds: 4, cancels: 8, dist: join(ROOT, 'web/dist') };
   for (let i = 0; i < argv.length; i++) {
     const value = () => argv[++i];
     if (argv[i] === '--mesh') args.mesh = value();
     else if (argv[i] === '--runs') args.runs = Math.max(1, Number(value()));
+    else if (argv[i] === '--drops') args.drops = Math.max(1, Number(value()));
     else if (argv[i] === '--rethresholds') args.rethresholds = Math.max(1, Number(value()));
     else if (argv[i] === '--cancels') args.cancels = Math.max(0, Number(value()));
     else if (argv[i] === '--dist') args.dist = resolve(value());
@@ -105,10 +114,14 @@ function instrument() {
     });
 }
 
-/** Drops `bytes` (fetched beforehand: not timed) named `name` as one file on the page; returns the page's timeline. */
+/**
+ * Drops `bytes` (fetched beforehand: not timed) named `name` as one file on
+ * the page; returns the page's timeline and the CPU Chromium spent meanwhile.
+ */
 async function dropAndTime(page, url, name) {
   await page.evaluate(async (url) => (window.__benchBytes = await (await fetch(url)).arrayBuffer()), url);
-  return page.evaluate(async (name) => {
+  const cpuBefore = browserCpu();
+  const timeline = await page.evaluate(async (name) => {
     const app = window.crestline;
     const log = window.__bench;
     const count = app.results.length;
@@ -123,6 +136,7 @@ async function dropAndTime(page, url, name) {
     window.__benchThreshold = app.lastResult.stats.threshold;
     return { start, end, ...structuredClone(log), result: app.lastResult, mesh: app.mesh };
   }, name);
+  return { ...timeline, cpu: cpuSpent(cpuBefore, browserCpu()) };
 }
 
 /** A threshold change as the panel makes it, then the frame that shows it. */
@@ -214,6 +228,7 @@ function dropSplit(t) {
     surfaceDraws: t.surfaceDraws,
     longestTask: Math.max(0, ...inWindow.map((l) => l.ms)),
     stages: Object.fromEntries(STAGES.map((s) => [s, 1000 * (t.result.stats.seconds?.[s] ?? NaN)])),
+    cpu: t.cpu ?? {},
   };
 }
 
@@ -263,7 +278,9 @@ async function measureRun(args, server) {
     await page.evaluate(instrument);
     if (args.pause) await page.waitForTimeout(args.pause);
     const loadBefore = load();
-    const drop = await dropAndTime(page, `${origin}/meshes/${args.mesh}`, args.mesh.split('/').pop());
+    const drops = [];
+    for (let i = 0; i < args.drops; i++) drops.push(await dropAndTime(page, `${origin}/meshes/${args.mesh}`, args.mesh.split('/').pop()));
+    const drop = drops[0];
     const rethresholds = [];
     for (let i = 0; i < args.rethresholds; i++) rethresholds.push(rethresholdSplit(await rethresholdAndTime(page, i % 2 ? 1 : 1.5)));
     // One re-run to its end (no Cancel): how long the cancels' runs take.
@@ -281,7 +298,7 @@ async function measureRun(args, server) {
       load: [loadBefore, load()],
       triangles: drop.result.stats.triangles,
       lines: drop.result.lineCount,
-      drop: dropSplit(drop),
+      drops: drops.map(dropSplit),
       rethreshold: rethresholds,
       cancels,
       rerunMs: rerun?.runMs ?? NaN,
@@ -332,13 +349,31 @@ const DROP = [
   ['long tasks', 'longTasks'],
   ['surface draws', 'surfaceDraws'],
 ];
-const rows = [['run', 'load', 'warm-up', ...DROP.map(([h]) => h), 'smoothing']];
-const row = (label, loadText, warm, pick) => [label, loadText, warm, ...DROP.map(([, k]) => f(pick((d) => d[k]))), f(pick((d) => d.stages.smoothing))];
-runs.forEach((r, i) => rows.push(row(String(i + 1), r.load.join('→'), r.warmedUp ? 'done' : 'no', (get) => get(r.drop))));
-rows.push(row('median', '', '', (get) => median(runs.map((r) => get(r.drop)))));
+const CPU = [
+  ['cpu worker', 'worker'],
+  ['cpu pool', 'pool'],
+  ['cpu main', 'main'],
+  ['cpu gpu', 'gpu'],
+  ['cpu all', 'all'],
+];
+const rows = [['run', 'load', 'warm-up', ...DROP.map(([h]) => h), 'smoothing', ...CPU.map(([h]) => h)]];
+const row = (label, loadText, warm, pick) => [
+  label,
+  loadText,
+  warm,
+  ...DROP.map(([, k]) => f(pick((d) => d[k]))),
+  f(pick((d) => d.stages.smoothing)),
+  ...CPU.map(([, k]) => f(pick((d) => d.cpu[k] ?? NaN))),
+];
+// A run's drops are rows run.1, run.2, … when there are several.
+const label = (run, drop) => (args.drops > 1 ? `${run + 1}.${drop + 1}` : String(run + 1));
+runs.forEach((r, i) => r.drops.forEach((d, k) => rows.push(row(label(i, k), k ? '' : r.load.join('→'), k ? '' : r.warmedUp ? 'done' : 'no', (get) => get(d)))));
+for (let k = 0; k < args.drops; k++)
+  rows.push(row(args.drops > 1 ? `median, drop ${k + 1}` : 'median', '', '', (get) => median(runs.map((r) => get(r.drops[k])))));
 const mesh = `${args.mesh} (${runs[0].triangles} triangles, ${runs[0].lines} lines)`;
+const times = args.drops > 1 ? `dropped ${args.drops} times in each page` : 'dropped on the app';
 console.log(
-  `Browser: headless Chromium, ${mesh}, dropped on the app, WASM on ${runs[0].threads} thread(s); ms, page clock; load = 1-minute load average before→after`,
+  `Browser: headless Chromium, ${mesh}, ${times}, WASM on ${runs[0].threads} thread(s); ms, page clock; load = 1-minute load average before→after; cpu = ms of CPU from the drop to its frame`,
 );
 console.log(table(rows));
 
