@@ -161,6 +161,8 @@ function ofPrevious(session) {
   return true;
 }
 
+let cacheWarmedUp = false;
+
 /** A result: the shown mesh's lines (the first ones after a load, or new ones after a change). */
 function received(session, result) {
   if (ofPrevious(session)) return;
@@ -220,6 +222,8 @@ function received(session, result) {
   // is framed again after the frame that shows the lines, unless the user moved the camera meanwhile.
   const reframe = () => state.shown === shown && !shown.cameraMoved && !viewer.framingUncovered() && viewer.fitView();
   if (firstLines && !shown.cameraMoved) viewer.afterFrame(reframe);
+  // After the page's first lines (the sample's), the first frames of a large mesh are prepared, once.
+  if (!cacheWarmedUp) viewer.afterFrame(() => (cacheWarmedUp = true) && viewer.warmUpCache());
   if (!session.busy) applyView();
   release(shown);
 }

@@ -201,12 +201,38 @@ export class Viewer {
     this.render();
   }
 
+  /**
+   * Compiles, once, what the first frames of a large surface need beyond a
+   * small one's: the surface cache's copy program, and SwiftShader's code
+   * for the cache's draws, by drawing the scene through the cache, then as
+   * usual, in one frame (the canvas shows the usual picture; the cache's
+   * picture is freed again); and the line layers' programs as the cache
+   * draws them, alone, without the scene's lights (the creases' layer is
+   * empty on the sample: its first crease would compile it). Otherwise a
+   * first large mesh compiles them in its surface's and its lines' frames.
+   * Only while a small surface is shown (a large one drew through the cache).
+   */
+  warmUpCache() {
+    if (this.largeSurface()) return;
+    // After a frame already asked for, if any: the last draw of the frame is the usual one.
+    requestAnimationFrame(() => {
+      this.surface.cullHiddenFaces(this.camera);
+      this.surfaceCache.draw(this.renderer, this.scene, this.camera, [this.lines.group, this.creases.group]);
+      this.draw();
+      for (const layer of [this.lines, this.creases]) this.renderer.compile(layer.group, this.camera);
+    });
+  }
+
+  /** Whether the surface is drawn through the surface cache. */
+  largeSurface() {
+    const index = this.surface.mesh.geometry.index;
+    return (index ? index.count / 3 : 0) >= this.cacheMinTriangles;
+  }
+
   /** One frame, now: through the surface cache when the surface is large. */
   draw() {
     this.surface.cullHiddenFaces(this.camera);
-    const index = this.surface.mesh.geometry.index;
-    if ((index ? index.count / 3 : 0) >= this.cacheMinTriangles)
-      this.surfaceCache.draw(this.renderer, this.scene, this.camera, [this.lines.group, this.creases.group]);
+    if (this.largeSurface()) this.surfaceCache.draw(this.renderer, this.scene, this.camera, [this.lines.group, this.creases.group]);
     else {
       this.surfaceCache.release();
       this.renderer.render(this.scene, this.camera);
