@@ -27,6 +27,7 @@
 #include <numeric>
 #include <type_traits>
 
+#include "crestline/numerics/serial_blocks.h"
 #include "crestline/numerics/uninitialised.h"
 #include "readers.h"
 
@@ -375,15 +376,23 @@ T value_at(const uint8_t* data, bool normalized) {
 
 /// `count` elements of `components` values of type C, `stride` bytes
 /// apart, converted to T.
+/// In blocks, so that a first large file's read leaves WASM's baseline tier
+/// (numerics/serial_blocks.h).
 template <typename C, typename T>
 void convert(const uint8_t* data, size_t count, size_t stride, size_t components, bool normalized, T* out) {
   if (stride == components * sizeof(C)) {  // packed: one loop the compiler can vectorise
-    for (size_t k = 0; k < count * components; ++k) out[k] = value_at<C, T>(data + k * sizeof(C), normalized);
+    for_serial_blocks(count * components, [&](size_t begin, size_t end) {
+      for (size_t k = begin; k < end; ++k) out[k] = value_at<C, T>(data + k * sizeof(C), normalized);
+    });
     return;
   }
-  for (size_t i = 0; i < count; ++i, data += stride) {
-    for (size_t c = 0; c < components; ++c) out[i * components + c] = value_at<C, T>(data + c * sizeof(C), normalized);
-  }
+  for_serial_blocks(count, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      const uint8_t* element = data + i * stride;
+      for (size_t c = 0; c < components; ++c)
+        out[i * components + c] = value_at<C, T>(element + c * sizeof(C), normalized);
+    }
+  });
 }
 
 /// convert() for a glTF componentType, chosen once per accessor rather than
@@ -627,26 +636,35 @@ class GltfReader {
       // the WASM SIMD build an in-place p = world * (p, 1) miscomputed
       // (LLVM 14's SLP vectorizer, which the WASM build now leaves off:
       // CMakeLists.txt, tests/wasm/slp_check.cpp).
+      // From pointers, so that the copies are memcpy's also in libc++ (the
+      // WASM build); the loops in blocks (numerics/serial_blocks.h).
       auto& positions = soup_.positions;
       const size_t first = positions.size();
-      positions.insert(positions.end(), primitive.positions.begin(), primitive.positions.end());
-      for (size_t v = 0; v < primitive.positions.size(); v += 3) {
-        const double* s = &primitive.positions[v];
-        double* p = &positions[first + v];
-        // The identity's product, without it: x + 0 (-0 becomes +0 as in
-        // the product), unless a coordinate is not finite (0 * inf is NaN).
-        if (identity && std::isfinite(s[0]) && std::isfinite(s[1]) && std::isfinite(s[2])) {
-          p[0] = s[0] + 0.0, p[1] = s[1] + 0.0, p[2] = s[2] + 0.0;
-        } else {
-          const Eigen::Vector4d q = world * Eigen::Vector4d(s[0], s[1], s[2], 1.0);
-          p[0] = q[0], p[1] = q[1], p[2] = q[2];
+      const double* source = primitive.positions.data();
+      positions.insert(positions.end(), source, source + primitive.positions.size());
+      for_serial_blocks(primitive.positions.size() / 3, [&](size_t begin, size_t end) {
+        for (size_t v = 3 * begin; v < 3 * end; v += 3) {
+          const double* s = source + v;
+          double* p = &positions[first + v];
+          // The identity's product, without it: x + 0 (-0 becomes +0 as in
+          // the product), unless a coordinate is not finite (0 * inf is NaN).
+          if (identity && std::isfinite(s[0]) && std::isfinite(s[1]) && std::isfinite(s[2])) {
+            p[0] = s[0] + 0.0, p[1] = s[1] + 0.0, p[2] = s[2] + 0.0;
+          } else {
+            const Eigen::Vector4d q = world * Eigen::Vector4d(s[0], s[1], s[2], 1.0);
+            p[0] = q[0], p[1] = q[1], p[2] = q[2];
+          }
         }
-      }
+      });
       auto& indices = soup_.indices;
       const size_t corner = indices.size();
-      indices.insert(indices.end(), primitive.triangles.begin(), primitive.triangles.end());
+      const uint32_t* triangles = primitive.triangles.data();
+      indices.insert(indices.end(), triangles, triangles + primitive.triangles.size());
       if (base > 0) {
-        for (size_t k = corner; k < indices.size(); ++k) indices[k] += base;
+        uint32_t* added = indices.data() + corner;
+        for_serial_blocks(primitive.triangles.size(), [&](size_t begin, size_t end) {
+          for (size_t k = begin; k < end; ++k) added[k] += base;
+        });
       }
     }
   }
@@ -687,7 +705,9 @@ class GltfReader {
       const size_t count = indices.size();
       const size_t used = source.mode == TINYGLTF_MODE_TRIANGLES ? count - count % 3 : count >= 3 ? count : 0;
       uint32_t largest = 0;
-      for (size_t k = 0; k < used; ++k) largest = std::max(largest, indices[k]);
+      for_serial_blocks(used, [&](size_t begin, size_t end) {
+        for (size_t k = begin; k < end; ++k) largest = std::max(largest, indices[k]);
+      });
       for (size_t k = 0; used > 0 && largest >= vertices; ++k) {
         if (indices[k] >= vertices) {
           invalid(where + " refers to vertex " + std::to_string(indices[k]) + " but has only " +
