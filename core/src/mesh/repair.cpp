@@ -89,8 +89,11 @@ void check_first_bad_index(const TriangleSoup& soup, size_t first_bad) {
 // On one thread the grid is a flat open-addressing table from slot to a list
 // (through `next`) of representatives, inserted as they are found (a sixth
 // of the entries on a soup, so fewer cache misses per search). On several,
-// every vertex is grouped by slot at once (a counting sort on every thread,
-// each slot's vertices in input order); the searches run on every thread and
+// every vertex is pushed onto its slot's list at once (an atomic exchange of
+// the list's head, on every thread: no counting sort, whose passes over the
+// slots doubled the weld's instructions at 2 threads); the searches run on
+// every thread, read the whole of each list (in the order of the pushes,
+// which varies), and
 // find the earliest vertex within tolerance, which is the answer unless that
 // vertex joined another one itself (a chain, rare: seams have exact copies);
 // those few are searched again in input order, among representatives only.
@@ -119,9 +122,10 @@ std::vector<uint32_t> weld(const std::vector<Vec3>& points, const std::vector<ui
            static_cast<uint64_t>(z) * 83492791u;
   };
   const bool one_thread = max_threads() == 1;
-  // Slots: twice the vertices for the open-addressing table, as many for the grouping.
+  // Slots: twice the vertices (the open-addressing table; on several
+  // threads, lists of 1.5 entries on average where a search looks).
   int bits = 1;
-  while ((size_t{1} << bits) < (one_thread ? 2 : 1) * points.size()) ++bits;
+  while ((size_t{1} << bits) < 2 * points.size()) ++bits;
   const size_t mask = (size_t{1} << bits) - 1;
   auto hashed = [&](uint64_t key) { return static_cast<size_t>((key * 0x9E3779B97F4A7C15ull) >> (64 - bits)); };
   // Calls visit(key) for the cells within reach of vertex i.
@@ -173,35 +177,26 @@ std::vector<uint32_t> weld(const std::vector<Vec3>& points, const std::vector<ui
     }
     return representative;
   }
-  // Several threads: every weldable vertex grouped by the slot of its cell.
-  UninitialisedVector<uint32_t> vertex_slot(points.size());
-  parallel_for(points.size(), [&](size_t begin, size_t end) {
-    for (size_t i = begin; i < end; ++i) vertex_slot[i] = weldable[i] ? uint32_t(hashed(key_of(uint32_t(i)))) : kNone;
+  // Several threads: every weldable vertex pushed onto its slot's list, on
+  // every thread (an exchange of the slot's head: the lists' order depends
+  // on the scheduling, what is found in them does not).
+  std::unique_ptr<std::atomic<uint32_t>[]> slot_head(new std::atomic<uint32_t>[mask + 1]);
+  parallel_for(mask + 1, [&](size_t begin, size_t end) {
+    for (size_t s = begin; s < end; ++s) slot_head[s].store(kNone, std::memory_order_relaxed);
   });
-  std::vector<uint32_t> slot_start;
-  UninitialisedVector<uint32_t> slot_vertices;
-  detail::group_by_bucket(
-      points.size(), mask + 1,
-      [&](size_t i, const auto& emit) {
-        if (vertex_slot[i] != kNone) emit(vertex_slot[i], uint32_t(i));
-      },
-      slot_start, slot_vertices);
-  vertex_slot = {};
+  UninitialisedVector<uint32_t> next(points.size());
+  parallel_for(points.size(), [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i)
+      if (weldable[i])
+        next[i] = slot_head[hashed(key_of(uint32_t(i)))].exchange(uint32_t(i), std::memory_order_relaxed);
+  });
   // The earliest vertex j < i within tolerance (among representatives only
-  // if `representatives_only`): each slot's first such one, its vertices
-  // being ascending.
+  // if `representatives_only`), over the whole of each slot's list.
   auto earliest = [&](uint32_t i, bool representatives_only) {
     uint32_t found = kNone;
     for_cells_near(i, [&](uint64_t key) {
-      const size_t s = hashed(key);
-      for (uint32_t k = slot_start[s]; k < slot_start[s + 1]; ++k) {
-        const uint32_t j = slot_vertices[k];
-        if (j >= std::min(i, found)) break;
-        if ((!representatives_only || representative[j] == j) && near(j, i)) {
-          found = j;
-          break;
-        }
-      }
+      for (uint32_t j = slot_head[hashed(key)].load(std::memory_order_relaxed); j != kNone; j = next[j])
+        if (j < std::min(i, found) && (!representatives_only || representative[j] == j) && near(j, i)) found = j;
     });
     return found;
   };
