@@ -5,6 +5,7 @@
 #include "crestline/error.h"
 #include "crestline/numerics/parallel.h"
 #include "half_edges.h"
+#include "parts.h"
 
 namespace crestline {
 
@@ -18,8 +19,17 @@ void add_vertex_triangles(const std::vector<Triangle>& tris, size_t vertex_count
       },
       topology.vertex_offsets, topology.vertex_triangles);
   topology.boundary_vertex.assign(vertex_count, 0);
-  for (size_t e = 0; e < topology.edges.size(); ++e)
-    if (topology.is_boundary_edge(uint32_t(e)))
+  // The boundary edges (few) found on every thread, each part's listed,
+  // then their ends flagged (12 M instructions at 871k triangles on the
+  // calling thread before).
+  const size_t ne = topology.edges.size(), parts = part_count(ne);
+  std::vector<std::vector<uint32_t>> boundary(parts);
+  for_each_part(parts, ne, [&](size_t p, size_t begin, size_t end) {
+    for (size_t e = begin; e < end; ++e)
+      if (topology.is_boundary_edge(uint32_t(e))) boundary[p].push_back(uint32_t(e));
+  });
+  for (const std::vector<uint32_t>& edges : boundary)
+    for (uint32_t e : edges)
       topology.boundary_vertex[topology.edges[e][0]] = topology.boundary_vertex[topology.edges[e][1]] = 1;
 }
 
