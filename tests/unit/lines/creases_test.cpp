@@ -199,7 +199,8 @@ TEST_CASE("under noise the filtered normals keep a cube's creases, one line each
   CHECK(automatic_crease_angle(raw.angles) > 90);
 }
 
-TEST_CASE("the crease angles, supports and medians are the same on 1, 2 and 3 threads", "[creases][threads]") {
+TEST_CASE("the crease angles, supports, medians and selection are the same on 1, 2 and 3 threads",
+          "[creases][threads]") {
   // 6 × 2 × 40² triangles: the edge loop splits over the threads. Raw normals
   // with a 1-ring support, filtered ones with the wider rings, and a very
   // noisy cube whose supports are suppressed off their local maxima.
@@ -226,6 +227,13 @@ TEST_CASE("the crease angles, supports and medians are the same on 1, 2 and 3 th
       CHECK(many.median == one.median);
       CHECK(many.median_edge_length == one.median_edge_length);
       CHECK(many.noise_level == one.noise_level);
+      // The selection's first pass over the edges splits over the threads too.
+      const auto select = [&](int n) {
+        return testing::on_threads(n, [&] { return select_creases(noisy, topology, one, {}, h); });
+      };
+      const CreaseResult selected = select(1), selected_many = select(threads);
+      CHECK(selected_many.edges == selected.edges);
+      CHECK(selected_many.lines.size() == selected.lines.size());
     }
   }
 }
