@@ -223,7 +223,12 @@ function received(session, result) {
   const reframe = () => state.shown === shown && !shown.cameraMoved && !viewer.framingUncovered() && viewer.fitView();
   if (firstLines && !shown.cameraMoved) viewer.afterFrame(reframe);
   // After the page's first lines (the sample's), the first frames of a large mesh are prepared, once.
-  if (!cacheWarmedUp) viewer.afterFrame(() => (cacheWarmedUp = true) && viewer.warmUpCache());
+  if (!cacheWarmedUp) {
+    viewer.afterFrame(() => {
+      cacheWarmedUp = true;
+      viewer.warmUpCache();
+    });
+  }
   if (!session.busy) applyView();
   release(shown);
 }
