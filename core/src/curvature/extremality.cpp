@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "../mesh/parts.h"
 #include "crestline/mesh/cotan.h"
 #include "crestline/numerics/parallel.h"
 
@@ -67,7 +68,7 @@ Extremality compute_extremality(const Mesh& mesh, const Curvature& curvature,
               const Triangle& f = mesh.triangles[t];
               const size_t i = 3 * (t - begin);
               for (int k = 0; k < 3; ++k) {
-                if (parts > 1 && (f[k] >> 6) % parts != part) continue;
+                if (!detail::in_vertex_part(f[k], part, parts)) continue;
                 e_max[f[k]] += term_max[i + k];
                 e_min[f[k]] += term_min[i + k];
               }

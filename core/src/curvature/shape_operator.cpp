@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 
+#include "../mesh/parts.h"
 #include "crestline/mesh/cotan.h"
 #include "crestline/numerics/parallel.h"
 #include "crestline/numerics/symmetric_eigen3.h"
@@ -105,7 +106,7 @@ Curvature compute_curvature(const Mesh& mesh, const Topology& topology, const st
               if (!term.used) continue;
               for (int end_k = 0; end_k < 2; ++end_k) {
                 const uint32_t v = topology.edges[e][end_k];
-                if (parts > 1 && (v >> 6) % parts != part) continue;
+                if (!detail::in_vertex_part(v, part, parts)) continue;
                 // The products first, in locals, then the sums: the same
                 // operations, which the compiler can pair up in vector
                 // registers once the stores cannot alias the terms.

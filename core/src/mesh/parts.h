@@ -20,6 +20,13 @@ inline size_t part_count(size_t count) {
   return count < (size_t{1} << 15) ? 1 : std::min<size_t>(size_t(max_threads()), 8);
 }
 
+/// Whether vertex v's sums are `part`'s when a scatter of per-triangle or
+/// per-edge terms onto vertices is split over `parts` threads by vertex: runs
+/// of 64 vertices (whole cache lines of their sums) dealt out in turn, each
+/// part going through the terms in order, so every vertex's additions happen
+/// on one thread in the same order for any number of parts.
+inline bool in_vertex_part(uint32_t v, size_t part, size_t parts) { return parts == 1 || (v >> 6) % parts == part; }
+
 /// Calls body(part, begin, end) for `parts` consecutive ranges covering [0, count), on as many threads.
 template <typename Body>
 void for_each_part(size_t parts, size_t count, const Body& body) {
