@@ -1143,22 +1143,27 @@ CreaseAngles measure_crease_angles(const Mesh& mesh, const Topology& topology, c
   // The median angle and the same edges' median length (the spur rule's
   // scale), each on a thread of its own if there are two: 2 × 15 M
   // instructions on the dragon, all on the calling thread before.
+  // value(e) over every fourth edge that is not a boundary edge.
+  const auto sampled = [&](const auto& value) {
+    std::vector<double> sample;
+    sample.reserve(ne / 4 + 1);
+    for (size_t e = 0; e < ne; e += 4)
+      if (!topology.is_boundary_edge(static_cast<uint32_t>(e))) sample.push_back(value(e));
+    return sample;
+  };
   parallel_for(
       2,
       [&](size_t begin, size_t end) {
         for (size_t task = begin; task < end; ++task) {
-          std::vector<double> sample;
-          sample.reserve(ne / 4 + 1);
-          for (size_t e = 0; e < ne; e += 4)
-            if (!topology.is_boundary_edge(static_cast<uint32_t>(e)))
-              sample.push_back(
-                  task == 0 ? quarter[e / 4]
-                            : (mesh.positions[topology.edges[e][1]] - mesh.positions[topology.edges[e][0]]).norm());
-          if (sample.empty()) continue;
-          if (task == 0)
-            out.median = portable_acos_of_complement(upper_median(sample)) / kDegree;
-          else
-            out.median_edge_length = upper_median(sample);
+          if (task == 0) {
+            std::vector<double> angles = sampled([&](size_t e) { return quarter[e / 4]; });
+            if (!angles.empty()) out.median = portable_acos_of_complement(upper_median(angles)) / kDegree;
+          } else {
+            std::vector<double> lengths = sampled([&](size_t e) {
+              return (mesh.positions[topology.edges[e][1]] - mesh.positions[topology.edges[e][0]]).norm();
+            });
+            if (!lengths.empty()) out.median_edge_length = upper_median(lengths);
+          }
         }
       },
       1);
