@@ -35,7 +35,7 @@ test('SegmentGeometry: the end points on every vertex, a start cap only where an
     for (let k = 0; k < SEGMENT_VERTICES; k++)
       assert.deepEqual([...ends.subarray(6 * (8 * s + k), 6 * (8 * s + k) + 6)], [...positions.subarray(6 * s, 6 * s + 6)]);
   assert.equal(geometry.getAttribute('instanceShown').count, 3 * SEGMENT_VERTICES);
-  // SegmentGeometry writes SEGMENT_INDEX out as literal stores: they must be the table's, offset by the segment's first vertex.
+  // SegmentGeometry stores SEGMENT_INDEX's quads itself: they must be the table's, offset by the segment's first vertex.
   const triangles = (s, withStart) => SEGMENT_INDEX.slice(0, withStart ? SEGMENT_INDEX.length : JOINED_INDICES).map((k) => s * SEGMENT_VERTICES + k);
   assert.deepEqual([...geometry.index.array], [...triangles(0, true), ...triangles(1, true), ...triangles(2, true)]);
   assert.deepEqual([...geometry.runEnds], [36, 54]);
