@@ -217,7 +217,7 @@ export class Viewer {
     // After a frame already asked for, if any: the last draw of the frame is the usual one.
     requestAnimationFrame(() => {
       this.surface.cullHiddenFaces(this.camera);
-      this.surfaceCache.draw(this.renderer, this.scene, this.camera, [this.lines.group, this.creases.group]);
+      this.drawThroughCache();
       this.draw();
       for (const layer of [this.lines, this.creases]) this.renderer.compile(layer.group, this.camera);
     });
@@ -229,10 +229,15 @@ export class Viewer {
     return (index ? index.count / 3 : 0) >= this.cacheMinTriangles;
   }
 
+  /** The scene through the surface cache, the lines and creases drawn over its picture. */
+  drawThroughCache() {
+    this.surfaceCache.draw(this.renderer, this.scene, this.camera, [this.lines.group, this.creases.group]);
+  }
+
   /** One frame, now: through the surface cache when the surface is large. */
   draw() {
     this.surface.cullHiddenFaces(this.camera);
-    if (this.largeSurface()) this.surfaceCache.draw(this.renderer, this.scene, this.camera, [this.lines.group, this.creases.group]);
+    if (this.largeSurface()) this.drawThroughCache();
     else {
       this.surfaceCache.release();
       this.renderer.render(this.scene, this.camera);
