@@ -32,6 +32,32 @@ Polyline make_line(LineType type, std::vector<Vec3> points, bool closed, double 
   return line;
 }
 
+// `count` lines of 1-12 random points in [-2, 2]³, of every type, some
+// closed, some too short for OBJ, with random strengths and convexity.
+std::vector<Polyline> random_lines(std::mt19937& random, int count) {
+  std::uniform_real_distribution<double> coordinate(-2, 2);
+  std::vector<Polyline> lines;
+  for (int i = 0; i < count; ++i) {
+    std::vector<Vec3> points(size_t(1 + random() % 12));
+    for (Vec3& p : points) p = Vec3(coordinate(random), coordinate(random), coordinate(random));
+    const auto type = static_cast<LineType>(random() % 3);
+    lines.push_back(make_line(type, std::move(points), random() % 4 == 0, coordinate(random)));
+    lines.back().convex = random() % 2 == 0;
+  }
+  return lines;
+}
+
+// `vertices` random points and a triangle at each (with its next and 7th next).
+crestline::Mesh random_surface(std::mt19937& random, uint32_t vertices) {
+  std::uniform_real_distribution<double> coordinate(-2, 2);
+  crestline::Mesh mesh;
+  for (uint32_t v = 0; v < vertices; ++v) {
+    mesh.positions.emplace_back(coordinate(random), coordinate(random), coordinate(random));
+    mesh.triangles.push_back({v, (v + 1) % vertices, (v + 7) % vertices});
+  }
+  return mesh;
+}
+
 // Ridges and valleys interleaved on purpose: writers must group them.
 std::vector<Polyline> sample_lines() {
   return {
@@ -234,20 +260,8 @@ TEST_CASE("large files are formatted in parts on every thread: the same bytes fo
   // 3000 lines of every type (some closed, some too short for OBJ) and a
   // 2000-vertex surface: enough items for every writer loop to run in parts.
   std::mt19937 random(5);
-  std::uniform_real_distribution<double> coordinate(-2, 2);
-  std::vector<Polyline> lines;
-  for (int i = 0; i < 3000; ++i) {
-    std::vector<Vec3> points(size_t(1 + random() % 12));
-    for (Vec3& p : points) p = Vec3(coordinate(random), coordinate(random), coordinate(random));
-    const auto type = static_cast<LineType>(random() % 3);
-    lines.push_back(make_line(type, std::move(points), random() % 4 == 0, coordinate(random)));
-    lines.back().convex = random() % 2 == 0;
-  }
-  crestline::Mesh mesh;
-  for (uint32_t v = 0; v < 2000; ++v) {
-    mesh.positions.emplace_back(coordinate(random), coordinate(random), coordinate(random));
-    mesh.triangles.push_back({v, (v + 1) % 2000, (v + 7) % 2000});
-  }
+  const std::vector<Polyline> lines = random_lines(random, 3000);
+  const crestline::Mesh mesh = random_surface(random, 2000);
   const int before = crestline::max_threads();
   std::vector<std::string> json, obj, with_mesh;
   for (int threads : {1, 2, 3}) {
@@ -398,18 +412,8 @@ TEST_CASE("streamed text is the same bytes as the writers' strings, in pieces of
   // 40,000 lines of 1-12 points (≈ 260 k points, ≈ 15 MB of JSON) and a
   // 100,000-vertex surface: several batches and pieces in every writer.
   std::mt19937 random(7);
-  std::uniform_real_distribution<double> coordinate(-2, 2);
-  std::vector<Polyline> lines;
-  for (int i = 0; i < 40000; ++i) {
-    std::vector<Vec3> points(size_t(1 + random() % 12));
-    for (Vec3& p : points) p = Vec3(coordinate(random), coordinate(random), coordinate(random));
-    lines.push_back(make_line(static_cast<LineType>(random() % 3), std::move(points), random() % 4 == 0, 1.5));
-  }
-  crestline::Mesh mesh;
-  for (uint32_t v = 0; v < 100000; ++v) {
-    mesh.positions.emplace_back(coordinate(random), coordinate(random), coordinate(random));
-    mesh.triangles.push_back({v, (v + 1) % 100000, (v + 7) % 100000});
-  }
+  const std::vector<Polyline> lines = random_lines(random, 40000);
+  const crestline::Mesh mesh = random_surface(random, 100000);
   crestline::PipelineStats stats;
   stats.ridges = 3, stats.threshold = 0.25;
   const int before = crestline::max_threads();
