@@ -1,5 +1,6 @@
-// The worker's warm-up of the glTF reader (web/src/worker/warm-up.js): the
-// generated GLB is a closed torus the C++ reader reads exactly; the handler
+// The worker's warm-up of the glTF reader and the pipeline
+// (web/src/worker/warm-up.js): the generated GLB is a closed torus the C++
+// reader reads exactly, and the whole pipeline runs on it; the handler
 // runs it once, only after a result and only when no message waits, posts
 // nothing, and leaves every session's mesh and lines as they were.
 import assert from 'node:assert/strict';
@@ -7,7 +8,7 @@ import { test } from 'node:test';
 import { setFlagsFromString } from 'node:v8';
 import { loadCrestline } from '../../wasm/node.mjs';
 import { createHandler } from '../../web/src/worker/handler.js';
-import { WARM_UP_RINGS, WARM_UP_SEGMENTS, torusGlb, warmUpReader } from '../../web/src/worker/warm-up.js';
+import { WARM_UP_RINGS, WARM_UP_SEGMENTS, torusGlb, warmUpEngine } from '../../web/src/worker/warm-up.js';
 import { sineHeightField } from './helpers.mjs';
 
 // This file ends while V8 still compiles optimised code in the background, and
@@ -42,7 +43,48 @@ test('the warm-up GLB: a closed torus of rings × segments quads, read as such b
   } finally {
     session.delete();
   }
-  assert.equal(warmUpReader(module), 2 * WARM_UP_RINGS * WARM_UP_SEGMENTS, 'warmUpReader reads the full-size torus');
+  assert.equal(warmUpEngine(module), 2 * WARM_UP_RINGS * WARM_UP_SEGMENTS, 'warmUpEngine reads the full-size torus');
+});
+
+test('warmUpEngine reads the torus and runs the whole pipeline on it, in a session of its own that it deletes', async () => {
+  const module = await modulePromise;
+  const calls = [];
+  // The real Session, each method call recorded with its result.
+  const spy = {
+    Session: function Session() {
+      const session = new module.Session();
+      return new Proxy(session, {
+        get: (target, key) =>
+          typeof target[key] !== 'function'
+            ? target[key]
+            : (...args) => {
+                const result = target[key](...args);
+                calls.push({ method: key, result });
+                return result;
+              },
+      });
+    },
+  };
+  assert.equal(warmUpEngine(spy), 2 * WARM_UP_RINGS * WARM_UP_SEGMENTS);
+  assert.deepEqual(
+    calls.map((c) => c.method),
+    ['loadFile', 'run', 'delete'],
+  );
+  const { ran, stats } = calls[1].result;
+  assert.deepEqual(ran, [
+    'presmooth',
+    'curvature',
+    'extremality',
+    'regularity',
+    'smoothing',
+    'tracing',
+    'singular',
+    'polylines',
+    'fairing',
+    'filter',
+    'creases',
+  ]);
+  assert.equal(stats.triangles, 2 * WARM_UP_RINGS * WARM_UP_SEGMENTS);
 });
 
 /**
@@ -58,7 +100,7 @@ function harness({ warmUp = true } = {}) {
   const handler = createHandler({
     startModule: () => modulePromise,
     post: (m) => messages.push(m),
-    warmUp: (module) => warmUps.push({ triangles: warmUpReader(module), after: messages.length }),
+    warmUp: (module) => warmUps.push({ triangles: warmUpEngine(module), after: messages.length }),
     schedule: (task) => tasks.push(task),
   });
   const send = (message) => (queue = handler.handle(message));

@@ -8,7 +8,7 @@
 import { Engine, EngineError } from './engine.js';
 import { fetchFiles } from './fetch-files.js';
 import { SurfaceIndex } from './surface-index.js';
-import { warmUpReader } from './warm-up.js';
+import { warmUpEngine } from './warm-up.js';
 
 /**
  * @typedef {import('./protocol.js').Request} Request
@@ -24,10 +24,10 @@ import { warmUpReader } from './warm-up.js';
  *   npm Draco and meshopt decoders, started when a compressed glTF first
  *   arrives (without them such a file gets the readers' sentence); warmUp:
  *   what init's `warmUp` runs once, when the worker is first idle after a
- *   result (warm-up.js: the glTF reader's first read); schedule: runs a task
+ *   result (warm-up.js: a small GLB read and its lines); schedule: runs a task
  *   after the messages already waiting (a macrotask: setTimeout)
  */
-export function createHandler({ startModule, post, startDecoders, warmUp = warmUpReader, schedule = (task) => setTimeout(task, 0) }) {
+export function createHandler({ startModule, post, startDecoders, warmUp = warmUpEngine, schedule = (task) => setTimeout(task, 0) }) {
   /** @type {Promise<CrestlineModule> | null} */
   let starting = null;
   /** @type {Map<number, Engine>} */
@@ -105,8 +105,8 @@ export function createHandler({ startModule, post, startDecoders, warmUp = warmU
    * Once a result is out (the page's sample: its lines are never delayed)
    * and nothing waits, the warm-up runs, once. A message that arrives before
    * its task goes first; the warm-up then waits for the queue to be empty
-   * again. It posts nothing and touches no session: a cancel finds the
-   * worker idle or in one short read (≈ 15 ms).
+   * again. It posts nothing and touches no session: a message that comes
+   * during it waits at most for its one short read and run (≈ 0.1-0.2 s).
    */
   function warmUpWhenIdle() {
     if (warmUpState !== 'wanted' || !resultPosted || waiting > 0) return;
@@ -120,7 +120,7 @@ export function createHandler({ startModule, post, startDecoders, warmUp = warmU
       queue = queue
         .then(theModule)
         .then(warmUp)
-        .catch((error) => console.warn(`Crestline: the reader's warm-up failed (${error?.message ?? error}).`));
+        .catch((error) => console.warn(`Crestline: the worker's warm-up failed (${error?.message ?? error}).`));
     });
   }
 

@@ -37,8 +37,9 @@
  *   [0]; the pipeline stops at its next progress report. preload (default
  *   true): start the WASM module now; false for a worker that may never need
  *   it (the brush's surface indices). warmUp (default false): once idle after
- *   its first result, the worker reads a small generated GLB by itself
- *   (warm-up.js) so that a first dropped glTF runs in optimised code
+ *   its first result, the worker reads a small generated GLB by itself and
+ *   runs the pipeline on it (warm-up.js) so that a first dropped glTF and
+ *   its lines run in optimised code
  * @typedef {{type: 'open', id: number, job: number, files?: NamedBytes[], url?: string,
  *            options: PipelineOptions}} OpenMessage
  *   read files (or fetch `url` and a .gltf's buffers) with the C++ readers, then run

@@ -21,7 +21,7 @@ import pthreadWorkerUrl from '../../../wasm/dist/crestline-mt.worker.js?url';
 import { canShareMemory, createModule, startThreadedModule } from './engine.js';
 import { createHandler } from './handler.js';
 import { transferables } from './protocol.js';
-import { warmUpReader } from './warm-up.js';
+import { warmUpEngine } from './warm-up.js';
 
 const absolute = (/** @type {string} */ url) => new URL(url, import.meta.url).href;
 
@@ -43,6 +43,6 @@ const handler = createHandler({
     return { draco, meshopt: MeshoptDecoder };
   },
   // What the warm-up read and when it ended (ms since the epoch), for the browser tests and bench/browser.mjs.
-  warmUp: (module) => Object.assign(self, { crestlineWarmedUp: { triangles: warmUpReader(module), at: performance.timeOrigin + performance.now() } }),
+  warmUp: (module) => Object.assign(self, { crestlineWarmedUp: { triangles: warmUpEngine(module), at: performance.timeOrigin + performance.now() } }),
 });
 self.onmessage = ({ data }) => handler.handle(data);
