@@ -228,6 +228,16 @@ class EdgeRecorder {
     for (const uint64_t* h = first; h < last; ++h) triangle_edges_[H::triangle(*h)][H::side(*h)] = e;
     return e;
   }
+  /// The same for an edge of two half-edges, sides sa of triangle ta and sb
+  /// of tb (ta < tb), which the caller has already taken from the entries.
+  uint32_t operator()(uint32_t near, uint32_t far, uint32_t ta, uint32_t sa, uint32_t tb, uint32_t sb) const {
+    const uint32_t e = next_edge_[near]++;
+    edges_[e] = {near, far};
+    edge_triangles_[e] = {ta, tb};
+    triangle_edges_[ta][sa] = e;
+    triangle_edges_[tb][sb] = e;
+    return e;
+  }
 
  private:
   uint32_t* next_edge_;

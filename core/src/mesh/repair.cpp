@@ -250,27 +250,35 @@ EdgePairs pair_half_edges(const std::vector<Triangle>& tris, size_t vertex_count
   uint32_t* partner = out.partner.data();
   uint8_t *same = out.same.data(), *cut = out.cut.data();
   const detail::EdgeRecorder record(first_edge, topology);
-  auto from = [triangles](uint64_t h) { return triangles[H::triangle(h)][H::side(h)]; };
-  auto opposite = [triangles](uint64_t h) { return triangles[H::triangle(h)][H::side(h) == 0 ? 2 : H::side(h) - 1]; };
+  auto before = [](uint32_t side) { return side == 0 ? 2 : side - 1; };  // the side (corner) before `side`
+  auto opposite = [triangles, before](uint64_t h) { return triangles[H::triangle(h)][before(H::side(h))]; };
   std::atomic<size_t> nonmanifold{0}, single{0};
   std::atomic<bool> duplicates{false};
   detail::for_bucket_ranges(order.start, [&](size_t begin, size_t end) {
     size_t count = 0, singles = 0;
     bool repeated = false;
     order.for_each_edge(begin, end,
-                        [&count, &singles, &repeated, record, from, opposite, partner, same, cut](
+                        [&count, &singles, &repeated, record, triangles, before, opposite, partner, same, cut](
                             uint32_t near, uint32_t far, const uint64_t* first, const uint64_t* last) {
+                          if (last - first == 2) {
+                            // Nearly every edge: each half-edge's triangle,
+                            // side and corner taken from its entry once.
+                            const uint32_t ta = H::triangle(first[0]), sa = H::side(first[0]);
+                            const uint32_t tb = H::triangle(first[1]), sb = H::side(first[1]);
+                            const uint32_t a = 3 * ta + sa, b = 3 * tb + sb;
+                            record(near, far, ta, sa, tb, sb);
+                            partner[a] = b, partner[b] = a;
+                            const Triangle &fa = triangles[ta], &fb = triangles[tb];
+                            same[a] = same[b] = fa[sa] == fb[sb];
+                            cut[a] = cut[b] = 0;
+                            repeated |= fa[before(sa)] == fb[before(sb)];
+                            return;
+                          }
                           record(near, far, first, std::min(last, first + 2));
                           if (last - first == 1) {
                             ++singles;
                             const uint32_t a = H::corner(first[0]);
                             partner[a] = kNone, same[a] = 0, cut[a] = 0;
-                          } else if (last - first == 2) {
-                            const uint32_t a = H::corner(first[0]), b = H::corner(first[1]);
-                            partner[a] = b, partner[b] = a;
-                            same[a] = same[b] = from(first[0]) == from(first[1]);
-                            cut[a] = cut[b] = 0;
-                            repeated |= opposite(first[0]) == opposite(first[1]);
                           } else {
                             ++count;
                             for (const uint64_t* h = first; h < last; ++h) {
