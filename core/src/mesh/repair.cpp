@@ -456,14 +456,22 @@ Orientation orient(std::vector<Triangle>& tris, const std::vector<Vec3>& points,
   std::vector<uint8_t> open;
   // Component c from its seed, over the triangles not yet visited (kNone);
   // counts it in size, nflip and open if `tally`.
-  auto traverse = [&](uint32_t c, bool tally) {
-    stack.assign(1, seeds[c]);
+  // The arrays by value and the stack as a raw array: the byte stores below
+  // may alias anything reached through a reference, so each access reloaded
+  // its pointer (and each push the vector's own) from memory otherwise.
+  auto traverse = [&, partner, cut, same, flip, component](uint32_t c, bool tally) {
+    uint32_t* base = stack.data();
+    size_t top = 0, capacity = stack.size();
+    auto push = [&](uint32_t t) {
+      if (top == capacity) stack.resize(capacity = 2 * capacity + 64), base = stack.data();
+      base[top++] = t;
+    };
+    push(seeds[c]);
     component[seeds[c]] = c;
     uint32_t triangles = 0, flips = 0;
     uint8_t opening = 0;
-    while (!stack.empty()) {
-      const uint32_t t = stack.back();
-      stack.pop_back();
+    while (top > 0) {
+      const uint32_t t = base[--top];
       ++triangles, flips += flip[t];
       for (uint32_t corner = 3 * t; corner < 3 * t + 3; ++corner) {
         const uint32_t other = partner[corner];
@@ -476,7 +484,7 @@ Orientation orient(std::vector<Triangle>& tris, const std::vector<Vec3>& points,
         if (component[u] == kNone) {
           flip[u] = disagree;
           component[u] = c;
-          stack.push_back(u);
+          push(u);
         } else if (disagree != flip[u]) {
           cut[corner] = cut[other] = 1;  // non-orientable here
           partner[corner] = partner[other] = kNone;
