@@ -225,9 +225,11 @@ std::vector<double> surface_noise_levels(const Mesh& mesh, const Topology& topol
       Vec3 normal = Vec3::Zero(), neighbour_sum = Vec3::Zero();
       for (uint32_t i = topology.vertex_offsets[v]; i < topology.vertex_offsets[v + 1]; ++i)
         normal += face_normal[topology.vertex_triangles[i]];
-      if (!(normal.norm() > 0)) continue;
+      // normalized()'s own norm, taken once (its division by the same root).
+      const double length = normal.norm();
+      if (!(length > 0)) continue;
       for (uint32_t i = first; i < last; ++i) neighbour_sum += x[neighbours[i]];
-      offset[v] = normal.normalized().dot(x[v] - neighbour_sum / (last - first));
+      offset[v] = (normal / length).dot(x[v] - neighbour_sum / (last - first));
       valid[v] = 1;
     }
   });
