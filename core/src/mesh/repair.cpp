@@ -846,17 +846,36 @@ RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options)
   orientation.partner = {};
 
   // Compact: keep used vertices in input order (copies last), on every thread.
-  UninitialisedVector<uint32_t> index(points.size());
-  const size_t used = detail::place_kept(
-      points.size(), [&](size_t v) { return v >= nv || triangles_at[v] > 0; },
-      [&](size_t n) { result.mesh.positions.resize(n); },
-      [&](size_t v, size_t rank) { index[v] = uint32_t(rank), result.mesh.positions[rank] = points[v]; });
-  report.unreferenced_vertices = nv - report.welded_vertices - (used - (points.size() - nv));
-  result.mesh.triangles = std::move(tris);
-  parallel_for(result.mesh.triangles.size(), [&](size_t begin, size_t end) {
-    for (size_t t = begin; t < end; ++t)
-      for (uint32_t& v : result.mesh.triangles[t]) v = index[v];
+  // Where every vertex is used (no weld and none unreferenced: a clean mesh)
+  // the numbering stays, so the points move and nothing is renumbered (at
+  // 1.1M triangles 46 M instructions and a 13 MB copy fewer).
+  std::atomic<bool> any_unused{false};
+  parallel_for(nv, [&](size_t begin, size_t end) {
+    for (size_t v = begin; v < end; ++v)
+      if (triangles_at[v] == 0) {
+        any_unused = true;
+        return;
+      }
   });
+  const size_t point_count = points.size();  // the input's and the copies
+  UninitialisedVector<uint32_t> index;
+  size_t used = point_count;
+  if (any_unused) {
+    index.resize(point_count);
+    used = detail::place_kept(
+        point_count, [&](size_t v) { return v >= nv || triangles_at[v] > 0; },
+        [&](size_t n) { result.mesh.positions.resize(n); },
+        [&](size_t v, size_t rank) { index[v] = uint32_t(rank), result.mesh.positions[rank] = points[v]; });
+  } else {
+    result.mesh.positions = std::move(points);
+  }
+  report.unreferenced_vertices = nv - report.welded_vertices - (used - (point_count - nv));
+  result.mesh.triangles = std::move(tris);
+  if (any_unused)
+    parallel_for(result.mesh.triangles.size(), [&](size_t begin, size_t end) {
+      for (size_t t = begin; t < end; ++t)
+        for (uint32_t& v : result.mesh.triangles[t]) v = index[v];
+    });
 
   report.boundary_edges = count_boundary_edges(result.mesh.triangles, orientation);
   // The recorded edges are the repaired mesh's unless an edge had more than
@@ -865,10 +884,11 @@ RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options)
   // triangles added. At 1.1M triangles (2205fb1, callgrind, 1 thread) the
   // Pipeline's build_topology took 0.44 G instructions; this 0.17 G more here.
   if (report.nonmanifold_edges == 0 && !split) {
-    parallel_for(topology.edges.size(), [&](size_t begin, size_t end) {
-      for (size_t e = begin; e < end; ++e)
-        for (uint32_t& v : topology.edges[e]) v = index[v];
-    });
+    if (any_unused)
+      parallel_for(topology.edges.size(), [&](size_t begin, size_t end) {
+        for (size_t e = begin; e < end; ++e)
+          for (uint32_t& v : topology.edges[e]) v = index[v];
+      });
     detail::add_vertex_triangles(result.mesh.triangles, used, topology);
   } else {
     topology = build_topology(result.mesh);
