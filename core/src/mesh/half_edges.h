@@ -248,7 +248,9 @@ class EdgeRecorder {
 
 /// The rest of build_topology once the edges are recorded: the triangles
 /// around each vertex and the boundary vertices. Shared with repair_mesh,
-/// which records the edges while it pairs the half-edges.
-void add_vertex_triangles(const std::vector<Triangle>& tris, size_t vertex_count, Topology& topology);
+/// which records the edges while it pairs the half-edges and passes the
+/// boundary edges it met there (in any order; found here otherwise).
+void add_vertex_triangles(const std::vector<Triangle>& tris, size_t vertex_count, Topology& topology,
+                          const std::vector<uint32_t>* boundary_edges = nullptr);
 
 }  // namespace crestline::detail

@@ -227,6 +227,7 @@ struct EdgePairs {
   UninitialisedVector<uint8_t> cut;       // 3 per triangle, edge k = corners k, k+1
   size_t nonmanifold = 0;                 // edges of more than two triangles
   size_t single = 0;                      // edges of one triangle
+  std::vector<uint32_t> single_edges;     // their numbers in the recorded topology, in any order
   bool duplicates = false;                // two triangles have the same three vertices
 };
 
@@ -253,13 +254,15 @@ EdgePairs pair_half_edges(const std::vector<Triangle>& tris, size_t vertex_count
   auto before = [](uint32_t side) { return side == 0 ? 2 : side - 1; };  // the side (corner) before `side`
   auto opposite = [triangles, before](uint64_t h) { return triangles[H::triangle(h)][before(H::side(h))]; };
   std::atomic<size_t> nonmanifold{0}, single{0};
+  std::mutex single_edges_mutex;
   std::atomic<bool> duplicates{false};
   detail::for_bucket_ranges(order.start, [&](size_t begin, size_t end) {
     size_t count = 0, singles = 0;
+    std::vector<uint32_t> single_edges;
     bool repeated = false;
     order.for_each_edge(begin, end,
-                        [&count, &singles, &repeated, record, triangles, before, opposite, partner, same, cut](
-                            uint32_t near, uint32_t far, const uint64_t* first, const uint64_t* last) {
+                        [&count, &singles, &single_edges, &repeated, record, triangles, before, opposite, partner, same,
+                         cut](uint32_t near, uint32_t far, const uint64_t* first, const uint64_t* last) {
                           if (last - first == 2) {
                             // Nearly every edge: each half-edge's triangle,
                             // side and corner taken from its entry once.
@@ -274,9 +277,10 @@ EdgePairs pair_half_edges(const std::vector<Triangle>& tris, size_t vertex_count
                             repeated |= fa[before(sa)] == fb[before(sb)];
                             return;
                           }
-                          record(near, far, first, std::min(last, first + 2));
+                          const uint32_t e = record(near, far, first, std::min(last, first + 2));
                           if (last - first == 1) {
                             ++singles;
+                            single_edges.push_back(e);
                             const uint32_t a = H::corner(first[0]);
                             partner[a] = kNone, same[a] = 0, cut[a] = 0;
                           } else {
@@ -290,6 +294,10 @@ EdgePairs pair_half_edges(const std::vector<Triangle>& tris, size_t vertex_count
                         });
     nonmanifold += count;
     single += singles;
+    if (!single_edges.empty()) {
+      const std::lock_guard<std::mutex> lock(single_edges_mutex);
+      out.single_edges.insert(out.single_edges.end(), single_edges.begin(), single_edges.end());
+    }
     if (repeated) duplicates = true;
   });
   out.nonmanifold = nonmanifold;
@@ -828,6 +836,8 @@ RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options)
     drop_duplicates(tris, points.size(), report);
     pairs = pair_half_edges(tris, points.size(), topology);
   }
+  // The boundary edges of the recorded topology, where it stays the repaired mesh's (below).
+  const std::vector<uint32_t> boundary_edges = std::move(pairs.single_edges);
   Orientation orientation = orient(tris, points, std::move(pairs), topology, report);
   report.components = orientation.components;
   // Triangles at each vertex: split_fans finds vertices of several fans by
@@ -889,7 +899,7 @@ RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options)
         for (size_t e = begin; e < end; ++e)
           for (uint32_t& v : topology.edges[e]) v = index[v];
       });
-    detail::add_vertex_triangles(result.mesh.triangles, used, topology);
+    detail::add_vertex_triangles(result.mesh.triangles, used, topology, &boundary_edges);
   } else {
     topology = build_topology(result.mesh);
   }

@@ -11,7 +11,8 @@ namespace crestline {
 
 namespace detail {
 
-void add_vertex_triangles(const std::vector<Triangle>& tris, size_t vertex_count, Topology& topology) {
+void add_vertex_triangles(const std::vector<Triangle>& tris, size_t vertex_count, Topology& topology,
+                          const std::vector<uint32_t>* boundary_edges) {
   group_by_bucket(
       tris.size(), vertex_count,
       [&](size_t t, const auto& emit) {
@@ -19,6 +20,14 @@ void add_vertex_triangles(const std::vector<Triangle>& tris, size_t vertex_count
       },
       topology.vertex_offsets, topology.vertex_triangles);
   topology.boundary_vertex.assign(vertex_count, 0);
+  auto flag_ends = [&](const std::vector<uint32_t>& edges) {
+    for (uint32_t e : edges)
+      topology.boundary_vertex[topology.edges[e][0]] = topology.boundary_vertex[topology.edges[e][1]] = 1;
+  };
+  if (boundary_edges) {
+    flag_ends(*boundary_edges);
+    return;
+  }
   // The boundary edges (few) found on every thread, each part's listed,
   // then their ends flagged (12 M instructions at 871k triangles on the
   // calling thread before).
@@ -28,9 +37,7 @@ void add_vertex_triangles(const std::vector<Triangle>& tris, size_t vertex_count
     for (size_t e = begin; e < end; ++e)
       if (topology.is_boundary_edge(uint32_t(e))) boundary[p].push_back(uint32_t(e));
   });
-  for (const std::vector<uint32_t>& edges : boundary)
-    for (uint32_t e : edges)
-      topology.boundary_vertex[topology.edges[e][0]] = topology.boundary_vertex[topology.edges[e][1]] = 1;
+  for (const std::vector<uint32_t>& edges : boundary) flag_ends(edges);
 }
 
 }  // namespace detail
