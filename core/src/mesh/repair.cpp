@@ -128,19 +128,15 @@ std::vector<uint32_t> weld(const std::vector<Vec3>& points, const std::vector<ui
   while ((size_t{1} << bits) < 2 * points.size()) ++bits;
   const size_t mask = (size_t{1} << bits) - 1;
   auto hashed = [&](uint64_t key) { return static_cast<size_t>((key * 0x9E3779B97F4A7C15ull) >> (64 - bits)); };
-  // Calls visit(key) for the cells within reach of vertex i.
-  auto for_cells_near = [&](uint32_t i, const auto& visit) {
-    const Vec3 q = scaled(points[i]);
+  // Calls visit(key) for the cells within reach of a vertex at q (scaled).
+  auto for_cells_near = [&](const Vec3& q, const auto& visit) {
     const int64_t x0 = cell(q.x() - kReach), x1 = cell(q.x() + kReach), y0 = cell(q.y() - kReach),
                   y1 = cell(q.y() + kReach), z0 = cell(q.z() - kReach), z1 = cell(q.z() + kReach);
     for (int64_t x = x0; x <= x1; ++x)
       for (int64_t y = y0; y <= y1; ++y)
         for (int64_t z = z0; z <= z1; ++z) visit(cell_key(x, y, z));
   };
-  auto key_of = [&](uint32_t i) {
-    const Vec3 q = scaled(points[i]);
-    return cell_key(cell(q.x()), cell(q.y()), cell(q.z()));
-  };
+  auto key_at = [&](const Vec3& q) { return cell_key(cell(q.x()), cell(q.y()), cell(q.z())); };
   const double tol2 = tolerance * tolerance;
   auto near = [&](uint32_t j, uint32_t i) { return (points[j] - points[i]).squaredNorm() <= tol2; };
   if (one_thread) {
@@ -160,7 +156,8 @@ std::vector<uint32_t> weld(const std::vector<Vec3>& points, const std::vector<ui
     for (uint32_t i = 0; i < points.size(); ++i) {
       if (!weldable[i]) continue;
       uint32_t found = kNone;
-      for_cells_near(i, [&](uint64_t key) {
+      const Vec3 q = scaled(points[i]);  // once for the search and the insertion
+      for_cells_near(q, [&](uint64_t key) {
         for (uint32_t j = head[slot(key)]; j != kNone; j = next[j])
           if (j < found && near(j, i)) found = j;
       });
@@ -168,7 +165,7 @@ std::vector<uint32_t> weld(const std::vector<Vec3>& points, const std::vector<ui
         representative[i] = found, ++welded;
       } else {
         // Lists in descending index order (each vertex is pushed at its head).
-        const uint64_t key = key_of(i);
+        const uint64_t key = key_at(q);
         const size_t s = slot(key);
         keys[s] = key;
         next[i] = head[s];
@@ -188,13 +185,13 @@ std::vector<uint32_t> weld(const std::vector<Vec3>& points, const std::vector<ui
   parallel_for(points.size(), [&](size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i)
       if (weldable[i])
-        next[i] = slot_head[hashed(key_of(uint32_t(i)))].exchange(uint32_t(i), std::memory_order_relaxed);
+        next[i] = slot_head[hashed(key_at(scaled(points[i])))].exchange(uint32_t(i), std::memory_order_relaxed);
   });
   // The earliest vertex j < i within tolerance (among representatives only
   // if `representatives_only`), over the whole of each slot's list.
   auto earliest = [&](uint32_t i, bool representatives_only) {
     uint32_t found = kNone;
-    for_cells_near(i, [&](uint64_t key) {
+    for_cells_near(scaled(points[i]), [&](uint64_t key) {
       for (uint32_t j = slot_head[hashed(key)].load(std::memory_order_relaxed); j != kNone; j = next[j])
         if (j < std::min(i, found) && (!representatives_only || representative[j] == j) && near(j, i)) found = j;
     });
