@@ -1,13 +1,14 @@
 // The coarse level of the paired solver's two-level preconditioner
 // (numerics/paired_cg.h): aggregates of the rows that the Gauss–Seidel
 // sweeps smooth slowly, and the operators Q = L P and Ac = Pᵀ Â P the solve
-// uses. All of it serial and in a fixed order: the same for any number of
-// threads.
+// uses. In a fixed order, serial but for Q's rows, which each thread
+// computes alone: the same for any number of threads.
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "crestline/numerics/paired_cg.h"
+#include "crestline/numerics/parallel.h"
 
 namespace crestline {
 namespace {
@@ -20,6 +21,57 @@ constexpr uint32_t kNone = std::numeric_limits<uint32_t>::max();
 // changes sign (x_j = σ x_i where the entry is −σ w).
 uint32_t sign_change(const SignedPairMatrix& a, uint32_t e) {
   return (a.columns[e] >> 30 & 3) ^ (a.weights[e] > 0 ? 3u : 0u);
+}
+
+// Rows of a sparse matrix made on every thread: fill(r, found, sums,
+// columns, values) appends row r's entries (found and sums: scratch for the
+// row, cleared before each). The rows are made in kBlocks blocks, each into
+// its own arrays, then copied into place (begin: rows + 1 offsets): each
+// row's arithmetic is its own, the same for any number of threads.
+template <typename Value, typename Fill>
+void rows_in_blocks(size_t rows, std::vector<uint32_t>& begin, std::vector<uint32_t>& columns,
+                    std::vector<Value>& values, const Fill& fill) {
+  constexpr size_t kBlocks = 64;
+  std::vector<std::vector<uint32_t>> block_columns(kBlocks);
+  std::vector<std::vector<Value>> block_values(kBlocks);
+  begin.assign(rows + 1, 0);
+  parallel_for(
+      kBlocks,
+      [&](size_t first, size_t last) {
+        std::vector<uint32_t> found;
+        std::vector<double> sums;
+        for (size_t b = first; b < last; ++b)
+          for (size_t r = rows * b / kBlocks; r < rows * (b + 1) / kBlocks; ++r) {
+            const size_t before = block_columns[b].size();
+            found.clear(), sums.clear();
+            fill(r, found, sums, block_columns[b], block_values[b]);
+            begin[r + 1] = static_cast<uint32_t>(block_columns[b].size() - before);
+          }
+      },
+      1);
+  for (size_t r = 0; r < rows; ++r) begin[r + 1] += begin[r];
+  columns.resize(begin[rows]);
+  values.resize(2 * size_t{begin[rows]});
+  parallel_for(
+      kBlocks,
+      [&](size_t first, size_t last) {
+        for (size_t b = first; b < last; ++b) {
+          const size_t at = begin[rows * b / kBlocks];
+          std::copy(block_columns[b].begin(), block_columns[b].end(), columns.begin() + at);
+          std::copy(block_values[b].begin(), block_values[b].end(), values.begin() + 2 * at);
+          std::vector<uint32_t>().swap(block_columns[b]);
+          std::vector<Value>().swap(block_values[b]);
+        }
+      },
+      1);
+}
+
+// The index of c among found, appended (with a pair of zero sums) if new: a
+// row's few distinct neighbours, in the order first reached.
+inline size_t find_or_add(std::vector<uint32_t>& found, std::vector<double>& sums, uint32_t c) {
+  const size_t at = static_cast<size_t>(std::find(found.begin(), found.end(), c) - found.begin());
+  if (at == found.size()) found.push_back(c), sums.push_back(0.0), sums.push_back(0.0);
+  return at;
 }
 
 }  // namespace
@@ -113,40 +165,35 @@ SignedPairSolver::Aggregation SignedPairSolver::build_coarse_matrix(const Signed
   const auto signed_entry = [&](uint32_t i, uint32_t j, uint32_t e, int k) {  // s_i s_j a_ij in field k
     return (a.columns[e] >> 30 ^ flips[i] ^ flips[j]) >> k & 1 ? -a.weights[e] : a.weights[e];
   };
-  std::vector<double> diagonal(2 * size_t{aggregates}, 0.0);
-  std::vector<uint32_t> slot(aggregates, kNone), row_columns;
-  std::vector<double> row_values, off_values;
-  std::vector<uint32_t> off_begin(aggregates + 1, 0), off_columns;
-  for (uint32_t c = 0; c < aggregates; ++c) {
-    row_columns.clear(), row_values.clear();
-    for (uint32_t m = member_begin[c]; m < member_begin[c + 1]; ++m) {
-      const uint32_t i = members[m];
-      double sum[2] = {excess[i], excess[i]};
-      for (uint32_t e = a.offsets[i]; e < a.offsets[i + 1]; ++e) {
-        const uint32_t j = column(e), d = aggregate[j];
-        const double magnitude = std::abs(a.weights[e]);
-        if (d == c) {
-          for (int k = 0; k < 2; ++k) sum[k] += magnitude + signed_entry(i, j, e, k);
-          continue;
-        }
-        sum[0] += magnitude, sum[1] += magnitude;
-        if (d == kNone) continue;
-        if (slot[d] == kNone) {
-          slot[d] = static_cast<uint32_t>(row_columns.size());
-          row_columns.push_back(d), row_values.resize(row_values.size() + 2, 0.0);
-        }
-        for (int k = 0; k < 2; ++k) row_values[2 * size_t{slot[d]} + k] += signed_entry(i, j, e, k);
-      }
-      diagonal[2 * size_t{c}] += sum[0], diagonal[2 * size_t{c} + 1] += sum[1];
-    }
-    for (const uint32_t d : row_columns)
-      if (d < c) {
-        off_columns.push_back(d);
-        off_values.insert(off_values.end(), {row_values[2 * size_t{slot[d]}], row_values[2 * size_t{slot[d]} + 1]});
-      }
-    for (const uint32_t d : row_columns) slot[d] = kNone;
-    off_begin[c + 1] = static_cast<uint32_t>(off_columns.size());
-  }
+  // Each aggregate's row on every thread (rows_in_blocks): its neighbours in
+  // the order its members' entries first reach them, the same sums as by
+  // one thread (before: serial, with a slot per aggregate).
+  std::vector<double> diagonal(2 * size_t{aggregates}, 0.0), off_values;
+  std::vector<uint32_t> off_begin, off_columns;
+  rows_in_blocks(aggregates, off_begin, off_columns, off_values,
+                 [&](size_t c, std::vector<uint32_t>& found, std::vector<double>& sums, std::vector<uint32_t>& columns,
+                     std::vector<double>& values) {
+                   for (uint32_t m = member_begin[c]; m < member_begin[c + 1]; ++m) {
+                     const uint32_t i = members[m];
+                     double sum[2] = {excess[i], excess[i]};
+                     for (uint32_t e = a.offsets[i]; e < a.offsets[i + 1]; ++e) {
+                       const uint32_t j = column(e), d = aggregate[j];
+                       const double magnitude = std::abs(a.weights[e]);
+                       if (d == c) {
+                         for (int k = 0; k < 2; ++k) sum[k] += magnitude + signed_entry(i, j, e, k);
+                         continue;
+                       }
+                       sum[0] += magnitude, sum[1] += magnitude;
+                       if (d == kNone) continue;
+                       const size_t at = find_or_add(found, sums, d);
+                       for (int k = 0; k < 2; ++k) sums[2 * at + k] += signed_entry(i, j, e, k);
+                     }
+                     diagonal[2 * c] += sum[0], diagonal[2 * c + 1] += sum[1];
+                   }
+                   for (size_t at = 0; at < found.size(); ++at)
+                     if (found[at] < c)
+                       columns.push_back(found[at]), values.insert(values.end(), {sums[2 * at], sums[2 * at + 1]});
+                 });
   // An aggregate without excess or neighbours outside it (Ac_cc = 0: a
   // whole component whose diagonals are the sums of their off-diagonal
   // magnitudes, to rounding) would make Ac singular: no coarse level then,
@@ -327,33 +374,26 @@ void SignedPairSolver::build_coarse_transfer(const Aggregation& aggregation) {
     const double s = (aggregation.flips[j] >> k ^ (k == 1 ? handed_[j] : 0)) & 1 ? -roots_[j] : roots_[j];
     return s / aggregation.coarse_root[2 * size_t{fine_aggregate[j]} + k];
   };
-  std::vector<uint32_t> slot(aggregates, kNone), row_columns;
-  std::vector<double> row_values;
-  // Q = L P by fine row, from the float entries the sweeps use.
-  q_begin_.assign(n + 1, 0);
-  for (size_t r = 0; r < n; ++r) {
-    row_columns.clear(), row_values.clear();
-    for (uint32_t e = lower_.begin[r]; e < lower_.begin[r + 1]; ++e) {
-      const uint32_t j = lower_.columns[e], c = fine_aggregate[j];
-      if (c == kNone) continue;
-      if (slot[c] == kNone) {
-        slot[c] = static_cast<uint32_t>(row_columns.size());
-        row_columns.push_back(c), row_values.resize(row_values.size() + 2, 0.0);
-      }
-      // The entry's two values (detail::stored_entry).
-      bool flip;
-      const double value = detail::entry_value(lower_.weights[e], flip);
-      const double a[2] = {value, flip ? -value : value};
-      for (int k = 0; k < 2; ++k) row_values[2 * slot[c] + k] += a[k] * p(j, k);
-    }
-    for (const uint32_t c : row_columns) slot[c] = kNone;
-    q_columns_.insert(q_columns_.end(), row_columns.begin(), row_columns.end());
-    for (const double v : row_values) q_values_.push_back(static_cast<float>(v));
-    q_begin_[r + 1] = static_cast<uint32_t>(q_columns_.size());
-  }
-  // Grown by appending (up to twice their size), kept through the solves.
-  q_columns_.shrink_to_fit();
-  q_values_.shrink_to_fit();
+  // Q = L P by fine row, from the float entries the sweeps use, on every
+  // thread (rows_in_blocks; before: appended to one array on the calling
+  // thread, then copied to its size): a row's aggregates in the order its
+  // entries first reach them.
+  rows_in_blocks(n, q_begin_, q_columns_, q_values_,
+                 [&](size_t r, std::vector<uint32_t>& found, std::vector<double>& sums, std::vector<uint32_t>& columns,
+                     std::vector<float>& values) {
+                   for (uint32_t e = lower_.begin[r]; e < lower_.begin[r + 1]; ++e) {
+                     const uint32_t j = lower_.columns[e], c = fine_aggregate[j];
+                     if (c == kNone) continue;
+                     const size_t at = find_or_add(found, sums, c);
+                     // The entry's two values (detail::stored_entry).
+                     bool flip;
+                     const double value = detail::entry_value(lower_.weights[e], flip);
+                     const double a[2] = {value, flip ? -value : value};
+                     for (int k = 0; k < 2; ++k) sums[2 * at + k] += a[k] * p(j, k);
+                   }
+                   columns.insert(columns.end(), found.begin(), found.end());
+                   for (const double v : sums) values.push_back(static_cast<float>(v));
+                 });
   // Qᵀ by coarse row, fine rows in order.
   qt_begin_.assign(aggregates + 1, 0);
   for (const uint32_t c : q_columns_) ++qt_begin_[c + 1];

@@ -664,6 +664,26 @@ TEST_CASE("the coarse solve splits into whole trees of the factor, the same bits
   }
 }
 
+TEST_CASE("the coarse transfer built on 1 or 2 threads gives the same bits", "[numerics][threads]") {
+  // Q's rows are counted and filled on every thread (paired_cg_coarse.cpp).
+  const SignedPairMatrix a = grid_system(
+      200, [](uint32_t i, uint32_t j) { return i % 12 < 6 && j % 12 < 6 ? 1e-3 : 10.0; }, true);
+  const std::vector<double> b = random_pairs(a.rows(), 83);
+  const int before = max_threads();
+  std::vector<double> x[2];
+  for (const int threads : {1, 2}) {
+    set_max_threads(threads);
+    const SignedPairSolver solver(a);
+    REQUIRE(solver.coarse_rows() > 500);
+    set_max_threads(1);
+    std::vector<double> scratch = b;
+    x[threads - 1].assign(2 * a.rows(), 0.0);
+    REQUIRE(solver.solve(scratch, x[threads - 1], 1e-8, 500));
+  }
+  set_max_threads(before);
+  CHECK(x[0] == x[1]);
+}
+
 TEST_CASE("the two-level solve gives the same bits on 1 and 2 threads where the coarse level has many components",
           "[numerics][threads]") {
   // Islands of 6×6 slow rows (R ≈ 10⁴) 12 rows apart: ≈ 280 coarse
