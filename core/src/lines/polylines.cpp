@@ -160,6 +160,73 @@ Vec3 end_tangent(const Polyline& line, bool back, size_t segments) {
   return len > 0 ? Vec3(t / len) : Vec3::Zero();
 }
 
+// The pairs (i, j > i) of points sorted by x with x_j − x_i ≤ `reach`, for
+// each i in ascending j, as a sweep over the sorted points gives them, but
+// only those whose y lies in the same or a neighbouring band of 2 · reach
+// (|y_j − y_i| ≤ reach puts them there whatever the rounding of the band
+// numbers): a plain sweep reads every point of the x window, at every y.
+// Points with a coordinate that is not finite, or bands far more than
+// points, fall back to the plain sweep (one band).
+struct CloseInX {
+  std::vector<uint32_t> band;                  // per point
+  std::vector<uint32_t> band_offsets, member;  // each band's points in ascending order
+  std::vector<uint32_t> cursor;                // per band: its first point after the last i asked for
+  std::vector<uint32_t> out;
+
+  // For ascending i only.
+  template <class Point>
+  const std::vector<uint32_t>& candidates(const std::vector<Point>& p, uint32_t i, double reach) {
+    out.clear();
+    const uint32_t b = band[i];
+    uint32_t at[3], stop[3], runs = 0;
+    for (uint32_t c = b > 0 ? b - 1 : 0; c <= b + 1 && c + 1 < band_offsets.size(); ++c) {
+      uint32_t k = cursor[c];
+      while (k < band_offsets[c + 1] && member[k] <= i) ++k;
+      cursor[c] = k;
+      uint32_t end = k;
+      while (end < band_offsets[c + 1] && p[member[end]].point.x() - p[i].point.x() <= reach) ++end;
+      if (k < end) at[runs] = k, stop[runs] = end, ++runs;
+    }
+    // The runs merged in ascending point order.
+    while (runs > 0) {
+      uint32_t best = 0;
+      for (uint32_t r = 1; r < runs; ++r)
+        if (member[at[r]] < member[at[best]]) best = r;
+      out.push_back(member[at[best]]);
+      if (++at[best] == stop[best]) at[best] = at[runs - 1], stop[best] = stop[runs - 1], --runs;
+    }
+    return out;
+  }
+};
+
+template <class Point>
+CloseInX close_in_x(const std::vector<Point>& p, double reach) {
+  CloseInX c;
+  const size_t n = p.size();
+  double lo = INFINITY, hi = -INFINITY;
+  bool finite = reach > 0 && std::isfinite(reach);
+  for (const Point& e : p) {
+    finite = finite && e.point.allFinite();
+    lo = std::min(lo, e.point.y()), hi = std::max(hi, e.point.y());
+  }
+  const double width = 2 * reach;
+  const double bands = finite && n > 0 ? std::floor((hi - lo) / width) + 1 : 1;
+  const bool banded = bands <= double(2 * n + 1);
+  const uint32_t count = banded ? static_cast<uint32_t>(bands) : 1;
+  c.band.resize(n);
+  c.band_offsets.assign(count + 1, 0);
+  for (size_t i = 0; i < n; ++i) {
+    c.band[i] = banded ? std::min(count - 1, static_cast<uint32_t>((p[i].point.y() - lo) / width)) : 0;
+    ++c.band_offsets[c.band[i] + 1];
+  }
+  for (uint32_t k = 0; k < count; ++k) c.band_offsets[k + 1] += c.band_offsets[k];
+  c.member.resize(n);
+  c.cursor.assign(c.band_offsets.begin(), c.band_offsets.end() - 1);
+  std::vector<uint32_t> fill = c.cursor;
+  for (uint32_t i = 0; i < n; ++i) c.member[fill[c.band[i]]++] = i;
+  return c;
+}
+
 // Bridges small gaps between line ends (a start/end singular triangle on
 // each side of a noisy spot leaves one): greedily from the smallest gap, two
 // free ends are linked when close and aligned; chains of linked lines are
@@ -185,8 +252,9 @@ std::vector<Polyline> bridge_gaps(std::vector<Polyline> lines, const std::vector
     uint32_t a, b;
   };
   std::vector<Gap> gaps;
-  for (size_t i = 0; i < ends.size(); ++i)
-    for (size_t j = i + 1; j < ends.size() && ends[j].point.x() - ends[i].point.x() <= max_gap; ++j) {
+  CloseInX close = close_in_x(ends, max_gap);
+  for (uint32_t i = 0; i < ends.size(); ++i)
+    for (uint32_t j : close.candidates(ends, i, max_gap)) {
       const End &a = ends[i], &b = ends[j];
       const Vec3 g = b.point - a.point;
       // Most pairs of the sweep are far apart across it. |g| ≥ |g_y|, |g_z|

@@ -188,3 +188,20 @@ TEST_CASE("gaps across the end sweep's axis: bridged within the bound in y and z
       CHECK(join_polylines(g).size() == (gap < 4 ? 1u : 2u));
     }
 }
+
+TEST_CASE("gaps among many ends spread along y: each bridged within the bound, whatever the y bands", "[polylines]") {
+  // 40 pairs of lines along y, all at x = 0, each pair's gap in its own
+  // place relative to the sweep's y bands (2 bounds wide): every pair is
+  // bridged below the bound and none above it, and no two pairs are.
+  for (const double gap : {3.9, 4.1}) {
+    FeatureGraph g = graph_with_points(6 * 40, 1.0);
+    for (int pair = 0; pair < 40; ++pair) {
+      const double y0 = 13.3 * pair;
+      for (int i = 0; i < 6; ++i) g.points[6 * pair + i] = Vec3(0, y0 + (i < 3 ? i : 2 + gap + (i - 3)), 0);
+      const uint32_t n = 6 * pair;
+      g.segments.insert(g.segments.end(), {{n, n + 1}, {n + 1, n + 2}, {n + 3, n + 4}, {n + 4, n + 5}});
+    }
+    INFO("gap " << gap);
+    CHECK(join_polylines(g).size() == (gap < 4 ? 40u : 80u));
+  }
+}
