@@ -29,7 +29,8 @@ Extremality compute_extremality(const Mesh& mesh, const Curvature& curvature,
   // The arrays by address, captured by value: the byte store of `adds` may
   // alias anything, so the vectors' data would be reloaded after it.
   const Triangle* tris = mesh.triangles.data();
-  const Vec3 *x = mesh.positions.data(), *dir_max = curvature.dir_max.data(), *dir_min = curvature.dir_min.data();
+  const Vec3* x = mesh.positions.data();
+  const Direction *dir_max = curvature.dir_max.data(), *dir_min = curvature.dir_min.data();
   const double *kappa_max = curvature.kappa_max.data(), *kappa_min = curvature.kappa_min.data();
   double *max_terms = term_max.data(), *min_terms = term_min.data();
   uint8_t* adding = adds.data();
@@ -53,8 +54,8 @@ Extremality compute_extremality(const Mesh& mesh, const Curvature& curvature,
         // Eq. (4): area-weighted, divided by area(star) below.
         const double area = 0.5 * twice_area;
         for (int k = 0; k < 3; ++k) {
-          max_terms[3 * i + k] = area * grad_max.dot(dir_max[f[k]]);
-          min_terms[3 * i + k] = area * grad_min.dot(dir_min[f[k]]);
+          max_terms[3 * i + k] = area * grad_max.dot(widen(dir_max[f[k]]));
+          min_terms[3 * i + k] = area * grad_min.dot(widen(dir_min[f[k]]));
         }
       }
     });

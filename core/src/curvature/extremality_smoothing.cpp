@@ -128,7 +128,7 @@ bool smooth_fields_paired(ExtremalitySmoothingSystem& system, const Extremality&
 
 // One field: (M − t L_σ) with L_σ e(p) = Σ_q w_pq (σ_pq e(q) − e(p)).
 Eigen::VectorXd smooth_field(const Topology& topology, const CotanWeights& cotan,
-                             const std::vector<double>& edge_strength, const std::vector<Vec3>& directions,
+                             const std::vector<double>& edge_strength, const std::vector<Direction>& directions,
                              const std::vector<double>& values, int steps) {
   const size_t nv = values.size();
   Triplets triplets;
@@ -264,7 +264,7 @@ SmoothedExtremality smooth_extremality_unpaired(const Mesh& mesh, const Topology
   const std::vector<double> edge_strength =
       edge_strengths(mesh, topology, weights, options.time_step, std::move(cotan.edge_weight));
   // The two fields are independent systems: one thread each where there are two.
-  const std::vector<Vec3>* directions[2] = {&curvature.dir_max, &curvature.dir_min};
+  const std::vector<Direction>* directions[2] = {&curvature.dir_max, &curvature.dir_min};
   const std::vector<double>* values[2] = {&extremality.e_max, &extremality.e_min};
   Eigen::VectorXd smoothed[2];
   parallel_for(

@@ -162,8 +162,8 @@ Curvature compute_curvature(const Mesh& mesh, const Topology& topology, const st
           const double scale = c.star_area[v] > 0 ? 3.0 / c.star_area[v] : 0.0;
           c.kappa_max[v] = scale * lambda[i_max];
           c.kappa_min[v] = scale * lambda[i_min];
-          c.dir_max[v] = vectors.col(i_max);
-          c.dir_min[v] = vectors.col(i_min);
+          c.dir_max[v] = vectors.col(i_max).cast<float>();
+          c.dir_min[v] = vectors.col(i_min).cast<float>();
         }
       }
     });

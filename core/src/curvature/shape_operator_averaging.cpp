@@ -13,7 +13,7 @@ Curvature average_shape_operator(const Mesh& mesh, const Topology& topology, con
   std::vector<double> area(nv);
   for (size_t v = 0; v < nv; ++v) {
     area[v] = curvature.star_area[v] / 3;
-    const Vec3 &a = curvature.dir_max[v], &b = curvature.dir_min[v];
+    const Vec3 a = widen(curvature.dir_max[v]), b = widen(curvature.dir_min[v]);
     shape[v] = area[v] * (curvature.kappa_max[v] * a * a.transpose() + curvature.kappa_min[v] * b * b.transpose());
   }
   // Each pass adds every neighbour's sum to a vertex's own: k passes reach k rings.
@@ -44,8 +44,8 @@ Curvature average_shape_operator(const Mesh& mesh, const Topology& topology, con
     const int i_min = drop == 0 ? 1 : 0, i_max = drop == 2 ? 1 : 2;
     out.kappa_max[v] = lambda[i_max];
     out.kappa_min[v] = lambda[i_min];
-    out.dir_max[v] = vectors.col(i_max);
-    out.dir_min[v] = vectors.col(i_min);
+    out.dir_max[v] = vectors.col(i_max).cast<float>();
+    out.dir_min[v] = vectors.col(i_min).cast<float>();
   }
   return out;
 }

@@ -32,7 +32,7 @@ double nonzero(double v) { return v != 0 ? v : std::numeric_limits<double>::deno
 struct Field {
   LineType type;
   const std::vector<double>& e;
-  const std::vector<Vec3>& dir;
+  const std::vector<Direction>& dir;
   const std::vector<double>& kappa_own;    // κ_max for ridges
   const std::vector<double>& kappa_other;  // κ_min for ridges
   const std::vector<uint8_t>& regular;
@@ -90,7 +90,7 @@ uint8_t crossing_segment(const Mesh& mesh, const Field& field, uint32_t t, uint8
   double own = 0, other = 0;
   for (int k = 0; k < 3; ++k) {
     opposite_sum += v[k] * (x[f[(k + 2) % 3]] - x[f[(k + 1) % 3]]);
-    direction += s[k] * field.dir[f[k]];
+    direction += s[k] * widen(field.dir[f[k]]);
     own += field.kappa_own[f[k]];
     other += field.kappa_other[f[k]];
   }

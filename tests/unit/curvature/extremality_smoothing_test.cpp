@@ -38,7 +38,7 @@ Fixture noisy_bump() {
 }
 
 // Σ_edges w (σ e_q − e_p)²: the roughness the sign-corrected Laplacian sees.
-double roughness(const Fixture& f, const std::vector<double>& e, const std::vector<Vec3>& dir) {
+double roughness(const Fixture& f, const std::vector<double>& e, const std::vector<Direction>& dir) {
   double sum = 0;
   for (const auto& edge : f.topology.edges) {
     const double sigma = direction_sign(dir[edge[0]], dir[edge[1]]);
@@ -101,7 +101,7 @@ TEST_CASE("extremality smoothing is independent of the signs where directions ar
   // still flip with either direction, or the result depends on the
   // eigen-solver's signs (spot's smoothed e_min moved by 0.34 of 0.82).
   Fixture f = noisy_bump();
-  const Vec3 x(1, 0, 0), y(0, 1, 0), z(0, 0, 1);
+  const Direction x(1, 0, 0), y(0, 1, 0), z(0, 0, 1);
   size_t perpendicular = 0;
   for (size_t v = 0; v < f.mesh.vertex_count(); ++v)
     if (f.mesh.positions[v].x() < 0.5) {

@@ -37,8 +37,9 @@ bool all_finite(const std::vector<double>& values) {
   return true;
 }
 
-bool all_finite(const std::vector<Vec3>& values) {
-  for (const Vec3& v : values)
+template <class Vector>
+bool all_finite(const std::vector<Vector>& values) {
+  for (const Vector& v : values)
     if (!v.allFinite()) return false;
   return true;
 }

@@ -144,8 +144,8 @@ TEST_CASE("tracer: a vertex's e of +0 or -0 counts as a tiny positive value, wha
   Curvature curvature;
   curvature.vertex_normals.assign(nv, Vec3::UnitZ());
   curvature.kappa_max.assign(nv, 1.0), curvature.kappa_min.assign(nv, 0.0);
-  curvature.dir_min.assign(nv, Vec3::UnitY()), curvature.star_area.assign(nv, 1.0);
-  for (size_t v = 0; v < nv; ++v) curvature.dir_max.push_back(sign(v) * Vec3::UnitX());
+  curvature.dir_min.assign(nv, Direction::UnitY()), curvature.star_area.assign(nv, 1.0);
+  for (size_t v = 0; v < nv; ++v) curvature.dir_max.push_back(float(sign(v)) * Direction::UnitX());
   const Regularity regularity = classify_triangles(mesh, curvature);
   TraceOptions options;
   options.boundary_rings = 0;

@@ -18,6 +18,11 @@ inline bool consistent_signs(const Vec3& d0, const Vec3& d1, const Vec3& d2, std
   // flip); the triangle is regular when it makes them agree with each other.
   return a != 0 && b != 0 && signs[1] * signs[2] * d1.dot(d2) > 0;
 }
+/// The same for stored directions, widened to double.
+inline bool consistent_signs(const Direction& d0, const Direction& d1, const Direction& d2,
+                             std::array<double, 3>& signs) {
+  return consistent_signs(widen(d0), widen(d1), widen(d2), signs);
+}
 
 /// A triangle's entry in Regularity: 0 if singular; else bit 0 set and bits
 /// 1 and 2 set where consistent_signs gave s_1, s_2 = −1, so that the tracer

@@ -18,12 +18,24 @@
 
 namespace crestline {
 
+/// A principal direction as stored: computed in double, kept in float. The
+/// two direction fields are the largest thing the Pipeline keeps through
+/// the smoothing's solves (48 bytes a vertex in double, ≈ 24 bytes a
+/// triangle); every reader widens them to double (widen) and computes in
+/// double. Rounding them moves lines only where the lines are decided by
+/// round-off anyway: on the shared meshes every line that moved by more
+/// than 3.4·10⁻⁵ mean edges moves the same way when the input's
+/// coordinates are rounded in their last bit (a triangle's regularity,
+/// Definition 1, at a tie; a line along a mirror plane).
+using Direction = Eigen::Vector3f;
+inline Vec3 widen(const Direction& d) { return d.cast<double>(); }
+
 struct Curvature {
   std::vector<Vec3> vertex_normals;  // unit, area-weighted average of triangle normals
   std::vector<double> kappa_max;     // pointwise, κ_max ≥ κ_min
   std::vector<double> kappa_min;
-  std::vector<Vec3> dir_max;  // unit eigenvectors; the sign is arbitrary
-  std::vector<Vec3> dir_min;
+  std::vector<Direction> dir_max;  // unit eigenvectors rounded to float; the sign is arbitrary
+  std::vector<Direction> dir_min;
   std::vector<double> star_area;  // sum of the areas of the triangles around each vertex
 };
 
@@ -44,6 +56,7 @@ inline double direction_sign(const Vec3& a, const Vec3& b) {
   };
   return leading_sign(a) * leading_sign(b);
 }
+inline double direction_sign(const Direction& a, const Direction& b) { return direction_sign(widen(a), widen(b)); }
 
 /// S(e) = H_e (ē×N_e)(ē×N_e)^T with H_e = 2|e|cos(θ_e/2) (signed: + on convex
 /// edges), S(p) = ½ Σ_{e∋p} ⟨N_p,N_e⟩ S(e). Principal curvatures are the
