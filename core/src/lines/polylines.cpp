@@ -211,7 +211,9 @@ CloseInX close_in_x(const std::vector<Point>& p, double reach) {
   }
   const double width = 2 * reach;
   const double bands = finite && n > 0 ? std::floor((hi - lo) / width) + 1 : 1;
-  const bool banded = bands <= double(2 * n + 1);
+  // One band unless every position is finite: a band number from a
+  // non-finite y (or width) would be a NaN cast to an integer.
+  const bool banded = finite && bands <= double(2 * n + 1);
   const uint32_t count = banded ? static_cast<uint32_t>(bands) : 1;
   c.band.resize(n);
   c.band_offsets.assign(count + 1, 0);
