@@ -1151,22 +1151,17 @@ CreaseAngles measure_crease_angles(const Mesh& mesh, const Topology& topology, c
       if (!topology.is_boundary_edge(static_cast<uint32_t>(e))) sample.push_back(value(e));
     return sample;
   };
-  parallel_for(
-      2,
-      [&](size_t begin, size_t end) {
-        for (size_t task = begin; task < end; ++task) {
-          if (task == 0) {
-            std::vector<double> angles = sampled([&](size_t e) { return quarter[e / 4]; });
-            if (!angles.empty()) out.median = portable_acos_of_complement(upper_median(angles)) / kDegree;
-          } else {
-            std::vector<double> lengths = sampled([&](size_t e) {
-              return (mesh.positions[topology.edges[e][1]] - mesh.positions[topology.edges[e][0]]).norm();
-            });
-            if (!lengths.empty()) out.median_edge_length = upper_median(lengths);
-          }
-        }
+  run_side_by_side(
+      [&] {
+        std::vector<double> angles = sampled([&](size_t e) { return quarter[e / 4]; });
+        if (!angles.empty()) out.median = portable_acos_of_complement(upper_median(angles)) / kDegree;
       },
-      1);
+      [&] {
+        std::vector<double> lengths = sampled([&](size_t e) {
+          return (mesh.positions[topology.edges[e][1]] - mesh.positions[topology.edges[e][0]]).norm();
+        });
+        if (!lengths.empty()) out.median_edge_length = upper_median(lengths);
+      });
   return out;
 }
 

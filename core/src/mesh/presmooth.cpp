@@ -262,32 +262,25 @@ std::vector<double> surface_noise_levels(const Mesh& mesh, const Topology& topol
   SideSums sums;
   std::vector<double> median(components, 0.0);
   std::vector<uint8_t> has_median(components, 0);
-  parallel_for(
-      2,
-      [&](size_t begin, size_t end) {
-        for (size_t task = begin; task < end; ++task) {
-          if (task == 0) {
-            sums = side_sums(mesh, topology, vertex_component, components, length.data());
-            continue;
-          }
-          std::vector<uint32_t> jump_start;
-          UninitialisedVector<double> jumps;
-          detail::group_by_bucket(
-              nv, components,
-              [&](size_t v, const auto& emit) {
-                if (has_jump[v]) emit(vertex_component[v], jump[v]);
-              },
-              jump_start, jumps);
-          for (size_t c = 0; c < components; ++c) {
-            const auto first = jumps.begin() + jump_start[c], last = jumps.begin() + jump_start[c + 1];
-            if (first == last) continue;
-            const auto middle = first + (last - first) / 2;
-            std::nth_element(first, middle, last);
-            median[c] = *middle, has_median[c] = 1;
-          }
-        }
-      },
-      1);
+  const auto find_medians = [&] {
+    std::vector<uint32_t> jump_start;
+    UninitialisedVector<double> jumps;
+    detail::group_by_bucket(
+        nv, components,
+        [&](size_t v, const auto& emit) {
+          if (has_jump[v]) emit(vertex_component[v], jump[v]);
+        },
+        jump_start, jumps);
+    for (size_t c = 0; c < components; ++c) {
+      const auto first = jumps.begin() + jump_start[c], last = jumps.begin() + jump_start[c + 1];
+      if (first == last) continue;
+      const auto middle = first + (last - first) / 2;
+      std::nth_element(first, middle, last);
+      median[c] = *middle, has_median[c] = 1;
+    }
+  };
+  run_side_by_side([&] { sums = side_sums(mesh, topology, vertex_component, components, length.data()); },
+                   find_medians);
   length = UninitialisedVector<double>();
   std::vector<double> level(components, 0.0);
   for (size_t c = 0; c < components; ++c) {

@@ -270,16 +270,8 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix, bool two_level, cons
   // ≈ 44 M instructions each).
   std::vector<uint32_t> colour, bfs_order;
   UninitialisedVector<uint8_t> handed;  // by input row
-  parallel_for(
-      2,
-      [&](size_t begin, size_t end) {
-        for (size_t task = begin; task < end; ++task)
-          if (task == 0)
-            colour = detail::greedy_colours(matrix);
-          else
-            bfs_order = locality_order(matrix, handed);
-      },
-      1);
+  run_side_by_side([&] { colour = detail::greedy_colours(matrix); },
+                   [&] { bfs_order = locality_order(matrix, handed); });
   const uint32_t colours = n == 0 ? 0 : *std::max_element(colour.begin(), colour.end()) + 1;
   // Rows ordered by colour (a counting sort keeps the locality order within one).
   colour_begin_.assign(colours + 1, 0);

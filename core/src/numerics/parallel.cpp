@@ -241,4 +241,13 @@ void parallel_for(size_t count, const std::function<void(size_t, size_t)>& body,
   body(0, count);
 }
 
+void run_side_by_side(const std::function<void()>& first, const std::function<void()>& second) {
+  parallel_for(
+      2,
+      [&](size_t begin, size_t end) {
+        for (size_t task = begin; task < end; ++task) (task == 0 ? first : second)();
+      },
+      1);
+}
+
 }  // namespace crestline

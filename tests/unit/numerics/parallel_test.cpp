@@ -87,3 +87,32 @@ TEST_CASE("two callers of parallel_for at once both finish with every index", "[
     CHECK(nested[k] >= 4096);
   }
 }
+
+TEST_CASE("run_side_by_side runs each task once, first then second on one thread, and passes on an exception",
+          "[numerics][threads]") {
+  for (int threads : {1, 2}) {
+    INFO("threads " << threads);
+    const ThreadLimit limit(threads);
+    for (int repeat = 0; repeat < 50; ++repeat) {
+      std::vector<int> order;
+      std::atomic<int> runs[2] = {{0}, {0}};
+      std::atomic<long> nested{0};
+      std::vector<int> hits;
+      run_side_by_side(
+          [&] {
+            ++runs[0];
+            if (threads == 1) order.push_back(0);
+            hits = covered(1000, nested);  // a loop nested in a task
+          },
+          [&] {
+            ++runs[1];
+            if (threads == 1) order.push_back(1);
+          });
+      CHECK(runs[0] == 1);
+      CHECK(runs[1] == 1);
+      CHECK(std::count(hits.begin(), hits.end(), 1) == 1000);
+      if (threads == 1) CHECK(order == std::vector<int>{0, 1});
+    }
+    CHECK_THROWS_AS(run_side_by_side([] {}, [] { throw std::runtime_error("second failed"); }), std::runtime_error);
+  }
+}

@@ -22,4 +22,9 @@ void set_max_threads(int threads);
 /// The first exception thrown by a chunk is rethrown here.
 void parallel_for(size_t count, const std::function<void(size_t begin, size_t end)>& body, size_t min_chunk = 2048);
 
+/// Runs two serial tasks side by side: on two threads when max_threads() > 1,
+/// else first() then second() on the caller. Each task writes only its own
+/// results, so they are the same either way.
+void run_side_by_side(const std::function<void()>& first, const std::function<void()>& second);
+
 }  // namespace crestline
