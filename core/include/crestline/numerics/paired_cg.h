@@ -192,6 +192,27 @@
 // s as landed against 1.69–2.42 with the check and restarts, the dragon
 // 2.99–3.30 against 3.18–3.58. The streams are prefetched; the conversions
 // cost more than the misses saved. Instructions guide this solve here.
+//
+// Measured on c03287c and not kept (branch solve-float-x): the correction
+// x̂ − x̂₀ accumulated in float. It feeds nothing back into the iteration (r̃
+// has its own recurrence), so the iterates and their count are the double
+// ones and only the result moves, by ≈ 2⁻²⁴ of the correction: against
+// the double correction, 5 steps, zero crossings of the smoothed fields on
+// edges (largest / mean move in edge lengths, edges changing sides): dragon
+// 4.7·10⁻⁴ / 8·10⁻⁸, 0; 1.1M 1.3·10⁻⁴ / 9·10⁻⁸, 0; bunny and feline ≤
+// 4.8·10⁻⁵, 0; ridge, valley and crease counts unchanged on the 143 shared
+// files. callgrind of the CLI on the dragon, 1 thread, 32 MB last-level
+// cache: smoothing 5,212 → 5,275 M instructions, last-level read misses
+// 54.5 → 50.3 M. But the rounding is outside the stopping test (from 0 a
+// 10⁻⁶ solve ends at a true residual of 1.21·10⁻⁶, and none gets below
+// 1.2·10⁻⁷), the invariance test's torus ×10⁻³ moves its lines 1.05·10⁻⁶
+// diagonals (its limit 10⁻⁶), and the heap it saves is capped by the
+// curvature stage's peak: at 1.1M, massif of the CLI at its defaults peaks
+// at 180.3 MB inside compute_curvature either way, and at 1.5× the time
+// step heaptrack gives 183.7 → 180.3 MB. r̃ in float besides (with the
+// first residual's b − D x₀ kept in double): the same iterations, but on
+// the dragon zero crossings move up to 0.020 edge (11 edges above 0.01)
+// and 6 edges change sides: r̃'s rounding drifts from the true residual.
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
