@@ -169,7 +169,7 @@ MeshResult measure(const MeshSpec& spec, const Args& args) {
     repair.push_back(now() - t);
     if (!generated) soup = TriangleSoup();  // read again next run
     t = now();
-    Pipeline pipeline(std::move(repaired.mesh), std::move(repaired.topology));
+    Pipeline pipeline(std::move(repaired.mesh), std::move(repaired.topology), std::move(repaired.components));
     topology.push_back(now() - t);
     pipeline.set_options(settings.pipeline);
     double last_call = now();

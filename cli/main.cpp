@@ -171,7 +171,7 @@ int run(const CliOptions& options) {
     }
     soup = TriangleSoup();  // not needed any more: ~45 bytes per triangle less at the peak
 
-    Pipeline pipeline(std::move(repaired.mesh), std::move(repaired.topology));
+    Pipeline pipeline(std::move(repaired.mesh), std::move(repaired.topology), std::move(repaired.components));
     pipeline.set_options(pipeline_options);
     pipeline.run([&progress](Stage stage, double fraction) { return progress(stage, fraction); });
 

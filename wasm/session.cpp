@@ -172,7 +172,8 @@ val Session::adopt(TriangleSoup soup, const RepairOptions& repair) {
   out.set("notes", notes);
   // Here, while the repair's adjacency is at hand (a run may release it).
   closed_outward_ = is_closed_outward(repaired.mesh, repaired.topology);
-  pipeline_ = std::make_unique<Pipeline>(std::move(repaired.mesh), std::move(repaired.topology));
+  pipeline_ = std::make_unique<Pipeline>(std::move(repaired.mesh), std::move(repaired.topology),
+                                         std::move(repaired.components));
   pipeline_->set_options(settings_.pipeline);  // weights belong to the last mesh
   return out;
 }

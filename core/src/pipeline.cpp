@@ -41,13 +41,17 @@ const char* stage_name(Stage stage) {
 
 Pipeline::Pipeline(Mesh mesh) : Pipeline(std::move(mesh), Topology()) {}
 
-Pipeline::Pipeline(Mesh mesh, Topology topology) : input_(std::move(mesh)), topology_(std::move(topology)) {
+Pipeline::Pipeline(Mesh mesh, Topology topology) : Pipeline(std::move(mesh), std::move(topology), {}) {}
+
+Pipeline::Pipeline(Mesh mesh, Topology topology, VertexComponents components)
+    : input_(std::move(mesh)), topology_(std::move(topology)) {
   // All the constructor's work, so that --stats accounts for it: the
-  // adjacency (unless repair_mesh's is given), frames and noise levels.
+  // adjacency and components (unless repair_mesh's are given), frames and
+  // noise levels.
   StageTimer timer(topology_seconds_);
   if (topology_.triangle_edges.size() != input_.triangles.size()) topology_ = build_topology(input_);
   topology_valid_ = true;
-  frames_ = component_frames(input_, topology_);
+  frames_ = component_frames(input_, topology_, std::move(components));
   const Mesh& local = local_input();
   double sum = 0;
   size_t count = 0;

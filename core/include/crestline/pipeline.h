@@ -111,6 +111,9 @@ class Pipeline {
   /// The same with the mesh's adjacency, build_topology(mesh), as
   /// repair_mesh returns it (not built again).
   Pipeline(Mesh mesh, Topology topology);
+  /// The same with the mesh's components too, as repair_mesh returns them
+  /// (not found again).
+  Pipeline(Mesh mesh, Topology topology, VertexComponents components);
 
   /// Stores options and marks the first stage whose options changed (and
   /// everything after it) for recomputation. Cheap.

@@ -16,9 +16,10 @@ uint32_t ComponentFrames::largest() const {
   return static_cast<uint32_t>(std::max_element(triangle_count.begin(), triangle_count.end()) - triangle_count.begin());
 }
 
-ComponentFrames component_frames(const Mesh& mesh, const Topology& topology) {
+namespace {
+
+VertexComponents find_components(const Mesh& mesh, const Topology& topology) {
   const size_t nv = mesh.positions.size(), nt = mesh.triangles.size();
-  const size_t threads = detail::part_count(nt);
   // Union-find over the vertices, always linking the larger root under the
   // smaller: a tree's root is then its component's smallest vertex whatever
   // order the links were made in, so the edges are joined on every thread
@@ -81,23 +82,35 @@ ComponentFrames component_frames(const Mesh& mesh, const Topology& topology) {
   // triangles (a triangle's corners share a component): the triangles in
   // order until every root has its number, on the calling thread; one
   // triangle when the mesh is one component.
-  ComponentFrames f;
-  size_t n = 0;
+  VertexComponents out;
+  size_t& n = out.count;
   for (size_t count : roots) n += count;
   for (size_t t = 0, numbered = 0; numbered < n && t < nt; ++t) {
     uint32_t& c = number[root(mesh.triangles[t][0])];
     if (c == kNone) c = uint32_t(numbered++);
   }
-  f.vertex_component.resize(nv);
+  out.vertex.resize(nv);
   // Unreferenced vertices (none after repair) join component 0.
   parallel_for(nv, [&](size_t begin, size_t end) {
     for (size_t v = begin; v < end; ++v) {
       const uint32_t c = number[root(uint32_t(v))];
-      f.vertex_component[v] = c == kNone ? 0 : c;
+      out.vertex[v] = c == kNone ? 0 : c;
     }
   });
-  number = UninitialisedVector<uint32_t>();
-  parent.reset();
+  return out;
+}
+
+}  // namespace
+
+ComponentFrames component_frames(const Mesh& mesh, const Topology& topology, VertexComponents components) {
+  const size_t nv = mesh.positions.size(), nt = mesh.triangles.size();
+  const size_t threads = detail::part_count(nt);
+  // The union-find only where repair_mesh's components are not given (at
+  // 1.1M triangles ≈ 90 M instructions).
+  if (components.count == 0) components = find_components(mesh, topology);
+  ComponentFrames f;
+  const size_t n = components.count;
+  f.vertex_component = std::move(components.vertex);
 
   // Centre: the bounding box's, halved before adding so it cannot overflow.
   // Each part's boxes, then merged in part order: a minimum keeps the first
@@ -108,7 +121,7 @@ ComponentFrames component_frames(const Mesh& mesh, const Topology& topology) {
   detail::for_each_part(box_parts, nv, [&](size_t p, size_t begin, size_t end) {
     Vec3 *part_lo = lo.data() + p * n, *part_hi = hi.data() + p * n;
     for (size_t v = begin; v < end; ++v) {
-      const uint32_t c = f.vertex_component[v];
+      const uint32_t c = f.component(v);
       part_lo[c] = part_lo[c].cwiseMin(mesh.positions[v]), part_hi[c] = part_hi[c].cwiseMax(mesh.positions[v]);
     }
   });
@@ -133,7 +146,7 @@ ComponentFrames component_frames(const Mesh& mesh, const Topology& topology) {
   parallel_for(ne, [&](size_t begin, size_t end) {
     for (size_t e = begin; e < end; ++e) {
       const auto [a, b] = topology.edges[e];
-      length[e] = ((mesh.positions[b] - mesh.positions[a]) / extent[f.vertex_component[a]]).norm();
+      length[e] = ((mesh.positions[b] - mesh.positions[a]) / extent[f.component(a)]).norm();
     }
   });
   SideSums sums = side_sums(mesh, topology, f.vertex_component, n, length.data());

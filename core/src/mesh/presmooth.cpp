@@ -268,7 +268,7 @@ std::vector<double> surface_noise_levels(const Mesh& mesh, const Topology& topol
     detail::group_by_bucket(
         nv, components,
         [&](size_t v, const auto& emit) {
-          if (has_jump[v]) emit(vertex_component[v], jump[v]);
+          if (has_jump[v]) emit(components == 1 ? 0 : vertex_component[v], jump[v]);
         },
         jump_start, jumps);
     for (size_t c = 0; c < components; ++c) {

@@ -843,8 +843,12 @@ RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options)
   // corner_at[v]: one corner at v (the last), where split_fans starts its
   // walk; in the components' array, unused after orient (a fresh one raised
   // the 1-thread peak RSS at 1.1M triangles by 13 MB: heap layout).
+  // With several components each triangle's is kept for its vertices'
+  // (below), and corner_at is an array of its own.
   std::vector<uint32_t> triangles_at(nv, 0);
-  UninitialisedVector<uint32_t> corner_at = std::move(orientation.component);
+  const bool several = orientation.components > 1;
+  UninitialisedVector<uint32_t> triangle_component, corner_at;
+  (several ? triangle_component : corner_at) = std::move(orientation.component);
   corner_at.resize(nv);
   for (uint32_t t = 0; t < tris.size(); ++t)
     for (uint32_t k = 0; k < 3; ++k) ++triangles_at[tris[t][k]], corner_at[tris[t][k]] = 3 * t + k;
@@ -899,6 +903,18 @@ RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options)
     detail::add_vertex_triangles(result.mesh.triangles, used, topology, &boundary_edges);
   } else {
     topology = build_topology(result.mesh);
+  }
+  // Each vertex's component is its first triangle's: once its fans are split
+  // a vertex's triangles are one fan, joined through uncut edges, so in one
+  // component (numbered in order of seeds, the first triangle of each:
+  // component_frames' order of first appearance).
+  result.components.count = orientation.components;
+  if (several) {
+    result.components.vertex.resize(used);
+    parallel_for(used, [&](size_t begin, size_t end) {
+      for (size_t v = begin; v < end; ++v)
+        result.components.vertex[v] = triangle_component[topology.vertex_triangles[topology.vertex_offsets[v]]];
+    });
   }
   return result;
 }

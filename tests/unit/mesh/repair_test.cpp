@@ -52,6 +52,26 @@ RepairResult repair_on(int threads, const TriangleSoup& soup) {
 // (recorded while pairing, or built again after a cut or split).
 void check_own_topology(const RepairResult& r) { testing::check_same_topology(r.topology, build_topology(r.mesh)); }
 
+// The components repair returns are those component_frames' union-find
+// finds on its mesh, numbered alike (the vertices' own where there are
+// several; none where one): vertex-connected pieces are the edge-connected
+// ones once every vertex is one fan.
+void check_own_components(const RepairResult& r) {
+  const ComponentFrames found = component_frames(r.mesh, r.topology);
+  CHECK(r.components.count == r.report.components);
+  REQUIRE(r.components.count == found.count());
+  if (found.count() == 1)
+    CHECK(r.components.vertex.empty());
+  else
+    CHECK(r.components.vertex == found.vertex_component);
+  // Given them, the frames are the same bits.
+  const ComponentFrames given = component_frames(r.mesh, r.topology, r.components);
+  CHECK(given.centre == found.centre);
+  CHECK(given.scale == found.scale);
+  CHECK(given.triangle_count == found.triangle_count);
+  for (uint32_t v = 0; v < r.mesh.vertex_count(); ++v) CHECK(given.component(v) == found.component(v));
+}
+
 }  // namespace
 
 TEST_CASE("repair welds seam vertices and orients a closed mesh outwards", "[repair]") {
@@ -442,7 +462,7 @@ TEST_CASE("repair splits fans as the per-vertex grouping of 2ff2dda did", "[repa
   auto mix = [&](uint64_t x) {
     for (int i = 0; i < 8; ++i) hash = (hash ^ ((x >> (8 * i)) & 0xff)) * 1099511628211ull;
   };
-  size_t split = 0, rounds = 0;
+  size_t split = 0, rounds = 0, several = 0;
   // The last round is large enough for the walk to split over threads.
   for (int round = 0; round <= 300; ++round) {
     TriangleSoup s;
@@ -470,6 +490,9 @@ TEST_CASE("repair splits fans as the per-vertex grouping of 2ff2dda did", "[repa
     CHECK(one.mesh.triangles == two.mesh.triangles);
     CHECK(one.mesh.positions == two.mesh.positions);
     CHECK(one.report.nonmanifold_vertices == two.report.nonmanifold_vertices);
+    check_own_components(one);
+    check_own_components(two);
+    several += one.report.components > 1 && one.report.nonmanifold_vertices > 0;
     const Mesh& m = one.mesh;
     for (size_t n : {one.report.nonmanifold_edges, one.report.nonmanifold_vertices, one.report.flipped_triangles,
                      one.report.components, one.report.boundary_edges, m.vertex_count(), m.triangle_count()})
@@ -509,7 +532,8 @@ TEST_CASE("repair splits fans as the per-vertex grouping of 2ff2dda did", "[repa
     split += copies > 0;
   }
   CHECK(rounds > 250);
-  CHECK(split > 100);  // the soups exercise the split
+  CHECK(split > 100);    // the soups exercise the split
+  CHECK(several > 100);  // and components next to it
   CHECK(hash == 0xe651af74da85eb42ull);
 }
 
@@ -637,9 +661,12 @@ TEST_CASE("repair gives the same mesh and report on 1, 2 and 3 threads, componen
   CHECK(one.report.nonmanifold_vertices > 100);
   CHECK(one.report.flipped_triangles > 10000);
   CHECK(one.report.components > 150);
+  check_own_components(one);
   for (int threads : {2, 3}) {
     INFO("threads: " << threads);
-    check_same_repair(repair_on(threads, s), one);
+    const RepairResult other = repair_on(threads, s);
+    check_same_repair(other, one);
+    check_own_components(other);
   }
 }
 
@@ -675,6 +702,7 @@ TEST_CASE("repair records its mesh's topology while pairing, on 1, 2 and 3 threa
   CHECK(one.report.boundary_edges == 3 * 4 * 40);  // the height fields' borders
   CHECK(one.report.components == 55);
   check_own_topology(one);
+  check_own_components(one);
   for (int threads : {2, 3}) {
     INFO("threads: " << threads);
     const RepairResult other = repair_on(threads, s);

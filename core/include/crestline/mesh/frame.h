@@ -41,12 +41,21 @@ struct ComponentFrames {
   Vec3 to_user(const Vec3& local, uint32_t component) const { return centre[component] + scale[component] * local; }
 };
 
+/// A mesh's components as component_frames numbers them: each vertex's
+/// (empty where there is one), and how many. repair_mesh finds them.
+struct VertexComponents {
+  std::vector<uint32_t> vertex;
+  size_t count = 0;
+};
+
 /// Splits a repaired mesh into components and measures each one's frame;
 /// `topology` is the mesh's (build_topology), whose edges join the
-/// components and are each measured once. Never overflows or underflows for
-/// finite coordinates whose bounding box is finite: the mean edge is
-/// measured on coordinates first divided by the component's extent.
-ComponentFrames component_frames(const Mesh& mesh, const Topology& topology);
+/// components and are each measured once. `components`, where given (count
+/// > 0), are the mesh's, numbered as here (repair_mesh's): not found again.
+/// Never overflows or underflows for finite coordinates whose bounding box is
+/// finite: the mean edge is measured on coordinates first divided by the
+/// component's extent.
+ComponentFrames component_frames(const Mesh& mesh, const Topology& topology, VertexComponents components = {});
 
 /// Each component's sum of its triangles' sides, length[e] for each edge e
 /// of `topology` (the mesh's), added side by side in triangle order on the

@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "crestline/mesh/frame.h"
 #include "crestline/mesh/mesh.h"
 #include "crestline/mesh/topology.h"
 
@@ -41,6 +42,10 @@ struct RepairResult {
   RepairReport report;
   /// build_topology(mesh), found while repairing: pass it on to the Pipeline.
   Topology topology;
+  /// The mesh's components (report.components of them; each vertex's where
+  /// there are several), numbered as component_frames numbers them: pass
+  /// them on to the Pipeline too.
+  VertexComponents components;
 };
 
 /// Welds, drops degenerate/duplicate/non-finite triangles and unreferenced
