@@ -7,7 +7,7 @@ cd "$(dirname "$0")/.."
 
 packages=(
   build-essential cmake ninja-build pkg-config
-  libeigen3-dev libtinygltf-dev nlohmann-json3-dev libfast-float-dev
+  libeigen3-dev libtinygltf-dev nlohmann-json3-dev libfast-float-dev libfmt-dev
   libcli11-dev libdraco-dev libmeshoptimizer-dev catch2
   emscripten nodejs chromium
   clang clang-format clang-tidy libclang-rt-14-dev python3

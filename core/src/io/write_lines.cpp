@@ -5,12 +5,15 @@
 #include "crestline/io/write_lines.h"
 
 #include <fast_float/fast_float.h>
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <iterator>
 #include <limits>
 #include <string>
@@ -38,6 +41,15 @@ char* format_general(char* first, char* last, double value, int precision) {
 #endif
 }
 
+// "00", "01", …, "99": two digits at a time.
+struct DigitPairs {
+  char text[200];
+  constexpr DigitPairs() : text() {
+    for (int i = 0; i < 100; ++i) text[2 * i] = char('0' + i / 10), text[2 * i + 1] = char('0' + i % 10);
+  }
+};
+constexpr DigitPairs kDigitPairs;
+
 // Shortest of %.15g/%.16g/%.17g that reads back bit-identically: compact
 // files for "nice" numbers, exact round trip for all.
 void append_number(std::string& out, double value) {
@@ -45,9 +57,8 @@ void append_number(std::string& out, double value) {
     out += "null";
     return;
   }
-  char buffer[32];
+  char buffer[64];  // room for the fixed-size copies below
   char* end = buffer;
-#ifdef __cpp_lib_to_chars
   // The shortest digits that read back, d of them, decide it: %.15g reads
   // back exactly when d ≤ 15, and otherwise %.{d}g is the first that does —
   // the correctly rounded d digits read back when any d digits do, because
@@ -59,39 +70,79 @@ void append_number(std::string& out, double value) {
   // decimal → double → 15 digits; with d = 16 or 17 both are the d digits
   // nearest the value, exact ties to even), so they are laid out as
   // %.{max(15, d)}g would lay them out instead of formatting again.
-  int exponent = 0;
-  if (std::abs(std::frexp(value, &exponent)) != 0.5 && !(std::abs(value) < std::numeric_limits<double>::min())) {
-    char shortest[32];  // [-]d[.ddd]e±XX
-    const char* shortest_end =
-        std::to_chars(shortest, shortest + sizeof shortest, value, std::chars_format::scientific).ptr;
-    const char* first = shortest + (value < 0);
-    const char* e = first + 1;
-    while (*e != 'e') ++e;
-    int x = 0;  // the decimal exponent
-    for (const char* c = e + 2; c < shortest_end; ++c) x = 10 * x + (*c - '0');
-    if (e[1] == '-') x = -x;
-    char digits[17];  // without the point
-    digits[0] = *first;
-    const int d = e == first + 1 ? 1 : int(std::copy(first + 2, e, digits + 1) - digits);
-    if (x < -4 || x >= std::max(15, d)) {  // %g's exponent form: the shortest text as it is
-      out.append(shortest, size_t(shortest_end - shortest));
-      return;
+  // Neither a power of two nor below the normal range (nor zero): a
+  // significand field not zero and an exponent field not zero.
+  uint64_t bits = 0;
+  std::memcpy(&bits, &value, sizeof bits);
+  if ((bits & ((uint64_t{1} << 52) - 1)) != 0 && (bits & (uint64_t{0x7ff} << 52)) != 0) {
+    // The shortest digits by {fmt}'s Dragonbox (the digits std::to_chars's
+    // shortest form writes: the nearest of the shortest, ties to even;
+    // tests/unit/io/write_lines_test.cpp checks the bytes against printf): ≈ 110 instructions a number
+    // against ≈ 600 for libstdc++'s to_chars, and the same code in WASM,
+    // whose libc++ has no floating-point to_chars. An internal of {fmt} 9
+    // (Debian bookworm's libfmt-dev, header-only), stable through 11.
+    const auto decimal = fmt::detail::dragonbox::to_decimal(std::abs(value));
+    // The digits end at digits + 20, followed by padding: the layout below
+    // copies 17 bytes (constant-size copies, a few instructions) wherever up
+    // to 17 digits or zeros go and then counts only those it needs.
+    char digits[40] = {};
+    char* const digits_end = digits + 20;
+    char* first = digits_end;
+    uint64_t significand = decimal.significand;  // below 10^17
+    if (significand >= 100000000) {
+      // The last 8 digits in 32-bit arithmetic, four independent pairs (most
+      // coordinates have 16 or 17 digits).
+      const auto low = uint32_t(significand % 100000000);
+      significand /= 100000000;
+      const uint32_t high4 = low / 10000, low4 = low % 10000;
+      first -= 8;
+      std::memcpy(first, kDigitPairs.text + 2 * (high4 / 100), 2);
+      std::memcpy(first + 2, kDigitPairs.text + 2 * (high4 % 100), 2);
+      std::memcpy(first + 4, kDigitPairs.text + 2 * (low4 / 100), 2);
+      std::memcpy(first + 6, kDigitPairs.text + 2 * (low4 % 100), 2);
     }
+    auto s = uint32_t(significand);  // below 10^9, not 0
+    for (; s >= 100; s /= 100) first -= 2, std::memcpy(first, kDigitPairs.text + 2 * (s % 100), 2);
+    if (s >= 10)
+      first -= 2, std::memcpy(first, kDigitPairs.text + 2 * s, 2);
+    else
+      *--first = char('0' + s);
+    const int d = int(digits_end - first);
+    const int x = decimal.exponent + d - 1;  // the decimal exponent of the first digit
     if (value < 0) *end++ = '-';
-    if (x >= 0) {
-      for (int i = 0; i <= x; ++i) *end++ = i < d ? digits[i] : '0';
-      if (d > x + 1) *end++ = '.', end = std::copy(digits + x + 1, digits + d, end);
-    } else {
-      *end++ = '0', *end++ = '.';
-      end = std::copy(digits, digits + d, std::fill_n(end, -x - 1, '0'));
+    constexpr size_t kCopy = 17;
+    if (x < -4 || x >= std::max(15, d)) {  // %g's exponent form: d[.ddd]e±XX
+      end[0] = first[0], end[1] = '.';
+      std::memcpy(end + 2, first + 1, kCopy);
+      end += d > 1 ? d + 1 : 1;
+      *end++ = 'e', *end++ = x < 0 ? '-' : '+';
+      const int magnitude = std::abs(x);
+      if (magnitude >= 100) *end++ = char('0' + magnitude / 100);
+      std::memcpy(end, kDigitPairs.text + 2 * (magnitude % 100), 2);
+      end += 2;
+    } else if (x >= 0) {  // x < 17: the digits, then zeros or the point and the rest
+      std::memcpy(end, first, kCopy);
+      if (d <= x + 1) {
+        std::memset(end + d, '0', kCopy);
+        end += x + 1;
+      } else {
+        end += x + 1;
+        *end = '.';
+        std::memcpy(end + 1, first + x + 1, kCopy);
+        end += d - x;
+      }
+    } else {  // −4 ≤ x < 0: 0.000ddd
+      std::memcpy(end, "0.000", 5);
+      end += 1 - x;
+      std::memcpy(end, first, kCopy);
+      end += d;
     }
-    out.append(buffer, end);
+    out.append(buffer, size_t(end - buffer));
     return;
   }
-#endif
-  // Read back by fast_float (correctly rounded, as strtod: the same test),
-  // since this is the path Emscripten's libc++ takes, whose strtod costs
-  // ≈ 1 µs a number (25× fast_float; the dragon's JSON took 1.1–1.5 s).
+  // Read back by fast_float (correctly rounded, as strtod: the same test):
+  // Emscripten's libc++ strtod costs ≈ 1 µs a number (25× fast_float; the
+  // dragon's JSON took 1.1–1.5 s when every number came this way).
   for (int precision = 15; precision <= 17; ++precision) {
     end = format_general(buffer, buffer + sizeof buffer - 1, value, precision);
     double back = 0;

@@ -339,13 +339,15 @@ TEST_CASE("creases: OBJ object o creases after the valleys, JSON with convex per
 
 TEST_CASE("OBJ numbers are the shortest of %.15g, %.16g, %.17g that reads back, as printf writes them",
           "[io][writers]") {
-  // The writer formats with std::to_chars natively and snprintf in WASM;
-  // both must give printf's bytes. Random doubles over the whole exponent
+  // The writer lays out {fmt}'s shortest digits (Dragonbox), natively and in
+  // WASM, and formats powers of two, zero and subnormals by precision
+  // (std::to_chars natively, snprintf in WASM); all must give printf's
+  // bytes. Random doubles over the whole exponent
   // range, short decimals (which round-trip at 15 digits), halves (exact
   // ties at some precisions), subnormals and powers of two.
   std::mt19937_64 random(11);
   std::vector<double> values;
-  for (int i = 0; i < 20000; ++i) {
+  for (int i = 0; i < 100000; ++i) {
     uint64_t bits = random();
     double d;
     std::memcpy(&d, &bits, sizeof d);
