@@ -38,6 +38,20 @@ Extremality compute_extremality(const Mesh& mesh, const Curvature& curvature,
     const size_t end = std::min(nt, begin + kBlock);
     parallel_for(end - begin, [=](size_t first, size_t last) {
       for (size_t i = first; i < last; ++i) {
+        // The corners' fields lie anywhere in their arrays: those of the
+        // triangle kAhead on are asked for now (natively; WASM has no
+        // prefetch). In the loop: GCC drops a lambda made of prefetches.
+        constexpr size_t kAhead = 8;
+        if (i + kAhead < last) {
+          const Triangle& ahead = tris[begin + i + kAhead];
+          for (int k = 0; k < 3; ++k) {
+            __builtin_prefetch(&x[ahead[k]]);
+            __builtin_prefetch(&kappa_max[ahead[k]]);
+            __builtin_prefetch(&kappa_min[ahead[k]]);
+            __builtin_prefetch(&dir_max[ahead[k]]);
+            __builtin_prefetch(&dir_min[ahead[k]]);
+          }
+        }
         const Triangle& f = tris[begin + i];
         const Vec3 n = (x[f[1]] - x[f[0]]).cross(x[f[2]] - x[f[0]]);
         const double twice_area = n.norm();
@@ -65,6 +79,14 @@ Extremality compute_extremality(const Mesh& mesh, const Curvature& curvature,
           double *e_max = out.e_max.data(), *e_min = out.e_min.data();
           for (size_t part = first_part; part < last_part; ++part)
             for (size_t t = begin; t < end; ++t) {
+              constexpr size_t kAhead = 8;  // as above
+              if (t + kAhead < end) {
+                const Triangle& ahead = mesh.triangles[t + kAhead];
+                for (int k = 0; k < 3; ++k) {
+                  __builtin_prefetch(&e_max[ahead[k]]);
+                  __builtin_prefetch(&e_min[ahead[k]]);
+                }
+              }
               if (!adds[t - begin]) continue;
               const Triangle& f = mesh.triangles[t];
               const size_t i = 3 * (t - begin);

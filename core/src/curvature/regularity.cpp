@@ -22,6 +22,17 @@ Regularity classify_triangles(const Mesh& mesh, const Curvature& curvature) {
                  std::array<double, 3> signs;
                  size_t count_max = 0, count_min = 0;
                  for (size_t t = begin; t < end; ++t) {
+                   // The corners' directions lie anywhere in their arrays:
+                   // those of the triangle kAhead on are asked for now
+                   // (natively; WASM has no prefetch).
+                   constexpr size_t kAhead = 8;
+                   if (t + kAhead < end) {
+                     const Triangle& ahead = tris[t + kAhead];
+                     for (int k = 0; k < 3; ++k) {
+                       __builtin_prefetch(&dir_max[ahead[k]]);
+                       __builtin_prefetch(&dir_min[ahead[k]]);
+                     }
+                   }
                    const Triangle f = tris[t];
                    const uint8_t code_max =
                        regularity_code(consistent_signs(dir_max[f[0]], dir_max[f[1]], dir_max[f[2]], signs), signs);

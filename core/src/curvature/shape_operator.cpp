@@ -31,10 +31,19 @@ Curvature compute_curvature(const Mesh& mesh, const Topology& topology, const st
   // ascending order: the sums of a scatter over the triangles, bit for bit,
   // on any number of threads.
   parallel_for(nv, [&](size_t begin, size_t end) {
+    const uint32_t last_entry = topology.vertex_offsets[end];
     for (size_t v = begin; v < end; ++v) {
       Vec3 n = Vec3::Zero();
       double star = 0;
       for (uint32_t i = topology.vertex_offsets[v]; i < topology.vertex_offsets[v + 1]; ++i) {
+        // The triangles lie anywhere in their arrays: those of the entry
+        // kAhead on are asked for now (natively; see the edge loop below).
+        constexpr uint32_t kAhead = 16;
+        if (i + kAhead < last_entry) {
+          const uint32_t ahead = topology.vertex_triangles[i + kAhead];
+          __builtin_prefetch(&normals[ahead]);
+          __builtin_prefetch(&areas[ahead]);
+        }
         const uint32_t t = topology.vertex_triangles[i];
         n += areas[t] * normals[t];
         star += areas[t];
@@ -70,6 +79,34 @@ Curvature compute_curvature(const Mesh& mesh, const Topology& topology, const st
     parallel_for(end - begin, [&](size_t first, size_t last) {
       for (size_t i = first; i < last; ++i) {
         const size_t e = begin + i;
+        // An edge's inputs lie wherever its triangles and larger end are in
+        // the arrays (only the smaller end follows the edge order): each a
+        // likely cache miss, which the divisions and roots between them keep
+        // from overlapping. So edge e asks for those of edge e + kAhead (t1's
+        // corners for e + 2 kAhead, to find its far corner then). Natively
+        // only: WASM has no prefetch (__builtin_prefetch compiles to
+        // nothing). Written in the loop: GCC drops a call to a lambda made of
+        // prefetches as if it had no effect.
+        constexpr size_t kAhead = 8;
+        if (i + 2 * kAhead < last) {
+          const uint32_t t1 = topology.edge_triangles[e + 2 * kAhead][1];
+          if (t1 != kNone) __builtin_prefetch(&mesh.triangles[t1]);
+        }
+        if (i + kAhead < last) {
+          const auto [t0, t1] = topology.edge_triangles[e + kAhead];
+          if (t1 != kNone) {
+            const uint32_t a = topology.edges[e + kAhead][0], b = topology.edges[e + kAhead][1];
+            __builtin_prefetch(&normals[t0]);
+            __builtin_prefetch(&normals[t1]);
+            __builtin_prefetch(&x[b]);
+            __builtin_prefetch(&c.vertex_normals[b]);
+            // t1's corners are a, b and the far one (distinct after
+            // repair_mesh): found without the branches below, which would
+            // mispredict here; kept inside the array whatever the triangle.
+            const Triangle& f = mesh.triangles[t1];
+            __builtin_prefetch(&x[std::min<size_t>(f[0] ^ f[1] ^ f[2] ^ a ^ b, nv - 1)]);
+          }
+        }
         EdgeTerm& term = terms[i];
         term.used = false;
         const auto [t0, t1] = topology.edge_triangles[e];
@@ -102,6 +139,9 @@ Curvature compute_curvature(const Mesh& mesh, const Topology& topology, const st
         [&](size_t first_part, size_t last_part) {
           for (size_t part = first_part; part < last_part; ++part)
             for (size_t e = begin; e < end; ++e) {
+              // The larger ends' sums lie anywhere (see the loop above).
+              constexpr size_t kAhead = 16;
+              if (e + kAhead < end) __builtin_prefetch(&shape[topology.edges[e + kAhead][1]]);
               const EdgeTerm& term = terms[e - begin];
               if (!term.used) continue;
               for (int end_k = 0; end_k < 2; ++end_k) {
