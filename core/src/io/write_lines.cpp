@@ -45,8 +45,10 @@ char* format_general(char* first, char* last, double value, int precision) {
 struct DigitPairs {
   char text[200];
   constexpr DigitPairs() : text() {
-    for (int i = 0; i < 100; ++i) text[2 * i] = char('0' + i / 10), text[2 * i + 1] = char('0' + i % 10);
+    for (size_t i = 0; i < 100; ++i) text[2 * i] = char('0' + i / 10), text[2 * i + 1] = char('0' + i % 10);
   }
+  // The two digits of n < 100.
+  constexpr const char* of(size_t n) const { return text + 2 * n; }
 };
 constexpr DigitPairs kDigitPairs;
 
@@ -96,15 +98,15 @@ void append_number(std::string& out, double value) {
       significand /= 100000000;
       const uint32_t high4 = low / 10000, low4 = low % 10000;
       first -= 8;
-      std::memcpy(first, kDigitPairs.text + 2 * (high4 / 100), 2);
-      std::memcpy(first + 2, kDigitPairs.text + 2 * (high4 % 100), 2);
-      std::memcpy(first + 4, kDigitPairs.text + 2 * (low4 / 100), 2);
-      std::memcpy(first + 6, kDigitPairs.text + 2 * (low4 % 100), 2);
+      std::memcpy(first, kDigitPairs.of(high4 / 100), 2);
+      std::memcpy(first + 2, kDigitPairs.of(high4 % 100), 2);
+      std::memcpy(first + 4, kDigitPairs.of(low4 / 100), 2);
+      std::memcpy(first + 6, kDigitPairs.of(low4 % 100), 2);
     }
     auto s = uint32_t(significand);  // below 10^9, not 0
-    for (; s >= 100; s /= 100) first -= 2, std::memcpy(first, kDigitPairs.text + 2 * (s % 100), 2);
+    for (; s >= 100; s /= 100) first -= 2, std::memcpy(first, kDigitPairs.of(s % 100), 2);
     if (s >= 10)
-      first -= 2, std::memcpy(first, kDigitPairs.text + 2 * s, 2);
+      first -= 2, std::memcpy(first, kDigitPairs.of(s), 2);
     else
       *--first = char('0' + s);
     const int d = int(digits_end - first);
@@ -118,7 +120,7 @@ void append_number(std::string& out, double value) {
       *end++ = 'e', *end++ = x < 0 ? '-' : '+';
       const int magnitude = std::abs(x);
       if (magnitude >= 100) *end++ = char('0' + magnitude / 100);
-      std::memcpy(end, kDigitPairs.text + 2 * (magnitude % 100), 2);
+      std::memcpy(end, kDigitPairs.of(magnitude % 100), 2);
       end += 2;
     } else if (x >= 0) {  // x < 17: the digits, then zeros or the point and the rest
       std::memcpy(end, first, kCopy);
