@@ -49,7 +49,10 @@ Pipeline::Pipeline(Mesh mesh, Topology topology, VertexComponents components)
   // adjacency and components (unless repair_mesh's are given), frames and
   // noise levels.
   StageTimer timer(topology_seconds_);
-  if (topology_.triangle_edges.size() != input_.triangles.size()) topology_ = build_topology(input_);
+  if (topology_.triangle_edges.size() != input_.triangles.size()) {
+    topology_ = build_topology(input_);
+    components = {};  // not this mesh's either
+  }
   topology_valid_ = true;
   frames_ = component_frames(input_, topology_, std::move(components));
   const Mesh& local = local_input();

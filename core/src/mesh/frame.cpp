@@ -107,7 +107,12 @@ ComponentFrames component_frames(const Mesh& mesh, const Topology& topology, Ver
   const size_t threads = detail::part_count(nt);
   // The union-find only where repair_mesh's components are not given (at
   // 1.1M triangles ≈ 90 M instructions).
-  if (components.count == 0) components = find_components(mesh, topology);
+  // Given ones are used only if they fit the mesh (as the Pipeline rebuilds
+  // a topology that does not): one component needs no array, several need
+  // one entry a vertex.
+  const bool fit = components.count == 1 ? components.vertex.empty() || components.vertex.size() == nv
+                                         : components.count > 1 && components.vertex.size() == nv;
+  if (!fit) components = find_components(mesh, topology);
   ComponentFrames f;
   const size_t n = components.count;
   f.vertex_component = std::move(components.vertex);

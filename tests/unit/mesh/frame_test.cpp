@@ -155,3 +155,23 @@ TEST_CASE("component frames are those of one serial pass, on 1, 2 and 3 threads"
   const ComponentFrames f = frames_on(2, mesh);
   CHECK(std::signbit(f.centre[f.vertex_component[0]].x()));
 }
+
+TEST_CASE("components that do not fit the mesh are found again, not read", "[frame]") {
+  // Two tetrahedra: given components of the wrong size (or several without
+  // an array) give the frames found without them.
+  Mesh mesh;
+  const TriangleSoup tetrahedron = testing::icosphere(0, 1);
+  append(mesh, tetrahedron, Vec3(0, 0, 0));
+  append(mesh, tetrahedron, Vec3(5, 0, 0));
+  const Topology topology = build_topology(mesh);
+  const ComponentFrames want = component_frames(mesh, topology);
+  REQUIRE(want.count() == 2);
+  for (VertexComponents wrong : {VertexComponents{{0, 1}, 2}, VertexComponents{{}, 2},
+                                 VertexComponents{std::vector<uint32_t>(mesh.positions.size() + 1, 0), 1}}) {
+    const ComponentFrames got = component_frames(mesh, topology, wrong);
+    CHECK(got.count() == 2);
+    CHECK(got.vertex_component == want.vertex_component);
+    CHECK(got.centre == want.centre);
+    CHECK(got.scale == want.scale);
+  }
+}
