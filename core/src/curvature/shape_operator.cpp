@@ -20,37 +20,72 @@ Curvature compute_curvature(const Mesh& mesh, const Topology& topology, const st
   };
   const size_t nv = mesh.positions.size();
   const std::vector<Vec3>& x = mesh.positions;
-  std::vector<double> areas;
-  std::vector<Vec3> normals;
-  triangle_areas_normals(x, mesh.triangles, areas, normals);
+  const size_t nt = mesh.triangles.size();
 
   Curvature c;
-  c.vertex_normals.resize(nv);
-  c.star_area.resize(nv);
-  // Gathered over each vertex's triangles, which the topology lists in
-  // ascending order: the sums of a scatter over the triangles, bit for bit,
-  // on any number of threads.
-  parallel_for(nv, [&](size_t begin, size_t end) {
-    const uint32_t last_entry = topology.vertex_offsets[end];
-    for (size_t v = begin; v < end; ++v) {
-      Vec3 n = Vec3::Zero();
-      double star = 0;
-      for (uint32_t i = topology.vertex_offsets[v]; i < topology.vertex_offsets[v + 1]; ++i) {
-        // The triangles lie anywhere in their arrays: those of the entry
+  c.vertex_normals.assign(nv, Vec3::Zero());
+  c.star_area.assign(nv, 0.0);
+  // No per-triangle arrays (they were the run's peak, 32 bytes a triangle):
+  // each triangle's area and area-weighted normal are formed on every
+  // thread, a block of triangles at a time, then added to its corners in
+  // triangle order, split over the threads by vertex as the edge terms are
+  // below: each vertex's sums in ascending triangle order, the same for any
+  // number of threads, and the same as a gather over its triangle list.
+  constexpr size_t kTriangleBlock = size_t{1} << 16;
+  struct TriangleTerm {
+    Vec3 weighted;  // area · unit normal
+    double area;
+  };
+  std::vector<TriangleTerm> triangle_terms(std::min(nt, kTriangleBlock));
+  const size_t triangle_parts = nt < 4 * kTriangleBlock ? 1 : std::min<size_t>(size_t(max_threads()), 8);
+  for (size_t begin = 0; begin < nt; begin += kTriangleBlock) {
+    const size_t end = std::min(nt, begin + kTriangleBlock);
+    parallel_for(end - begin, [&](size_t first, size_t last) {
+      for (size_t i = first; i < last; ++i) {
+        // The corners lie anywhere in the positions: those of the triangle
         // kAhead on are asked for now (natively; see the edge loop below).
-        constexpr uint32_t kAhead = 16;
-        if (i + kAhead < last_entry) {
-          const uint32_t ahead = topology.vertex_triangles[i + kAhead];
-          __builtin_prefetch(&normals[ahead]);
-          __builtin_prefetch(&areas[ahead]);
+        constexpr size_t kAhead = 8;
+        if (i + kAhead < last) {
+          const Triangle& ahead = mesh.triangles[begin + i + kAhead];
+          __builtin_prefetch(&x[ahead[0]]);
+          __builtin_prefetch(&x[ahead[1]]);
+          __builtin_prefetch(&x[ahead[2]]);
         }
-        const uint32_t t = topology.vertex_triangles[i];
-        n += areas[t] * normals[t];
-        star += areas[t];
+        const Triangle& f = mesh.triangles[begin + i];
+        Vec3 normal;
+        const double area = 0.5 * triangle_normal(x[f[0]], x[f[1]], x[f[2]], normal);
+        triangle_terms[i] = {area * normal, area};
       }
+    });
+    parallel_for(
+        triangle_parts,
+        [&](size_t first_part, size_t last_part) {
+          for (size_t part = first_part; part < last_part; ++part)
+            for (size_t t = begin; t < end; ++t) {
+              constexpr size_t kAhead = 8;  // the corners' sums lie anywhere too
+              if (t + kAhead < end) {
+                const Triangle& ahead = mesh.triangles[t + kAhead];
+                for (int k = 0; k < 3; ++k) {
+                  __builtin_prefetch(&c.vertex_normals[ahead[k]]);
+                  __builtin_prefetch(&c.star_area[ahead[k]]);
+                }
+              }
+              const TriangleTerm& term = triangle_terms[t - begin];
+              for (const uint32_t v : mesh.triangles[t]) {
+                if (!detail::in_vertex_part(v, part, triangle_parts)) continue;
+                c.vertex_normals[v] += term.weighted;
+                c.star_area[v] += term.area;
+              }
+            }
+        },
+        1);
+  }
+  std::vector<TriangleTerm>().swap(triangle_terms);
+  parallel_for(nv, [&](size_t begin, size_t end) {
+    for (size_t v = begin; v < end; ++v) {
+      Vec3& n = c.vertex_normals[v];
       const double len = n.norm();
-      c.vertex_normals[v] = len > 0 ? Vec3(n / len) : Vec3::UnitZ();
-      c.star_area[v] = star;
+      n = len > 0 ? Vec3(n / len) : Vec3::UnitZ();
     }
   });
   report(kNormalsDone);
@@ -82,29 +117,31 @@ Curvature compute_curvature(const Mesh& mesh, const Topology& topology, const st
         // An edge's inputs lie wherever its triangles and larger end are in
         // the arrays (only the smaller end follows the edge order): each a
         // likely cache miss, which the divisions and roots between them keep
-        // from overlapping. So edge e asks for those of edge e + kAhead (t1's
-        // corners for e + 2 kAhead, to find its far corner then). Natively
-        // only: WASM has no prefetch (__builtin_prefetch compiles to
-        // nothing). Written in the loop: GCC drops a call to a lambda made of
-        // prefetches as if it had no effect.
+        // from overlapping. So edge e asks for those of edge e + kAhead (the
+        // triangles' corners for e + 2 kAhead, to find their far corners
+        // then). Natively only: WASM has no prefetch (__builtin_prefetch
+        // compiles to nothing). Written in the loop: GCC drops a call to a
+        // lambda made of prefetches as if it had no effect.
         constexpr size_t kAhead = 8;
         if (i + 2 * kAhead < last) {
-          const uint32_t t1 = topology.edge_triangles[e + 2 * kAhead][1];
-          if (t1 != kNone) __builtin_prefetch(&mesh.triangles[t1]);
+          const auto [t0, t1] = topology.edge_triangles[e + 2 * kAhead];
+          if (t1 != kNone) {
+            __builtin_prefetch(&mesh.triangles[t0]);
+            __builtin_prefetch(&mesh.triangles[t1]);
+          }
         }
         if (i + kAhead < last) {
           const auto [t0, t1] = topology.edge_triangles[e + kAhead];
           if (t1 != kNone) {
             const uint32_t a = topology.edges[e + kAhead][0], b = topology.edges[e + kAhead][1];
-            __builtin_prefetch(&normals[t0]);
-            __builtin_prefetch(&normals[t1]);
             __builtin_prefetch(&x[b]);
             __builtin_prefetch(&c.vertex_normals[b]);
-            // t1's corners are a, b and the far one (distinct after
+            // Each triangle's corners are a, b and a far one (distinct after
             // repair_mesh): found without the branches below, which would
             // mispredict here; kept inside the array whatever the triangle.
-            const Triangle& f = mesh.triangles[t1];
-            __builtin_prefetch(&x[std::min<size_t>(f[0] ^ f[1] ^ f[2] ^ a ^ b, nv - 1)]);
+            const Triangle &f0 = mesh.triangles[t0], &f1 = mesh.triangles[t1];
+            __builtin_prefetch(&x[std::min<size_t>(f0[0] ^ f0[1] ^ f0[2] ^ a ^ b, nv - 1)]);
+            __builtin_prefetch(&x[std::min<size_t>(f1[0] ^ f1[1] ^ f1[2] ^ a ^ b, nv - 1)]);
           }
         }
         EdgeTerm& term = terms[i];
@@ -114,17 +151,22 @@ Curvature compute_curvature(const Mesh& mesh, const Topology& topology, const st
         const uint32_t a = topology.edges[e][0], b = topology.edges[e][1];
         const Vec3 edge = x[b] - x[a];
         const double length = edge.norm();
-        const Vec3 n_sum = normals[t0] + normals[t1];
+        // The two triangles' normals, formed here from their corners (the
+        // bits triangle_areas_normals gives; each triangle's three times).
+        const Triangle &f0 = mesh.triangles[t0], &f1 = mesh.triangles[t1];
+        Vec3 normal0, normal1;
+        triangle_normal(x[f0[0]], x[f0[1]], x[f0[2]], normal0);
+        triangle_normal(x[f1[0]], x[f1[1]], x[f1[2]], normal1);
+        const Vec3 n_sum = normal0 + normal1;
         const double n_sum_norm2 = n_sum.squaredNorm();
         if (!(length > 0) || !(n_sum_norm2 > 0)) continue;
         const Vec3 n_e = n_sum / std::sqrt(n_sum_norm2);  // normalized(), with its one square root
         // H_e = 2|e| cos(θ_e/2) with θ_e the interior dihedral angle; the angle
         // between the normals is π − θ_e, so cos(θ_e/2) = |N_1 − N_2| / 2.
         // Convex (positive) when t1's far corner lies below t0's plane.
-        const Triangle& f1 = mesh.triangles[t1];
         const uint32_t far = f1[0] != a && f1[0] != b ? f1[0] : (f1[1] != a && f1[1] != b ? f1[1] : f1[2]);
-        const double side = normals[t0].dot(x[far] - x[a]);
-        const double h_e = (side > 0 ? -1.0 : 1.0) * length * (normals[t0] - normals[t1]).norm();
+        const double side = normal0.dot(x[far] - x[a]);
+        const double h_e = (side > 0 ? -1.0 : 1.0) * length * (normal0 - normal1).norm();
         const Vec3 w = (edge / length).cross(n_e);
         // (H_e w_i) w_j: the products, and so the bits, Eigen formed for H_e (w w^T).
         const Vec3 hw = h_e * w;
@@ -161,10 +203,6 @@ Curvature compute_curvature(const Mesh& mesh, const Topology& topology, const st
         1);
     report(kNormalsDone + (kEdgesDone - kNormalsDone) * double(end) / double(ne));
   }
-  // The triangles' normals and areas are done with: freed before the four
-  // fields below are made (32 bytes per triangle, the stage's peak).
-  std::vector<Vec3>().swap(normals);
-  std::vector<double>().swap(areas);
   std::vector<EdgeTerm>().swap(terms);
 
   c.kappa_max.resize(nv);

@@ -20,11 +20,8 @@ void triangle_areas_normals(const std::vector<Vec3>& positions, const std::vecto
   normals.resize(triangles.size());
   parallel_for(triangles.size(), [&](size_t begin, size_t end) {
     for (size_t t = begin; t < end; ++t) {
-      const Vec3& a = positions[triangles[t][0]];
-      const Vec3 n = (positions[triangles[t][1]] - a).cross(positions[triangles[t][2]] - a);
-      const double len = n.norm();
-      areas[t] = 0.5 * len;
-      normals[t] = len > 0 ? Vec3(n / len) : Vec3::Zero();
+      const Triangle& f = triangles[t];
+      areas[t] = 0.5 * triangle_normal(positions[f[0]], positions[f[1]], positions[f[2]], normals[t]);
     }
   });
 }

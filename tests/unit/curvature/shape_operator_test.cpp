@@ -7,6 +7,7 @@
 #include "analytic_meshes.h"
 #include "crestline/curvature/extremality.h"
 #include "crestline/curvature/regularity.h"
+#include "crestline/mesh/cotan.h"
 #include "crestline/mesh/repair.h"
 #include "crestline/numerics/parallel.h"
 
@@ -234,4 +235,44 @@ TEST_CASE(
     CHECK(extremality[i].e_max == extremality[0].e_max);
     CHECK(extremality[i].e_min == extremality[0].e_min);
   }
+}
+
+TEST_CASE(
+    "curvature: vertex normals and star areas summed in triangle order, the bits of a gather over each vertex's "
+    "triangles, on 1, 2 and 3 threads",
+    "[curvature][threads]") {
+  // 328k triangles: five blocks of 65,536, each vertex's sums split over
+  // the threads by vertex; and a triangle of zero area, whose normal is zero.
+  Mesh mesh = repair_mesh(testing::icosphere(7)).mesh;
+  testing::add_normal_noise(mesh, 0.002, 3);
+  const Triangle& flat = mesh.triangles[1000];
+  mesh.positions[flat[2]] = mesh.positions[flat[0]];
+  const Topology topology = build_topology(mesh);
+  // The definition: each vertex's triangles in ascending order, Σ area · unit
+  // normal normalized, and Σ area, from triangle_areas_normals.
+  std::vector<double> areas;
+  std::vector<Vec3> normals;
+  triangle_areas_normals(mesh.positions, mesh.triangles, areas, normals);
+  std::vector<Vec3> vertex_normals(mesh.positions.size());
+  std::vector<double> star_area(mesh.positions.size());
+  for (size_t v = 0; v < mesh.positions.size(); ++v) {
+    Vec3 n = Vec3::Zero();
+    double star = 0;
+    for (uint32_t i = topology.vertex_offsets[v]; i < topology.vertex_offsets[v + 1]; ++i) {
+      const uint32_t t = topology.vertex_triangles[i];
+      n += areas[t] * normals[t];
+      star += areas[t];
+    }
+    vertex_normals[v] = n.norm() > 0 ? Vec3(n / n.norm()) : Vec3::UnitZ();
+    star_area[v] = star;
+  }
+  REQUIRE(areas[1000] == 0);
+  const int before = max_threads();
+  for (int threads : {1, 2, 3}) {
+    set_max_threads(threads);
+    const Curvature curvature = compute_curvature(mesh, topology);
+    CHECK(curvature.vertex_normals == vertex_normals);
+    CHECK(curvature.star_area == star_area);
+  }
+  set_max_threads(before);
 }
