@@ -252,5 +252,11 @@ class EdgeRecorder {
 /// boundary edges it met there (in any order; found here otherwise).
 void add_vertex_triangles(const std::vector<Triangle>& tris, size_t vertex_count, Topology& topology,
                           const std::vector<uint32_t>* boundary_edges = nullptr);
+/// Its two halves: vertex_offsets and vertex_triangles; then boundary_vertex
+/// (from the edges recorded, and boundary_edges as above). repair_mesh
+/// groups the triangles before it splits the vertices of several fans.
+void group_vertex_triangles(const std::vector<Triangle>& tris, size_t vertex_count, Topology& topology);
+void flag_boundary_vertices(size_t vertex_count, Topology& topology,
+                            const std::vector<uint32_t>* boundary_edges = nullptr);
 
 }  // namespace crestline::detail

@@ -11,14 +11,22 @@ namespace crestline {
 
 namespace detail {
 
-void add_vertex_triangles(const std::vector<Triangle>& tris, size_t vertex_count, Topology& topology,
-                          const std::vector<uint32_t>* boundary_edges) {
+void group_vertex_triangles(const std::vector<Triangle>& tris, size_t vertex_count, Topology& topology) {
   group_by_bucket(
       tris.size(), vertex_count,
       [&](size_t t, const auto& emit) {
         for (uint32_t v : tris[t]) emit(v, uint32_t(t));
       },
       topology.vertex_offsets, topology.vertex_triangles);
+}
+
+void add_vertex_triangles(const std::vector<Triangle>& tris, size_t vertex_count, Topology& topology,
+                          const std::vector<uint32_t>* boundary_edges) {
+  group_vertex_triangles(tris, vertex_count, topology);
+  flag_boundary_vertices(vertex_count, topology, boundary_edges);
+}
+
+void flag_boundary_vertices(size_t vertex_count, Topology& topology, const std::vector<uint32_t>* boundary_edges) {
   topology.boundary_vertex.assign(vertex_count, 0);
   auto flag_ends = [&](const std::vector<uint32_t>& edges) {
     for (uint32_t e : edges)
