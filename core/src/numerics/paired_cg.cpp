@@ -435,6 +435,7 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix, bool two_level, cons
   // Not read beyond here: Q is built without the input beside it.
   matrix = SignedPairMatrix();
   if (!aggregation.aggregate.empty()) build_coarse_transfer(aggregation);
+  aggregation = Aggregation();
   // The solves take the roots of the diagonal where they need them (a
   // square root is correctly rounded: the same bits), 8 bytes a row less.
   UninitialisedVector<double>().swap(roots_);

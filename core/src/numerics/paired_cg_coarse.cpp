@@ -1,14 +1,16 @@
 // The coarse level of the paired solver's two-level preconditioner
 // (numerics/paired_cg.h): aggregates of the rows that the Gauss–Seidel
 // sweeps smooth slowly, and the operators Q = L P and Ac = Pᵀ Â P the solve
-// uses. In a fixed order, serial but for Q's rows, which each thread
-// computes alone: the same for any number of threads.
+// uses. Each row's arithmetic is its own or in a fixed order, on any
+// thread (the per-row passes, Ac's and Q's rows; Qᵀ and Ac's factor side by
+// side): the same for any number of threads.
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "crestline/numerics/paired_cg.h"
 #include "crestline/numerics/parallel.h"
+#include "crestline/numerics/uninitialised.h"
 
 namespace crestline {
 namespace {
@@ -91,11 +93,19 @@ SignedPairSolver::Aggregation SignedPairSolver::build_coarse_matrix(const Signed
                                                                     const UninitialisedVector<uint32_t>& position,
                                                                     const std::function<void()>& pause) {
   const size_t n = a.rows();
-  std::vector<uint8_t> slow(n);
-  for (size_t i = 0; i < n; ++i) slow[i] = detail::is_slow(a.diagonal[i], excess[i], a.offsets[i + 1] > a.offsets[i]);
-
-  std::vector<double> inverse_root(n);  // 1 / √a_ii, by input row (roots_ are by the solver's)
-  for (size_t i = 0; i < n; ++i) inverse_root[i] = 1 / roots_[position[i]];
+  UninitialisedVector<uint8_t> slow(n);
+  UninitialisedVector<double> inverse_root(n);  // 1 / √a_ii, by input row (roots_ are by the solver's)
+  parallel_for(n, [&](size_t begin, size_t end) {
+    // Raw pointers in locals: a store through one may alias the vectors' own.
+    const double *const diagonal = a.diagonal.data(), *const excess_of = excess.data(), *const roots = roots_.data();
+    const uint32_t *const offsets = a.offsets.data(), *const at = position.data();
+    uint8_t* const slow_of = slow.data();
+    double* const inverse = inverse_root.data();
+    for (size_t i = begin; i < end; ++i) {
+      slow_of[i] = detail::is_slow(diagonal[i], excess_of[i], offsets[i + 1] > offsets[i]);
+      inverse[i] = 1 / roots[at[i]];
+    }
+  });
   const auto column = [&](uint32_t e) { return a.columns[e] & SignedPairMatrix::kColumnMask; };
   const auto strength = [&](uint32_t i, uint32_t e) {  // |a_ij| / √(a_ii a_jj)
     return std::abs(a.weights[e]) * inverse_root[i] * inverse_root[column(e)];
@@ -207,18 +217,23 @@ SignedPairSolver::Aggregation SignedPairSolver::build_coarse_matrix(const Signed
     for (uint32_t e = off_begin[c]; e < off_begin[c + 1]; ++e)
       for (int k = 0; k < 2; ++k)
         off_values[2 * size_t{e} + k] /= coarse_root[2 * size_t{c} + k] * coarse_root[2 * size_t{off_columns[e]} + k];
-  if (!coarse_factor_.factor(off_begin, off_columns, off_values)) {
-    if (!coarse_factor_.refused_for_fill) return {};
-    keep_coarse_rows(off_begin, off_columns, off_values);
-  }
   aggregated_ = aggregated;
 
-  // By the solver's rows, for P (build_coarse_transfer).
+  // By the solver's rows, for P (build_coarse_transfer); every row written
+  // once (position is a permutation).
   Aggregation out;
-  out.aggregate.assign(n, kNone);
-  out.flips.assign(n, 0);
-  for (size_t i = 0; i < n; ++i) out.aggregate[position[i]] = aggregate[i], out.flips[position[i]] = flips[i];
+  out.aggregate.resize(n);
+  out.flips.resize(n);
+  parallel_for(n, [&](size_t begin, size_t end) {
+    const uint32_t *const at = position.data(), *const from = aggregate.data();
+    const uint8_t* const flips_from = flips.data();
+    uint32_t* const to = out.aggregate.data();
+    uint8_t* const flips_to = out.flips.data();
+    for (size_t i = begin; i < end; ++i) to[at[i]] = from[i], flips_to[at[i]] = flips_from[i];
+  });
   out.coarse_root = std::move(coarse_root);
+  out.lower_begin = std::move(off_begin), out.lower_columns = std::move(off_columns);
+  out.lower_values = std::move(off_values);
   return out;
 }
 
@@ -365,9 +380,9 @@ void SignedPairSolver::keep_coarse_rows(const std::vector<uint32_t>& lower_begin
 
 // P in the solver's rows and scaled variables, s_i √a_ii / √Ac_cc, formed
 // where Q reads it (not stored: 16 bytes a row).
-void SignedPairSolver::build_coarse_transfer(const Aggregation& aggregation) {
+bool SignedPairSolver::build_coarse_transfer(Aggregation& aggregation) {
   const size_t n = roots_.size();
-  const uint32_t aggregates = static_cast<uint32_t>(coarse_rows());
+  const uint32_t aggregates = static_cast<uint32_t>(aggregation.coarse_root.size() / 2);
   const std::vector<uint32_t>& fine_aggregate = aggregation.aggregate;
   // In the solver's handedness: field 1's column of P negated where handed_.
   const auto p = [&](uint32_t j, int k) {
@@ -394,20 +409,39 @@ void SignedPairSolver::build_coarse_transfer(const Aggregation& aggregation) {
                    columns.insert(columns.end(), found.begin(), found.end());
                    for (const double v : sums) values.push_back(static_cast<float>(v));
                  });
-  // Qᵀ by coarse row, fine rows in order.
-  qt_begin_.assign(aggregates + 1, 0);
-  for (const uint32_t c : q_columns_) ++qt_begin_[c + 1];
-  for (uint32_t c = 0; c < aggregates; ++c) qt_begin_[c + 1] += qt_begin_[c];
-  qt_rows_.resize(q_columns_.size());
-  qt_values_.resize(q_values_.size());
-  std::vector<uint32_t> fill(qt_begin_.begin(), qt_begin_.end() - 1);
-  for (uint32_t r = 0; r < n; ++r)
-    for (uint32_t e = q_begin_[r]; e < q_begin_[r + 1]; ++e) {
-      const uint32_t to = fill[q_columns_[e]]++;
-      qt_rows_[to] = r;
-      qt_values_[2 * size_t{to}] = q_values_[2 * size_t{e}],
-                     qt_values_[2 * size_t{to} + 1] = q_values_[2 * size_t{e} + 1];
-    }
+  // Qᵀ by coarse row, fine rows in order; beside it, Ac factored (each
+  // serial, ≈ 30 and 40 M instructions on the dragon; neither reads what
+  // the other writes).
+  bool factored = true;
+  run_side_by_side(
+      [&] {
+        qt_begin_.assign(aggregates + 1, 0);
+        for (const uint32_t c : q_columns_) ++qt_begin_[c + 1];
+        for (uint32_t c = 0; c < aggregates; ++c) qt_begin_[c + 1] += qt_begin_[c];
+        qt_rows_.resize(q_columns_.size());
+        qt_values_.resize(q_values_.size());
+        std::vector<uint32_t> fill(qt_begin_.begin(), qt_begin_.end() - 1);
+        for (uint32_t r = 0; r < n; ++r)
+          for (uint32_t e = q_begin_[r]; e < q_begin_[r + 1]; ++e) {
+            const uint32_t to = fill[q_columns_[e]]++;
+            qt_rows_[to] = r;
+            qt_values_[2 * size_t{to}] = q_values_[2 * size_t{e}],
+                           qt_values_[2 * size_t{to} + 1] = q_values_[2 * size_t{e} + 1];
+          }
+      },
+      [&] {
+        if (coarse_factor_.factor(aggregation.lower_begin, aggregation.lower_columns, aggregation.lower_values)) return;
+        if (coarse_factor_.refused_for_fill)
+          keep_coarse_rows(aggregation.lower_begin, aggregation.lower_columns, aggregation.lower_values);
+        else
+          factored = false;
+      });
+  if (factored) return true;
+  // A pivot lost to rounding: no coarse level, the one-level solve.
+  for (std::vector<uint32_t>* v : {&q_begin_, &q_columns_, &qt_begin_, &qt_rows_}) std::vector<uint32_t>().swap(*v);
+  for (std::vector<float>* v : {&q_values_, &qt_values_}) std::vector<float>().swap(*v);
+  aggregated_ = 0;
+  return false;
 }
 
 }  // namespace crestline

@@ -343,6 +343,10 @@ class SignedPairSolver {
     std::vector<uint32_t> aggregate;  // of each row, or none
     std::vector<uint8_t> flips;       // bit k: the row's value in field k's column of P is negative
     std::vector<double> coarse_root;  // √Ac_cc per field
+    // Ac scaled to a unit diagonal, its entries below the diagonal by row
+    // (rows + 1 offsets; pairs per field): factored once Q is built.
+    std::vector<uint32_t> lower_begin, lower_columns;
+    std::vector<double> lower_values;
   };
   // Aggregates the slow rows and builds Ac from the input matrix (by input
   // row), before the permuted matrix exists: the two are never held beside
@@ -351,8 +355,10 @@ class SignedPairSolver {
   Aggregation build_coarse_matrix(const SignedPairMatrix& matrix, const UninitialisedVector<double>& excess,
                                   const std::vector<uint32_t>& bfs_order, const UninitialisedVector<uint32_t>& position,
                                   const std::function<void()>& pause);
-  // Q = L P and Qᵀ from the permuted float matrix, once the input is released.
-  void build_coarse_transfer(const Aggregation& aggregation);
+  // Q = L P and Qᵀ from the permuted float matrix, once the input is
+  // released, and Ac factored (or kept for sweeps) beside Qᵀ's transpose;
+  // false, and no coarse level, if a pivot is not positive.
+  bool build_coarse_transfer(Aggregation& aggregation);
 
   // One part of the permuted matrix (rows in colour order) by row: row k's
   // entries are [begin[k], begin[k + 1]), each its column and σ_0 w /
