@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "crestline/curvature/shape_operator.h"
 #include "crestline/numerics/parallel.h"
@@ -107,12 +108,9 @@ uint8_t crossing_segment(const Mesh& mesh, const Field& field, uint32_t t, uint8
 // line, as 1 + first + 3 · second (first < second); 0 where there is none.
 // `code`: the triangle's regularity_code (nonzero), whose signs are
 // consistent_signs' of the field's directions. The signs alone decide most
-// triangles (no crossing), inline; a crossing edge is one whose ends' signs
-// differ, and a triangle has none or two.
-inline uint8_t segment_edges(const Mesh& mesh, const Field& field, const Triangle& f, uint32_t t, uint8_t code,
-                             const double* e) {
-  const unsigned positive = positive_corners(e, f, code);
-  if (positive == 0 || positive == 7) return 0;
+// triangles (no crossing); a crossing edge is one whose ends' signs differ,
+// and a triangle has none or two. `positive`: positive_corners', neither 0 nor 7.
+inline uint8_t segment_edges(const Mesh& mesh, const Field& field, uint32_t t, uint8_t code, unsigned positive) {
   // Edge k crosses where bits k and k + 1 (mod 3) differ.
   const unsigned crossing = (positive ^ (positive >> 1 | positive << 2)) & 7;
   const int first = crossing & 1 ? 0 : 1, second = crossing & 4 ? 2 : 1;
@@ -135,14 +133,39 @@ void trace_field(const Mesh& mesh, const Topology& topology, const Field& field,
     const uint32_t end = std::min(nt, begin + kProgressStride);
     // The arrays by address: a byte store may alias anything, so the
     // vectors' data would be reloaded after each.
-    parallel_for(end - begin, [&, tris = mesh.triangles.data(), e = field.e.data(), skip = excluded.data(),
-                               regular = field.regular.data(), out = code.data()](size_t first, size_t last) {
-      for (size_t i = first; i < last; ++i) {
-        const uint32_t t = begin + static_cast<uint32_t>(i);
-        const uint8_t c = regular[t];
-        out[i] = skip[t] || !c ? 0 : segment_edges(mesh, field, tris[t], t, c, e);
-      }
-    });
+    // In two passes: the signs of every triangle, then the crossing ones'
+    // tests. The corners' values lie anywhere in their arrays: those kAhead
+    // triangles (crossings) on are asked for while these are tested
+    // (natively; WASM has no prefetch). In the loops: GCC drops a lambda
+    // made only of prefetches.
+    parallel_for(end - begin,
+                 [&, tris = mesh.triangles.data(), e = field.e.data(), skip = excluded.data(),
+                  regular = field.regular.data(), out = code.data(), x = mesh.positions.data(), dir = field.dir.data(),
+                  own = field.kappa_own.data(), other = field.kappa_other.data()](size_t first, size_t last) {
+                   constexpr size_t kAhead = 8;
+                   std::vector<uint32_t> crossings;  // (i << 3 | positive) of the triangles whose signs differ
+                   for (size_t i = first; i < last; ++i) {
+                     const uint32_t t = begin + static_cast<uint32_t>(i);
+                     if (i + kAhead < last)
+                       for (uint32_t v : tris[t + kAhead]) __builtin_prefetch(&e[v]);
+                     const uint8_t c = regular[t];
+                     out[i] = 0;
+                     if (skip[t] || !c) continue;
+                     const unsigned positive = positive_corners(e, tris[t], c);
+                     if (positive != 0 && positive != 7) crossings.push_back(static_cast<uint32_t>(i) << 3 | positive);
+                   }
+                   for (size_t j = 0; j < crossings.size(); ++j) {
+                     if (j + kAhead < crossings.size())
+                       for (uint32_t v : tris[begin + (crossings[j + kAhead] >> 3)]) {
+                         __builtin_prefetch(&x[v]);
+                         __builtin_prefetch(&dir[v]);
+                         __builtin_prefetch(&own[v]);
+                         __builtin_prefetch(&other[v]);
+                       }
+                     const uint32_t i = crossings[j] >> 3, t = begin + i;
+                     out[i] = segment_edges(mesh, field, t, regular[t], crossings[j] & 7);
+                   }
+                 });
     for (uint32_t t = begin; t < end; ++t) {
       if (!code[t - begin]) continue;
       const int edges = code[t - begin] - 1;
@@ -154,8 +177,21 @@ void trace_field(const Mesh& mesh, const Topology& topology, const Field& field,
   const size_t nodes = graph.source.size();
   graph.points.resize(nodes), graph.curvature.resize(nodes);
   graph.edge_parameter.resize(nodes), graph.trisector.resize(nodes);
+  // Each node's edge and its ends' values lie anywhere in their arrays:
+  // asked for 2 kAhead and kAhead nodes on (natively).
   parallel_for(nodes - first, [&](size_t begin, size_t end) {
-    for (size_t i = begin; i < end; ++i) place_crossing(graph, mesh, topology, field, uint32_t(first + i));
+    constexpr size_t kAhead = 8;
+    for (size_t i = begin; i < end; ++i) {
+      if (i + 2 * kAhead < end) __builtin_prefetch(&topology.edges[graph.source[first + i + 2 * kAhead]]);
+      if (i + kAhead < end)
+        for (uint32_t v : topology.edges[graph.source[first + i + kAhead]]) {
+          __builtin_prefetch(&mesh.positions[v]);
+          __builtin_prefetch(&field.e[v]);
+          __builtin_prefetch(&field.dir[v]);
+          __builtin_prefetch(&field.kappa_own[v]);
+        }
+      place_crossing(graph, mesh, topology, field, uint32_t(first + i));
+    }
   });
 }
 
