@@ -167,6 +167,11 @@ void trace_field(const Mesh& mesh, const Topology& topology, const Field& field,
                    }
                  });
     for (uint32_t t = begin; t < end; ++t) {
+      // The crossed edges' nodes lie anywhere in edge_node: those of the
+      // triangle kAhead on are asked for now (natively).
+      constexpr uint32_t kAhead = 16;
+      if (t + kAhead < end && code[t + kAhead - begin])
+        for (uint32_t edge : topology.triangle_edges[t + kAhead]) __builtin_prefetch(&graph.edge_node[edge]);
       if (!code[t - begin]) continue;
       const int edges = code[t - begin] - 1;
       const uint32_t a = node_on(graph, topology.triangle_edges[t][edges % 3]);
