@@ -1084,7 +1084,7 @@ CreaseAngles measure_crease_angles(const Mesh& mesh, const Topology& topology, c
     if (progress) progress(done / parts);
   };
   if (out.noise_measured) {
-    out.noise_level = surface_noise_level(mesh, topology);
+    out.noise_level = options.noise_level >= 0 ? options.noise_level : surface_noise_level(mesh, topology);
     report(1);
   }
   out.normal_filter_steps =

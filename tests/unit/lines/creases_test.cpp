@@ -11,6 +11,7 @@
 #include "../mesh/same_topology.h"
 #include "analytic_meshes.h"
 #include "crestline/mesh/cut.h"
+#include "crestline/mesh/presmooth.h"
 #include "crestline/mesh/repair.h"
 #include "crestline/pipeline.h"
 
@@ -426,4 +427,23 @@ TEST_CASE("crease boundaries: without creases the smooth stages run on the input
   CHECK(p.extremality().e_max.size() == p.working_surface().positions.size());
   CHECK(p.extremality().e_max == p.raw_extremality().e_max);
   CHECK(p.extremality().e_min == p.raw_extremality().e_min);
+}
+
+TEST_CASE("a given noise level is the one measured and gives the same angles", "[creases]") {
+  // The Pipeline hands its own measure over (one component): the stage must
+  // then read exactly what it would have measured itself.
+  Mesh mesh = repair_mesh(cube(20)).mesh;
+  testing::add_normal_noise(mesh, 0.3 * mean_edge_length(mesh), 5);
+  const Topology topology = build_topology(mesh);
+  const CreaseAngles measured = measure_crease_angles(mesh, topology, {-1});
+  REQUIRE(measured.noise_measured);
+  CHECK(measured.noise_level == surface_noise_level(mesh, topology));
+  CHECK(measured.normal_filter_steps > 0);
+  const CreaseAngles given = measure_crease_angles(mesh, topology, {-1, measured.noise_level});
+  CHECK(given.noise_level == measured.noise_level);
+  CHECK(given.normal_filter_steps == measured.normal_filter_steps);
+  CHECK(given.angle == measured.angle);
+  CHECK(given.support == measured.support);
+  // A level other than the mesh's is taken as given: the filter follows it.
+  CHECK(measure_crease_angles(mesh, topology, {-1, 0.0}).normal_filter_steps == 0);
 }

@@ -31,6 +31,10 @@ struct CreaseMeasureOptions {
   /// measured; 0 uses the raw face normals. Negative: automatic, see
   /// automatic_normal_filter_steps.
   int normal_filter_steps = -1;
+  /// surface_noise_level(mesh, topology) where the caller has it (≥ 0; the
+  /// Pipeline's constructor measured it): not measured again. Negative: measured
+  /// here (where the filter steps are not 0).
+  double noise_level = -1;
 };
 
 /// The crease stage's rules for very noisy surfaces (creases.cpp: support
