@@ -7,6 +7,7 @@
 #include <functional>
 #include <limits>
 
+#include "crestline/mesh/cotan.h"
 #include "crestline/mesh/presmooth.h"
 #include "crestline/numerics/constants.h"
 #include "crestline/numerics/parallel.h"
@@ -266,23 +267,7 @@ struct FaceNormals {
 
 FaceNormals face_normals(const Mesh& mesh) {
   FaceNormals out;
-  const size_t nt = mesh.triangles.size();
-  out.normal.resize(nt);
-  out.area.resize(nt);
-  parallel_for(nt, [&](size_t begin, size_t end) {
-    for (size_t f = begin; f < end; ++f) {
-      // The corners lie anywhere in the positions: those of the triangle
-      // kAhead on are asked for now (as in the edges' loop below).
-      constexpr size_t kAhead = 8;
-      if (f + kAhead < end)
-        for (uint32_t v : mesh.triangles[f + kAhead]) __builtin_prefetch(&mesh.positions[v]);
-      const Triangle& t = mesh.triangles[f];
-      const Vec3 n = (mesh.positions[t[1]] - mesh.positions[t[0]]).cross(mesh.positions[t[2]] - mesh.positions[t[0]]);
-      const double len = n.norm();
-      out.area[f] = 0.5 * len;
-      out.normal[f] = len > 0 ? Vec3(n / len) : Vec3::Zero();
-    }
-  });
+  triangle_areas_normals(mesh.positions, mesh.triangles, out.area, out.normal);
   return out;
 }
 

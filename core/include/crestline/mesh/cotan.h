@@ -30,7 +30,7 @@ inline double triangle_normal(const Vec3& p0, const Vec3& p1, const Vec3& p2, Ve
 }
 
 /// Area of each triangle, and unit normals (zero for zero-area triangles):
-/// ½ triangle_normal and its normal.
+/// ½ triangle_normal and its normal (the crease measure's face normals too).
 void triangle_areas_normals(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles,
                             std::vector<double>& areas, std::vector<Vec3>& normals);
 
