@@ -2,9 +2,9 @@
 
 #include <algorithm>
 
-#include "../mesh/parts.h"
 #include "crestline/mesh/cotan.h"
 #include "crestline/numerics/parallel.h"
+#include "vertex_scatter.h"
 
 namespace crestline {
 
@@ -25,7 +25,6 @@ Extremality compute_extremality(const Mesh& mesh, const Curvature& curvature,
   constexpr size_t kBlock = size_t{1} << 16;
   std::vector<double> term_max(3 * std::min(nt, kBlock)), term_min(term_max.size());
   std::vector<uint8_t> adds(std::min(nt, kBlock));  // 0 for degenerate triangles, which add nothing
-  const size_t parts = nt < 4 * kBlock ? 1 : std::min<size_t>(size_t(max_threads()), 8);
   // The arrays by address, captured by value: the byte store of `adds` may
   // alias anything, so the vectors' data would be reloaded after it.
   const Triangle* tris = mesh.triangles.data();
@@ -34,72 +33,65 @@ Extremality compute_extremality(const Mesh& mesh, const Curvature& curvature,
   const double *kappa_max = curvature.kappa_max.data(), *kappa_min = curvature.kappa_min.data();
   double *max_terms = term_max.data(), *min_terms = term_min.data();
   uint8_t* adding = adds.data();
-  for (size_t begin = 0; begin < nt; begin += kBlock) {
-    const size_t end = std::min(nt, begin + kBlock);
-    parallel_for(end - begin, [=](size_t first, size_t last) {
-      for (size_t i = first; i < last; ++i) {
-        // The corners' fields lie anywhere in their arrays: those of the
-        // triangle kAhead on are asked for now (natively; WASM has no
-        // prefetch). In the loop: GCC drops a lambda made of prefetches.
-        constexpr size_t kAhead = 8;
-        if (i + kAhead < last) {
-          const Triangle& ahead = tris[begin + i + kAhead];
+  double *e_max = out.e_max.data(), *e_min = out.e_min.data();
+  detail::scatter_to_vertices<8>(
+      nt, kBlock,
+      [=](size_t begin, size_t first, size_t last) {
+        for (size_t i = first; i < last; ++i) {
+          // The corners' fields lie anywhere in their arrays: those of the
+          // triangle kAhead on are asked for now (natively; WASM has no
+          // prefetch).
+          constexpr size_t kAhead = 8;
+          if (i + kAhead < last) {
+            const Triangle& ahead = tris[begin + i + kAhead];
+            for (int k = 0; k < 3; ++k) {
+              __builtin_prefetch(&x[ahead[k]]);
+              __builtin_prefetch(&kappa_max[ahead[k]]);
+              __builtin_prefetch(&kappa_min[ahead[k]]);
+              __builtin_prefetch(&dir_max[ahead[k]]);
+              __builtin_prefetch(&dir_min[ahead[k]]);
+            }
+          }
+          const Triangle& f = tris[begin + i];
+          const Vec3 n = (x[f[1]] - x[f[0]]).cross(x[f[2]] - x[f[0]]);
+          const double twice_area = n.norm();
+          adding[i] = twice_area > 0;
+          if (!(twice_area > 0)) continue;
+          // ∇κ(T) = Σ_k κ_k ∇φ_k with ∇φ_k = N × (opposite edge) / (2 area).
+          const Vec3 unit = n / twice_area;
+          Vec3 grad_max = Vec3::Zero(), grad_min = Vec3::Zero();
           for (int k = 0; k < 3; ++k) {
-            __builtin_prefetch(&x[ahead[k]]);
-            __builtin_prefetch(&kappa_max[ahead[k]]);
-            __builtin_prefetch(&kappa_min[ahead[k]]);
-            __builtin_prefetch(&dir_max[ahead[k]]);
-            __builtin_prefetch(&dir_min[ahead[k]]);
+            const Vec3 g = unit.cross(x[f[(k + 2) % 3]] - x[f[(k + 1) % 3]]) / twice_area;
+            grad_max += kappa_max[f[k]] * g;
+            grad_min += kappa_min[f[k]] * g;
+          }
+          // Eq. (4): area-weighted, divided by area(star) below.
+          const double area = 0.5 * twice_area;
+          for (int k = 0; k < 3; ++k) {
+            max_terms[3 * i + k] = area * grad_max.dot(widen(dir_max[f[k]]));
+            min_terms[3 * i + k] = area * grad_min.dot(widen(dir_min[f[k]]));
           }
         }
-        const Triangle& f = tris[begin + i];
-        const Vec3 n = (x[f[1]] - x[f[0]]).cross(x[f[2]] - x[f[0]]);
-        const double twice_area = n.norm();
-        adding[i] = twice_area > 0;
-        if (!(twice_area > 0)) continue;
-        // ∇κ(T) = Σ_k κ_k ∇φ_k with ∇φ_k = N × (opposite edge) / (2 area).
-        const Vec3 unit = n / twice_area;
-        Vec3 grad_max = Vec3::Zero(), grad_min = Vec3::Zero();
-        for (int k = 0; k < 3; ++k) {
-          const Vec3 g = unit.cross(x[f[(k + 2) % 3]] - x[f[(k + 1) % 3]]) / twice_area;
-          grad_max += kappa_max[f[k]] * g;
-          grad_min += kappa_min[f[k]] * g;
+      },
+      [=](size_t t) {  // as above
+        for (const uint32_t v : tris[t]) {
+          __builtin_prefetch(&e_max[v]);
+          __builtin_prefetch(&e_min[v]);
         }
-        // Eq. (4): area-weighted, divided by area(star) below.
-        const double area = 0.5 * twice_area;
+      },
+      [=](size_t t, const auto& mine) {
+        const size_t i = t % kBlock;
+        if (!adding[i]) return;
+        const Triangle& f = tris[t];
         for (int k = 0; k < 3; ++k) {
-          max_terms[3 * i + k] = area * grad_max.dot(widen(dir_max[f[k]]));
-          min_terms[3 * i + k] = area * grad_min.dot(widen(dir_min[f[k]]));
+          if (!mine(f[k])) continue;
+          e_max[f[k]] += max_terms[3 * i + k];
+          e_min[f[k]] += min_terms[3 * i + k];
         }
-      }
-    });
-    parallel_for(
-        parts,
-        [&](size_t first_part, size_t last_part) {
-          double *e_max = out.e_max.data(), *e_min = out.e_min.data();
-          for (size_t part = first_part; part < last_part; ++part)
-            for (size_t t = begin; t < end; ++t) {
-              constexpr size_t kAhead = 8;  // as above
-              if (t + kAhead < end) {
-                const Triangle& ahead = mesh.triangles[t + kAhead];
-                for (int k = 0; k < 3; ++k) {
-                  __builtin_prefetch(&e_max[ahead[k]]);
-                  __builtin_prefetch(&e_min[ahead[k]]);
-                }
-              }
-              if (!adds[t - begin]) continue;
-              const Triangle& f = mesh.triangles[t];
-              const size_t i = 3 * (t - begin);
-              for (int k = 0; k < 3; ++k) {
-                if (!detail::in_vertex_part(f[k], part, parts)) continue;
-                e_max[f[k]] += term_max[i + k];
-                e_min[f[k]] += term_min[i + k];
-              }
-            }
-        },
-        1);
-    if (progress) progress(double(end) / double(nt));
-  }
+      },
+      [&](size_t end) {
+        if (progress) progress(double(end) / double(nt));
+      });
   parallel_for(nv, [&](size_t first, size_t last) {
     for (size_t v = first; v < last; ++v) {
       const double star = curvature.star_area[v];

@@ -4,10 +4,10 @@
 #include <array>
 #include <cmath>
 
-#include "../mesh/parts.h"
 #include "crestline/mesh/cotan.h"
 #include "crestline/numerics/parallel.h"
 #include "crestline/numerics/symmetric_eigen3.h"
+#include "vertex_scatter.h"
 
 namespace crestline {
 
@@ -37,49 +37,42 @@ Curvature compute_curvature(const Mesh& mesh, const Topology& topology, const st
     double area;
   };
   std::vector<TriangleTerm> triangle_terms(std::min(nt, kTriangleBlock));
-  const size_t triangle_parts = nt < 4 * kTriangleBlock ? 1 : std::min<size_t>(size_t(max_threads()), 8);
-  for (size_t begin = 0; begin < nt; begin += kTriangleBlock) {
-    const size_t end = std::min(nt, begin + kTriangleBlock);
-    parallel_for(end - begin, [&](size_t first, size_t last) {
-      for (size_t i = first; i < last; ++i) {
-        // The corners lie anywhere in the positions: those of the triangle
-        // kAhead on are asked for now (natively; see the edge loop below).
-        constexpr size_t kAhead = 8;
-        if (i + kAhead < last) {
-          const Triangle& ahead = mesh.triangles[begin + i + kAhead];
-          __builtin_prefetch(&x[ahead[0]]);
-          __builtin_prefetch(&x[ahead[1]]);
-          __builtin_prefetch(&x[ahead[2]]);
+  detail::scatter_to_vertices<8>(
+      nt, kTriangleBlock,
+      [&](size_t begin, size_t first, size_t last) {
+        for (size_t i = first; i < last; ++i) {
+          // The corners lie anywhere in the positions: those of the triangle
+          // kAhead on are asked for now (natively; see the edge loop below).
+          constexpr size_t kAhead = 8;
+          if (i + kAhead < last) {
+            const Triangle& ahead = mesh.triangles[begin + i + kAhead];
+            __builtin_prefetch(&x[ahead[0]]);
+            __builtin_prefetch(&x[ahead[1]]);
+            __builtin_prefetch(&x[ahead[2]]);
+          }
+          const Triangle& f = mesh.triangles[begin + i];
+          Vec3 normal;
+          const double area = 0.5 * triangle_normal(x[f[0]], x[f[1]], x[f[2]], normal);
+          triangle_terms[i] = {area * normal, area};
         }
-        const Triangle& f = mesh.triangles[begin + i];
-        Vec3 normal;
-        const double area = 0.5 * triangle_normal(x[f[0]], x[f[1]], x[f[2]], normal);
-        triangle_terms[i] = {area * normal, area};
-      }
-    });
-    parallel_for(
-        triangle_parts,
-        [&](size_t first_part, size_t last_part) {
-          for (size_t part = first_part; part < last_part; ++part)
-            for (size_t t = begin; t < end; ++t) {
-              constexpr size_t kAhead = 8;  // the corners' sums lie anywhere too
-              if (t + kAhead < end) {
-                const Triangle& ahead = mesh.triangles[t + kAhead];
-                for (int k = 0; k < 3; ++k) {
-                  __builtin_prefetch(&c.vertex_normals[ahead[k]]);
-                  __builtin_prefetch(&c.star_area[ahead[k]]);
-                }
-              }
-              const TriangleTerm& term = triangle_terms[t - begin];
-              for (const uint32_t v : mesh.triangles[t]) {
-                if (!detail::in_vertex_part(v, part, triangle_parts)) continue;
-                c.vertex_normals[v] += term.weighted;
-                c.star_area[v] += term.area;
-              }
-            }
-        },
-        1);
-  }
+      },
+      [&](size_t t) {  // the corners' sums lie anywhere too
+        for (const uint32_t v : mesh.triangles[t]) {
+          __builtin_prefetch(&c.vertex_normals[v]);
+          __builtin_prefetch(&c.star_area[v]);
+        }
+      },
+      // The arrays by address, captured by value: loaded once, not per triangle.
+      [tris = mesh.triangles.data(), terms = triangle_terms.data(), normals = c.vertex_normals.data(),
+       areas = c.star_area.data()](size_t t, const auto& mine) {
+        const TriangleTerm& term = terms[t % kTriangleBlock];
+        for (const uint32_t v : tris[t]) {
+          if (!mine(v)) continue;
+          normals[v] += term.weighted;
+          areas[v] += term.area;
+        }
+      },
+      [](size_t) {});
   std::vector<TriangleTerm>().swap(triangle_terms);
   parallel_for(nv, [&](size_t begin, size_t end) {
     for (size_t v = begin; v < end; ++v) {
@@ -108,101 +101,91 @@ Curvature compute_curvature(const Mesh& mesh, const Topology& topology, const st
   const size_t ne = topology.edges.size();
   constexpr size_t kBlock = size_t{1} << 14;
   std::vector<EdgeTerm> terms(std::min(ne, kBlock));
-  const size_t parts = ne < 4 * kBlock ? 1 : std::min<size_t>(size_t(max_threads()), 8);
-  for (size_t begin = 0; begin < ne; begin += kBlock) {
-    const size_t end = std::min(ne, begin + kBlock);
-    parallel_for(end - begin, [&](size_t first, size_t last) {
-      for (size_t i = first; i < last; ++i) {
-        const size_t e = begin + i;
-        // An edge's inputs lie wherever its triangles and larger end are in
-        // the arrays (only the smaller end follows the edge order): each a
-        // likely cache miss, which the divisions and roots between them keep
-        // from overlapping. So edge e asks for those of edge e + kAhead (the
-        // triangles' corners for e + 2 kAhead, to find their far corners
-        // then). Natively only: WASM has no prefetch (__builtin_prefetch
-        // compiles to nothing). Written in the loop: GCC drops a call to a
-        // lambda made of prefetches as if it had no effect.
-        constexpr size_t kAhead = 8;
-        if (i + 2 * kAhead < last) {
-          const auto [t0, t1] = topology.edge_triangles[e + 2 * kAhead];
-          if (t1 != kNone) {
-            __builtin_prefetch(&mesh.triangles[t0]);
-            __builtin_prefetch(&mesh.triangles[t1]);
-          }
-        }
-        if (i + kAhead < last) {
-          const auto [t0, t1] = topology.edge_triangles[e + kAhead];
-          if (t1 != kNone) {
-            const uint32_t a = topology.edges[e + kAhead][0], b = topology.edges[e + kAhead][1];
-            __builtin_prefetch(&x[b]);
-            __builtin_prefetch(&c.vertex_normals[b]);
-            // Each triangle's corners are a, b and a far one (distinct after
-            // repair_mesh): found without the branches below, which would
-            // mispredict here; kept inside the array whatever the triangle.
-            const Triangle &f0 = mesh.triangles[t0], &f1 = mesh.triangles[t1];
-            __builtin_prefetch(&x[std::min<size_t>(f0[0] ^ f0[1] ^ f0[2] ^ a ^ b, nv - 1)]);
-            __builtin_prefetch(&x[std::min<size_t>(f1[0] ^ f1[1] ^ f1[2] ^ a ^ b, nv - 1)]);
-          }
-        }
-        EdgeTerm& term = terms[i];
-        term.used = false;
-        const auto [t0, t1] = topology.edge_triangles[e];
-        if (t1 == kNone) continue;
-        const uint32_t a = topology.edges[e][0], b = topology.edges[e][1];
-        const Vec3 edge = x[b] - x[a];
-        const double length = edge.norm();
-        // The two triangles' normals, formed here from their corners (the
-        // bits triangle_areas_normals gives; each triangle's three times).
-        const Triangle &f0 = mesh.triangles[t0], &f1 = mesh.triangles[t1];
-        Vec3 normal0, normal1;
-        triangle_normal(x[f0[0]], x[f0[1]], x[f0[2]], normal0);
-        triangle_normal(x[f1[0]], x[f1[1]], x[f1[2]], normal1);
-        const Vec3 n_sum = normal0 + normal1;
-        const double n_sum_norm2 = n_sum.squaredNorm();
-        if (!(length > 0) || !(n_sum_norm2 > 0)) continue;
-        const Vec3 n_e = n_sum / std::sqrt(n_sum_norm2);  // normalized(), with its one square root
-        // H_e = 2|e| cos(θ_e/2) with θ_e the interior dihedral angle; the angle
-        // between the normals is π − θ_e, so cos(θ_e/2) = |N_1 − N_2| / 2.
-        // Convex (positive) when t1's far corner lies below t0's plane.
-        const uint32_t far = f1[0] != a && f1[0] != b ? f1[0] : (f1[1] != a && f1[1] != b ? f1[1] : f1[2]);
-        const double side = normal0.dot(x[far] - x[a]);
-        const double h_e = (side > 0 ? -1.0 : 1.0) * length * (normal0 - normal1).norm();
-        const Vec3 w = (edge / length).cross(n_e);
-        // (H_e w_i) w_j: the products, and so the bits, Eigen formed for H_e (w w^T).
-        const Vec3 hw = h_e * w;
-        term.s_e = {hw[0] * w[0], hw[1] * w[0], hw[2] * w[0], hw[1] * w[1], hw[2] * w[1], hw[2] * w[2]};
-        term.weight[0] = 0.5 * c.vertex_normals[a].dot(n_e);
-        term.weight[1] = 0.5 * c.vertex_normals[b].dot(n_e);
-        term.used = true;
-      }
-    });
-    parallel_for(
-        parts,
-        [&](size_t first_part, size_t last_part) {
-          for (size_t part = first_part; part < last_part; ++part)
-            for (size_t e = begin; e < end; ++e) {
-              // The larger ends' sums lie anywhere (see the loop above).
-              constexpr size_t kAhead = 16;
-              if (e + kAhead < end) __builtin_prefetch(&shape[topology.edges[e + kAhead][1]]);
-              const EdgeTerm& term = terms[e - begin];
-              if (!term.used) continue;
-              for (int end_k = 0; end_k < 2; ++end_k) {
-                const uint32_t v = topology.edges[e][end_k];
-                if (!detail::in_vertex_part(v, part, parts)) continue;
-                // The products first, in locals, then the sums: the same
-                // operations, which the compiler can pair up in vector
-                // registers once the stores cannot alias the terms.
-                const double w = term.weight[end_k];
-                double add[6];
-                for (int k = 0; k < 6; ++k) add[k] = w * term.s_e[k];
-                double* sum = shape[v].data();
-                for (int k = 0; k < 6; ++k) sum[k] += add[k];
-              }
+  detail::scatter_to_vertices<16>(
+      ne, kBlock,
+      [&](size_t begin, size_t first, size_t last) {
+        for (size_t i = first; i < last; ++i) {
+          const size_t e = begin + i;
+          // An edge's inputs lie wherever its triangles and larger end are in
+          // the arrays (only the smaller end follows the edge order): each a
+          // likely cache miss, which the divisions and roots between them keep
+          // from overlapping. So edge e asks for those of edge e + kAhead (the
+          // triangles' corners for e + 2 kAhead, to find their far corners
+          // then). Natively only: WASM has no prefetch (__builtin_prefetch
+          // compiles to nothing).
+          constexpr size_t kAhead = 8;
+          if (i + 2 * kAhead < last) {
+            const auto [t0, t1] = topology.edge_triangles[e + 2 * kAhead];
+            if (t1 != kNone) {
+              __builtin_prefetch(&mesh.triangles[t0]);
+              __builtin_prefetch(&mesh.triangles[t1]);
             }
-        },
-        1);
-    report(kNormalsDone + (kEdgesDone - kNormalsDone) * double(end) / double(ne));
-  }
+          }
+          if (i + kAhead < last) {
+            const auto [t0, t1] = topology.edge_triangles[e + kAhead];
+            if (t1 != kNone) {
+              const uint32_t a = topology.edges[e + kAhead][0], b = topology.edges[e + kAhead][1];
+              __builtin_prefetch(&x[b]);
+              __builtin_prefetch(&c.vertex_normals[b]);
+              // Each triangle's corners are a, b and a far one (distinct after
+              // repair_mesh): found without the branches below, which would
+              // mispredict here; kept inside the array whatever the triangle.
+              const Triangle &f0 = mesh.triangles[t0], &f1 = mesh.triangles[t1];
+              __builtin_prefetch(&x[std::min<size_t>(f0[0] ^ f0[1] ^ f0[2] ^ a ^ b, nv - 1)]);
+              __builtin_prefetch(&x[std::min<size_t>(f1[0] ^ f1[1] ^ f1[2] ^ a ^ b, nv - 1)]);
+            }
+          }
+          EdgeTerm& term = terms[i];
+          term.used = false;
+          const auto [t0, t1] = topology.edge_triangles[e];
+          if (t1 == kNone) continue;
+          const uint32_t a = topology.edges[e][0], b = topology.edges[e][1];
+          const Vec3 edge = x[b] - x[a];
+          const double length = edge.norm();
+          // The two triangles' normals, formed here from their corners (the
+          // bits triangle_areas_normals gives; each triangle's three times).
+          const Triangle &f0 = mesh.triangles[t0], &f1 = mesh.triangles[t1];
+          Vec3 normal0, normal1;
+          triangle_normal(x[f0[0]], x[f0[1]], x[f0[2]], normal0);
+          triangle_normal(x[f1[0]], x[f1[1]], x[f1[2]], normal1);
+          const Vec3 n_sum = normal0 + normal1;
+          const double n_sum_norm2 = n_sum.squaredNorm();
+          if (!(length > 0) || !(n_sum_norm2 > 0)) continue;
+          const Vec3 n_e = n_sum / std::sqrt(n_sum_norm2);  // normalized(), with its one square root
+          // H_e = 2|e| cos(θ_e/2) with θ_e the interior dihedral angle; the angle
+          // between the normals is π − θ_e, so cos(θ_e/2) = |N_1 − N_2| / 2.
+          // Convex (positive) when t1's far corner lies below t0's plane.
+          const uint32_t far = f1[0] != a && f1[0] != b ? f1[0] : (f1[1] != a && f1[1] != b ? f1[1] : f1[2]);
+          const double side = normal0.dot(x[far] - x[a]);
+          const double h_e = (side > 0 ? -1.0 : 1.0) * length * (normal0 - normal1).norm();
+          const Vec3 w = (edge / length).cross(n_e);
+          // (H_e w_i) w_j: the products, and so the bits, Eigen formed for H_e (w w^T).
+          const Vec3 hw = h_e * w;
+          term.s_e = {hw[0] * w[0], hw[1] * w[0], hw[2] * w[0], hw[1] * w[1], hw[2] * w[1], hw[2] * w[2]};
+          term.weight[0] = 0.5 * c.vertex_normals[a].dot(n_e);
+          term.weight[1] = 0.5 * c.vertex_normals[b].dot(n_e);
+          term.used = true;
+        }
+      },
+      // The larger ends' sums lie anywhere (see the loop above).
+      [&](size_t e) { __builtin_prefetch(&shape[topology.edges[e][1]]); },
+      [edges = topology.edges.data(), block_terms = terms.data(), sums = shape.data()](size_t e, const auto& mine) {
+        const EdgeTerm& term = block_terms[e % kBlock];
+        if (!term.used) return;
+        for (int end_k = 0; end_k < 2; ++end_k) {
+          const uint32_t v = edges[e][end_k];
+          if (!mine(v)) continue;
+          // The products first, in locals, then the sums: the same
+          // operations, which the compiler can pair up in vector
+          // registers once the stores cannot alias the terms.
+          const double w = term.weight[end_k];
+          double add[6];
+          for (int k = 0; k < 6; ++k) add[k] = w * term.s_e[k];
+          double* sum = sums[v].data();
+          for (int k = 0; k < 6; ++k) sum[k] += add[k];
+        }
+      },
+      [&](size_t end) { report(kNormalsDone + (kEdgesDone - kNormalsDone) * double(end) / double(ne)); });
   std::vector<EdgeTerm>().swap(terms);
 
   c.kappa_max.resize(nv);
