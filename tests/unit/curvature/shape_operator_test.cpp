@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include "../../../core/src/curvature/vertex_scatter.h"
 #include "analytic_meshes.h"
 #include "crestline/curvature/extremality.h"
 #include "crestline/curvature/regularity.h"
@@ -275,4 +276,20 @@ TEST_CASE(
     CHECK(curvature.star_area == star_area);
   }
   set_max_threads(before);
+}
+
+TEST_CASE("the scatters' vertex parts are in_vertex_part's, without its division", "[curvature][threads]") {
+  // Every run of 64 vertices for 1 to 8 parts, strided (all 2^26 runs take
+  // seconds in a debug build), the first and last runs, and each run's ends.
+  for (size_t parts = 1; parts <= 8; ++parts) {
+    const detail::VertexParts of(parts);
+    size_t wrong = 0;
+    for (uint64_t run = 0; run < (uint64_t{1} << 26); run += run < 4096 || run > (uint64_t{1} << 26) - 4096 ? 1 : 997)
+      for (const uint32_t v : {uint32_t(run << 6), uint32_t(run << 6 | 63)}) {
+        const size_t part = of.of(v);
+        wrong += part >= parts || !detail::in_vertex_part(v, part, parts);
+      }
+    CHECK(wrong == 0);
+  }
+  CHECK(detail::VertexParts(7).of(0xffffffffu) == (0xffffffffu >> 6) % 7);
 }
