@@ -99,15 +99,22 @@ bool smooth_fields_paired(ExtremalitySmoothingSystem& system, const Extremality&
   pause();
   const SignedPairSolver solver(std::move(system.matrix), true, pause);
   pause();
-  std::vector<double> x(2 * nv), b(2 * nv);
+  // The fields and masses by the solver's rows through all steps, each
+  // value's arithmetic as by vertex: the permutation (random to the
+  // vertices' order) is undone once, not in and out of every solve.
+  const uint32_t* const vertex = solver.input_rows().data();
+  std::vector<double> x(2 * nv), b(2 * nv), row_mass(nv);
   parallel_for(nv, [&](size_t begin, size_t end) {
-    for (size_t v = begin; v < end; ++v) x[2 * v] = in.e_max[v], x[2 * v + 1] = in.e_min[v];
+    for (size_t k = begin; k < end; ++k) {
+      const size_t v = vertex[k];
+      x[2 * k] = in.e_max[v], x[2 * k + 1] = in.e_min[v], row_mass[k] = mass[v];
+    }
   });
   for (int step = 0; step < steps; ++step) {
     parallel_for(nv, [&](size_t begin, size_t end) {
-      for (size_t v = begin; v < end; ++v) {
-        const double m = mass[v];
-        b[2 * v] = m * x[2 * v], b[2 * v + 1] = m * x[2 * v + 1];
+      for (size_t k = begin; k < end; ++k) {
+        const double m = row_mass[k];
+        b[2 * k] = m * x[2 * k], b[2 * k + 1] = m * x[2 * k + 1];
       }
     });
     const size_t before = out.solver_iterations;
@@ -115,13 +122,17 @@ bool smooth_fields_paired(ExtremalitySmoothingSystem& system, const Extremality&
       out.solver_iterations = before + static_cast<size_t>(iteration);
       if (progress) progress((step + double(iteration) / (iteration + kTypicalIterations)) / steps);
     };
-    if (!solver.solve(b, x, kTolerance, step == 0 ? kPairedBudget : SpdSolver().max_iterations, on_iteration))
+    if (!solver.solve_in_solver_order(b, x, kTolerance, step == 0 ? kPairedBudget : SpdSolver().max_iterations,
+                                      on_iteration))
       return false;
   }
   out.e_max.resize(nv);
   out.e_min.resize(nv);
   parallel_for(nv, [&](size_t begin, size_t end) {
-    for (size_t v = begin; v < end; ++v) out.e_max[v] = x[2 * v], out.e_min[v] = x[2 * v + 1];
+    for (size_t k = begin; k < end; ++k) {
+      const size_t v = vertex[k];
+      out.e_max[v] = x[2 * k], out.e_min[v] = x[2 * k + 1];
+    }
   });
   return true;
 }

@@ -711,3 +711,31 @@ TEST_CASE("the two-level solve gives the same bits on 1 and 2 threads where the 
     CHECK(relative_residual(a, b, x[0], k) <= 1.01e-8);
   }
 }
+
+TEST_CASE("the paired solver by its own rows gives solve()'s bits, step after step", "[numerics]") {
+  const SignedPairMatrix a = grid_system(120);
+  const std::vector<double> b = random_pairs(a.rows(), 7), x0 = random_pairs(a.rows(), 8);
+  const SignedPairSolver solver(a);
+  REQUIRE(solver.coarse_rows() > 0);
+  const auto& input_row = solver.input_rows();
+  REQUIRE(input_row.size() == a.rows());
+  size_t moved = 0;  // rows the solver's order moves (by colour, then breadth first)
+  for (size_t k = 0; k < a.rows(); ++k) moved += input_row[k] != k;
+  CHECK(moved > a.rows() / 2);
+  // Two steps as the smoothing takes them: the second from the first's result.
+  std::vector<double> x = x0, ordered(2 * a.rows()), ordered_b(2 * a.rows());
+  for (size_t k = 0; k < a.rows(); ++k)
+    for (int f = 0; f < 2; ++f) ordered[2 * k + f] = x0[2 * size_t{input_row[k]} + f];
+  for (int step = 0; step < 2; ++step) {
+    std::vector<double> scratch = b;
+    REQUIRE(solver.solve(scratch, x, 1e-8, 500));
+    for (size_t k = 0; k < a.rows(); ++k)
+      for (int f = 0; f < 2; ++f) ordered_b[2 * k + f] = b[2 * size_t{input_row[k]} + f];
+    REQUIRE(solver.solve_in_solver_order(ordered_b, ordered, 1e-8, 500));
+    size_t differing = 0;
+    for (size_t k = 0; k < a.rows(); ++k)
+      for (int f = 0; f < 2; ++f)
+        differing += std::memcmp(&ordered[2 * k + f], &x[2 * size_t{input_row[k]} + f], sizeof(double)) != 0;
+    CHECK(differing == 0);
+  }
+}
