@@ -739,3 +739,28 @@ TEST_CASE("the paired solver by its own rows gives solve()'s bits, step after st
     CHECK(differing == 0);
   }
 }
+
+TEST_CASE("a coarse level whose factor loses a pivot is dropped whole", "[numerics]") {
+  // A path of 6 rows without mass (a_ii = Σ|a_ij|, weights 4, signs that a
+  // smooth mode follows): every row is slow, the aggregates are {0, 1} and
+  // {2, 3, 4, 5}, and Ac, scaled, is [[1, −1], [−1, 1]] exactly (√4 = 2):
+  // its second pivot is 0. The solver keeps no coarse level, as without one.
+  SignedPairMatrix a;
+  const uint32_t rows = 6;
+  a.diagonal.assign(rows, 0.0);
+  a.offsets.assign(rows + 1, 0);
+  for (uint32_t r = 0; r + 1 < rows; ++r) ++a.offsets[r + 1], ++a.offsets[r + 2];
+  for (uint32_t r = 0; r < rows; ++r) a.offsets[r + 1] += a.offsets[r];
+  a.columns.resize(a.offsets[rows]);
+  a.weights.resize(a.offsets[rows]);
+  std::vector<uint32_t> fill(a.offsets.begin(), a.offsets.end() - 1);
+  for (uint32_t r = 0; r + 1 < rows; ++r) {
+    a.diagonal[r] += 4, a.diagonal[r + 1] += 4;
+    a.columns[fill[r]] = r + 1, a.weights[fill[r]++] = -4;
+    a.columns[fill[r + 1]] = r, a.weights[fill[r + 1]++] = -4;
+  }
+  const SignedPairSolver solver(a);
+  CHECK(solver.coarse_rows() == 0);
+  CHECK(solver.aggregated_rows() == 0);
+  CHECK_FALSE(solver.coarse_factored());
+}
