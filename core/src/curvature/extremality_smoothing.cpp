@@ -1,7 +1,9 @@
 #include "crestline/curvature/extremality_smoothing.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <type_traits>
 
 #include "crestline/curvature/shape_operator.h"
 #include "crestline/error.h"
@@ -56,27 +58,51 @@ SignedPairMatrix signed_pair_matrix(const Topology& topology, const std::vector<
                                      (direction_sign(curvature.dir_min[p], curvature.dir_min[q]) > 0 ? 0u : 2u));
     }
   });
-  for (size_t e = 0; e < ne; ++e) {
-    const double w = edge_strength[e];
-    if (w == 0) continue;
-    const uint32_t p = topology.edges[e][0], q = topology.edges[e][1];
-    ++a.offsets[p + 1], ++a.offsets[q + 1];
-    a.diagonal[p] += w;
-    a.diagonal[q] += w;
-  }
+  // Each thread takes a range of rows and reads every edge, adding to its
+  // own rows only: each row's sums and entries in edge order, the same for
+  // any number of threads (before: one thread, ≈ 140 M instructions at 1.1M).
+  const size_t parts = static_cast<size_t>(max_threads());
+  const auto by_rows = [&](const auto& add) {
+    parallel_for(
+        parts,
+        [&](size_t first, size_t last) {
+          const uint32_t low = static_cast<uint32_t>(nv * first / parts),
+                         high = static_cast<uint32_t>(nv * last / parts);
+          const std::array<uint32_t, 2>* const edges = topology.edges.data();
+          const double* const strength = edge_strength.data();
+          const auto each_edge = [&](auto all_rows) {
+            for (size_t e = 0; e < ne; ++e) {
+              const double w = strength[e];
+              if (w == 0) continue;
+              const uint32_t p = edges[e][0], q = edges[e][1];
+              if (decltype(all_rows)::value || (p >= low && p < high)) add(e, p, q, w);
+              if (decltype(all_rows)::value || (q >= low && q < high)) add(e, q, p, w);
+            }
+          };
+          if (low == 0 && high == nv)  // one thread: no range to test
+            each_edge(std::true_type{});
+          else
+            each_edge(std::false_type{});
+        },
+        1);
+  };
+  // Raw pointers in locals: a store through one may alias the vectors' own.
+  uint32_t* const counts = a.offsets.data() + 1;
+  double* const diagonal = a.diagonal.data();
+  by_rows([=](size_t, uint32_t row, uint32_t, double w) { ++counts[row], diagonal[row] += w; });
   for (size_t v = 0; v < nv; ++v) a.offsets[v + 1] += a.offsets[v];
   pause();
   a.columns.resize(a.offsets[nv]);
   a.weights.resize(a.offsets[nv]);
   std::vector<uint32_t> fill(a.offsets.begin(), a.offsets.end() - 1);
-  for (size_t e = 0; e < ne; ++e) {
-    const double w = edge_strength[e];
-    if (w == 0) continue;
-    const uint32_t p = topology.edges[e][0], q = topology.edges[e][1];
-    // The entry is −σ w: stored as −w, negated where σ = −1.
-    a.columns[fill[p]] = q | uint32_t{mask[e]} << 30, a.weights[fill[p]++] = -w;
-    a.columns[fill[q]] = p | uint32_t{mask[e]} << 30, a.weights[fill[q]++] = -w;
-  }
+  // The entry is −σ w: stored as −w, negated where σ = −1.
+  uint32_t *const columns = a.columns.data(), *const next = fill.data();
+  double* const weights = a.weights.data();
+  const uint8_t* const signs = mask.data();
+  by_rows([=](size_t e, uint32_t row, uint32_t column, double w) {
+    const uint32_t at = next[row]++;
+    columns[at] = column | uint32_t{signs[e]} << 30, weights[at] = -w;
+  });
   return a;
 }
 
@@ -99,15 +125,22 @@ bool smooth_fields_paired(ExtremalitySmoothingSystem& system, const Extremality&
   pause();
   const SignedPairSolver solver(std::move(system.matrix), true, pause);
   pause();
-  std::vector<double> x(2 * nv), b(2 * nv);
+  // The fields and masses by the solver's rows through all steps, each
+  // value's arithmetic as by vertex: the permutation (random to the
+  // vertices' order) is undone once, not in and out of every solve.
+  const uint32_t* const vertex = solver.input_rows().data();
+  std::vector<double> x(2 * nv), b(2 * nv), row_mass(nv);
   parallel_for(nv, [&](size_t begin, size_t end) {
-    for (size_t v = begin; v < end; ++v) x[2 * v] = in.e_max[v], x[2 * v + 1] = in.e_min[v];
+    for (size_t k = begin; k < end; ++k) {
+      const size_t v = vertex[k];
+      x[2 * k] = in.e_max[v], x[2 * k + 1] = in.e_min[v], row_mass[k] = mass[v];
+    }
   });
   for (int step = 0; step < steps; ++step) {
     parallel_for(nv, [&](size_t begin, size_t end) {
-      for (size_t v = begin; v < end; ++v) {
-        const double m = mass[v];
-        b[2 * v] = m * x[2 * v], b[2 * v + 1] = m * x[2 * v + 1];
+      for (size_t k = begin; k < end; ++k) {
+        const double m = row_mass[k];
+        b[2 * k] = m * x[2 * k], b[2 * k + 1] = m * x[2 * k + 1];
       }
     });
     const size_t before = out.solver_iterations;
@@ -115,13 +148,17 @@ bool smooth_fields_paired(ExtremalitySmoothingSystem& system, const Extremality&
       out.solver_iterations = before + static_cast<size_t>(iteration);
       if (progress) progress((step + double(iteration) / (iteration + kTypicalIterations)) / steps);
     };
-    if (!solver.solve(b, x, kTolerance, step == 0 ? kPairedBudget : SpdSolver().max_iterations, on_iteration))
+    if (!solver.solve_in_solver_order(b, x, kTolerance, step == 0 ? kPairedBudget : SpdSolver().max_iterations,
+                                      on_iteration))
       return false;
   }
   out.e_max.resize(nv);
   out.e_min.resize(nv);
   parallel_for(nv, [&](size_t begin, size_t end) {
-    for (size_t v = begin; v < end; ++v) out.e_max[v] = x[2 * v], out.e_min[v] = x[2 * v + 1];
+    for (size_t k = begin; k < end; ++k) {
+      const size_t v = vertex[k];
+      out.e_max[v] = x[2 * k], out.e_min[v] = x[2 * k + 1];
+    }
   });
   return true;
 }

@@ -287,10 +287,8 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix, bool two_level, cons
   diagonal_.resize(n);
   roots_.resize(n);
   parallel_for(n, [&](size_t begin, size_t end) {
-    for (size_t k = begin; k < end; ++k) {
-      diagonal_[k] = matrix.diagonal[order_[k]];
-      roots_[k] = std::sqrt(diagonal_[k]);
-    }
+    for (size_t k = begin; k < end; ++k) diagonal_[k] = matrix.diagonal[order_[k]];
+    for (size_t i = begin; i < end; ++i) roots_[i] = std::sqrt(matrix.diagonal[i]);
   });
   // The coarse level's test, what each row's diagonal exceeds its
   // off-diagonal magnitudes by, and with it Ac, from the input matrix
@@ -370,12 +368,12 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix, bool two_level, cons
     float* const out = stored.data();
     bool part_representable = true;
     for (size_t i = begin; i < end; ++i) {
-      const uint32_t k = at_position[i], hand_i = hand[i];
+      const uint32_t hand_i = hand[i];
       for (uint32_t e = offsets[i]; e < offsets[i + 1]; ++e) {
         const uint32_t column = columns[e], j = column & SignedPairMatrix::kColumnMask, to = at_position[j];
         // The product of the roots is the same both ways: A stays symmetric.
         // Rounding to float commutes with the sign.
-        const float w = static_cast<float>(weights[e] / (root[k] * root[to]));
+        const float w = static_cast<float>(weights[e] / (root[i] * root[j]));
         part_representable = part_representable && std::abs(w) < 2.0f;
         // Field 0's value, and whether field 1's, in the rows' handedness, is its negation.
         const float value = column >> 30 & 1 ? -w : w;
@@ -387,6 +385,7 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix, bool two_level, cons
     if (!part_representable) representable = false;
   });
   UninitialisedVector<double>().swap(matrix.weights);
+  UninitialisedVector<double>().swap(roots_);
   pause();
   for (Part* part : {&upper_, &lower_}) {
     part->columns.resize(part->begin[n]);
@@ -400,6 +399,7 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix, bool two_level, cons
   // In slices of rows with a chance to cancel after each: the fill was the
   // set-up's longest part (0.13 s at 1.1M on 1 thread, bench/ `cancel wait`).
   constexpr size_t kFillSlices = 4;
+  constexpr size_t kFillAhead = 16;
   for (size_t slice = 0; slice < kFillSlices; ++slice) {
     const size_t first_row = n * slice / kFillSlices;
     parallel_for(n * (slice + 1) / kFillSlices - first_row, [&](size_t begin, size_t end) {
@@ -410,6 +410,19 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix, bool two_level, cons
       uint32_t* const cols[2] = {part_columns[0], part_columns[1]};
       float* const values[2] = {part_weights[0], part_weights[1]};
       for (size_t k = first_row + begin; k < first_row + end; ++k) {
+        // The input rows are read in the solver's order, random to theirs:
+        // their offsets, colours and hands fetched 16 rows ahead, their entries 8 ahead.
+        if (k + kFillAhead < n) {
+          const size_t ahead = input_row[k + kFillAhead];
+          __builtin_prefetch(&offsets[ahead]);
+          __builtin_prefetch(&colour[ahead]);
+          __builtin_prefetch(&hand[ahead]);
+        }
+        if (k + kFillAhead / 2 < n) {
+          const uint32_t ahead = offsets[input_row[k + kFillAhead / 2]];
+          __builtin_prefetch(&columns[ahead]);
+          __builtin_prefetch(&entries[ahead]);
+        }
         const size_t i = input_row[k];
         const uint32_t earlier = colour_begin_[colour[i]];
         uint32_t next[2] = {upper_.begin[k], lower_.begin[k]}, mixed[2] = {0, 0};
@@ -436,9 +449,6 @@ SignedPairSolver::SignedPairSolver(SignedPairMatrix matrix, bool two_level, cons
   matrix = SignedPairMatrix();
   if (!aggregation.aggregate.empty()) build_coarse_transfer(aggregation);
   aggregation = Aggregation();
-  // The solves take the roots of the diagonal where they need them (a
-  // square root is correctly rounded: the same bits), 8 bytes a row less.
-  UninitialisedVector<double>().swap(roots_);
 }
 
 namespace {
@@ -541,7 +551,18 @@ void SignedPairSolver::coarse_solve(const double* g, double* y) const {
 // band, b = M x₀) keeps x₀ to the bit, not x₀ √d / √d.
 bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, double tolerance, int max_iterations,
                              const std::function<void(int)>& on_iteration) const {
+  return solve_rows(b, x, tolerance, max_iterations, on_iteration, true);
+}
+
+bool SignedPairSolver::solve_in_solver_order(std::vector<double>& b, std::vector<double>& x, double tolerance,
+                                             int max_iterations, const std::function<void(int)>& on_iteration) const {
+  return solve_rows(b, x, tolerance, max_iterations, on_iteration, false);
+}
+
+bool SignedPairSolver::solve_rows(std::vector<double>& b, std::vector<double>& x, double tolerance, int max_iterations,
+                                  const std::function<void(int)>& on_iteration, bool permuted) const {
   const size_t n = diagonal_.size();
+  const uint32_t* const input_row = permuted ? order_.data() : nullptr;
   // xp and rt are written before they are read: not zeroed first
   // (callgrind at 1.1M: 32 bytes a row and solve less to write).
   UninitialisedVector<double> xp(2 * n), rt(2 * n);
@@ -555,7 +576,7 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
   // Field 1 negated in the rows of the other handedness (locality_order).
   parallel_for(n, [&](size_t begin, size_t end) {
     for (size_t k = begin; k < end; ++k) {
-      const size_t i = order_[k];
+      const size_t i = input_row ? input_row[k] : k;
       xp[2 * k] = x[2 * i], rt[2 * k] = b[2 * i];
       xp[2 * k + 1] = handed_[k] ? -x[2 * i + 1] : x[2 * i + 1];
       rt[2 * k + 1] = handed_[k] ? -b[2 * i + 1] : b[2 * i + 1];
@@ -769,7 +790,7 @@ bool SignedPairSolver::solve(std::vector<double>& b, std::vector<double>& x, dou
       double root[2];
       Pair::root_both(diagonal_[k]).store(root);
       for (int f = 0; f < 2; ++f) {
-        double& v = x[2 * size_t{order_[k]} + f];
+        double& v = x[2 * (input_row ? size_t{input_row[k]} : k) + f];
         // The correction is never −0 (it starts as 0 + α t), so 0 − c
         // undoes the handedness to the bit, zero included.
         const double c = iterations > 0 ? xp[2 * k + f] : 0.0;

@@ -94,16 +94,16 @@ SignedPairSolver::Aggregation SignedPairSolver::build_coarse_matrix(const Signed
                                                                     const std::function<void()>& pause) {
   const size_t n = a.rows();
   UninitialisedVector<uint8_t> slow(n);
-  UninitialisedVector<double> inverse_root(n);  // 1 / √a_ii, by input row (roots_ are by the solver's)
+  UninitialisedVector<double> inverse_root(n);  // 1 / √a_ii, by input row
   parallel_for(n, [&](size_t begin, size_t end) {
     // Raw pointers in locals: a store through one may alias the vectors' own.
     const double *const diagonal = a.diagonal.data(), *const excess_of = excess.data(), *const roots = roots_.data();
-    const uint32_t *const offsets = a.offsets.data(), *const at = position.data();
+    const uint32_t* const offsets = a.offsets.data();
     uint8_t* const slow_of = slow.data();
     double* const inverse = inverse_root.data();
     for (size_t i = begin; i < end; ++i) {
       slow_of[i] = detail::is_slow(diagonal[i], excess_of[i], offsets[i + 1] > offsets[i]);
-      inverse[i] = 1 / roots[at[i]];
+      inverse[i] = 1 / roots[i];
     }
   });
   const auto column = [&](uint32_t e) { return a.columns[e] & SignedPairMatrix::kColumnMask; };
@@ -381,12 +381,14 @@ void SignedPairSolver::keep_coarse_rows(const std::vector<uint32_t>& lower_begin
 // P in the solver's rows and scaled variables, s_i √a_ii / √Ac_cc, formed
 // where Q reads it (not stored: 16 bytes a row).
 bool SignedPairSolver::build_coarse_transfer(Aggregation& aggregation) {
-  const size_t n = roots_.size();
+  const size_t n = diagonal_.size();
   const uint32_t aggregates = static_cast<uint32_t>(aggregation.coarse_root.size() / 2);
   const std::vector<uint32_t>& fine_aggregate = aggregation.aggregate;
   // In the solver's handedness: field 1's column of P negated where handed_.
+  // √a_jj formed where read (correctly rounded: the bits the set-up's roots had).
   const auto p = [&](uint32_t j, int k) {
-    const double s = (aggregation.flips[j] >> k ^ (k == 1 ? handed_[j] : 0)) & 1 ? -roots_[j] : roots_[j];
+    const double root = std::sqrt(diagonal_[j]);
+    const double s = (aggregation.flips[j] >> k ^ (k == 1 ? handed_[j] : 0)) & 1 ? -root : root;
     return s / aggregation.coarse_root[2 * size_t{fine_aggregate[j]} + k];
   };
   // Q = L P by fine row, from the float entries the sweeps use, on every

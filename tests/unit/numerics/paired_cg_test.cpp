@@ -711,3 +711,56 @@ TEST_CASE("the two-level solve gives the same bits on 1 and 2 threads where the 
     CHECK(relative_residual(a, b, x[0], k) <= 1.01e-8);
   }
 }
+
+TEST_CASE("the paired solver by its own rows gives solve()'s bits, step after step", "[numerics]") {
+  const SignedPairMatrix a = grid_system(120);
+  const std::vector<double> b = random_pairs(a.rows(), 7), x0 = random_pairs(a.rows(), 8);
+  const SignedPairSolver solver(a);
+  REQUIRE(solver.coarse_rows() > 0);
+  const auto& input_row = solver.input_rows();
+  REQUIRE(input_row.size() == a.rows());
+  size_t moved = 0;  // rows the solver's order moves (by colour, then breadth first)
+  for (size_t k = 0; k < a.rows(); ++k) moved += input_row[k] != k;
+  CHECK(moved > a.rows() / 2);
+  // Two steps as the smoothing takes them: the second from the first's result.
+  std::vector<double> x = x0, ordered(2 * a.rows()), ordered_b(2 * a.rows());
+  for (size_t k = 0; k < a.rows(); ++k)
+    for (int f = 0; f < 2; ++f) ordered[2 * k + f] = x0[2 * size_t{input_row[k]} + f];
+  for (int step = 0; step < 2; ++step) {
+    std::vector<double> scratch = b;
+    REQUIRE(solver.solve(scratch, x, 1e-8, 500));
+    for (size_t k = 0; k < a.rows(); ++k)
+      for (int f = 0; f < 2; ++f) ordered_b[2 * k + f] = b[2 * size_t{input_row[k]} + f];
+    REQUIRE(solver.solve_in_solver_order(ordered_b, ordered, 1e-8, 500));
+    size_t differing = 0;
+    for (size_t k = 0; k < a.rows(); ++k)
+      for (int f = 0; f < 2; ++f)
+        differing += std::memcmp(&ordered[2 * k + f], &x[2 * size_t{input_row[k]} + f], sizeof(double)) != 0;
+    CHECK(differing == 0);
+  }
+}
+
+TEST_CASE("a coarse level whose factor loses a pivot is dropped whole", "[numerics]") {
+  // A path of 6 rows without mass (a_ii = Σ|a_ij|, weights 4, signs that a
+  // smooth mode follows): every row is slow, the aggregates are {0, 1} and
+  // {2, 3, 4, 5}, and Ac, scaled, is [[1, −1], [−1, 1]] exactly (√4 = 2):
+  // its second pivot is 0. The solver keeps no coarse level, as without one.
+  SignedPairMatrix a;
+  const uint32_t rows = 6;
+  a.diagonal.assign(rows, 0.0);
+  a.offsets.assign(rows + 1, 0);
+  for (uint32_t r = 0; r + 1 < rows; ++r) ++a.offsets[r + 1], ++a.offsets[r + 2];
+  for (uint32_t r = 0; r < rows; ++r) a.offsets[r + 1] += a.offsets[r];
+  a.columns.resize(a.offsets[rows]);
+  a.weights.resize(a.offsets[rows]);
+  std::vector<uint32_t> fill(a.offsets.begin(), a.offsets.end() - 1);
+  for (uint32_t r = 0; r + 1 < rows; ++r) {
+    a.diagonal[r] += 4, a.diagonal[r + 1] += 4;
+    a.columns[fill[r]] = r + 1, a.weights[fill[r]++] = -4;
+    a.columns[fill[r + 1]] = r, a.weights[fill[r + 1]++] = -4;
+  }
+  const SignedPairSolver solver(a);
+  CHECK(solver.coarse_rows() == 0);
+  CHECK(solver.aggregated_rows() == 0);
+  CHECK_FALSE(solver.coarse_factored());
+}

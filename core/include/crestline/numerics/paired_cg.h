@@ -324,6 +324,14 @@ class SignedPairSolver {
   /// throw to abandon the solve.
   bool solve(std::vector<double>& b, std::vector<double>& x, double tolerance, int max_iterations,
              const std::function<void(int iteration)>& on_iteration = {}) const;
+  /// solve() with b and x by the solver's rows (x[2k + f] is input row
+  /// input_rows()[k]'s), for a caller that solves several times: the same
+  /// arithmetic without the gather and scatter through the permutation that
+  /// solve() does on each call (the rows' order is random to the input's).
+  bool solve_in_solver_order(std::vector<double>& b, std::vector<double>& x, double tolerance, int max_iterations,
+                             const std::function<void(int iteration)>& on_iteration = {}) const;
+  /// The input row of each of the solver's rows.
+  const UninitialisedVector<uint32_t>& input_rows() const { return order_; }
 
   /// The colours of the Gauss–Seidel sweeps (no two neighbours share one).
   size_t colours() const { return colour_begin_.size() - 1; }
@@ -378,8 +386,9 @@ class SignedPairSolver {
   UninitialisedVector<uint8_t> handed_;   // 1 where the solver iterates on −x₁ (paired_cg.cpp)
   bool representable_ = true;             // every entry below 2 in magnitude
   std::vector<uint32_t> colour_begin_;
-  // √A(i,i): the solver works on the system scaled to a unit diagonal. Kept
-  // through the set-up only; the solves take the roots of diagonal_.
+  // √A(i,i) by input row (the input's neighbours are near in memory): the
+  // solver works on the system scaled to a unit diagonal. Kept until the
+  // entries are scaled; the solves and Q take the roots of diagonal_.
   UninitialisedVector<double> roots_;
   // The coarse level (empty without one), scaled to a unit diagonal per field:
   // Q = L P by fine row (q_begin_, n + 1 offsets) and by coarse row
@@ -399,6 +408,9 @@ class SignedPairSolver {
                         const std::vector<double>& lower_values);
   // y ≈ Ac⁻¹ g, both fields: the factor's solve or the sweeps.
   void coarse_solve(const double* g, double* y) const;
+  // solve()'s body; x and b by input row if `permuted`, else by the solver's.
+  bool solve_rows(std::vector<double>& b, std::vector<double>& x, double tolerance, int max_iterations,
+                  const std::function<void(int iteration)>& on_iteration, bool permuted) const;
   size_t aggregated_ = 0;
 };
 
