@@ -154,6 +154,15 @@ std::vector<uint32_t> weld(const std::vector<Vec3>& points, const std::vector<ui
       return s;
     };
     for (uint32_t i = 0; i < points.size(); ++i) {
+      // Cells hash anywhere in the table: the slot of the cell of the
+      // vertex kAhead on (nearly always the only one searched) is asked for
+      // now (natively; WASM has no prefetch).
+      constexpr size_t kAhead = 16;
+      if (i + kAhead < points.size()) {
+        const size_t s = hashed(key_at(scaled(points[i + kAhead])));
+        __builtin_prefetch(&head[s]);
+        __builtin_prefetch(&keys[s]);
+      }
       if (!weldable[i]) continue;
       uint32_t found = kNone;
       const Vec3 q = scaled(points[i]);  // once for the search and the insertion
@@ -258,38 +267,54 @@ EdgePairs pair_half_edges(const std::vector<Triangle>& tris, size_t vertex_count
     size_t count = 0, singles = 0;
     std::vector<uint32_t> single_edges, cut;
     bool repeated = false;
-    order.for_each_edge(begin, end,
-                        [&count, &singles, &single_edges, &cut, &repeated, record, triangles, before, opposite, partner,
-                         same](uint32_t near, uint32_t far, const uint64_t* first, const uint64_t* last) {
-                          if (last - first == 2) {
-                            // Nearly every edge: each half-edge's triangle,
-                            // side and corner taken from its entry once.
-                            const uint32_t ta = H::triangle(first[0]), sa = H::side(first[0]);
-                            const uint32_t tb = H::triangle(first[1]), sb = H::side(first[1]);
-                            const uint32_t a = 3 * ta + sa, b = 3 * tb + sb;
-                            record(near, far, ta, sa, tb, sb);
-                            partner[a] = b, partner[b] = a;
-                            const Triangle &fa = triangles[ta], &fb = triangles[tb];
-                            same[a] = same[b] = fa[sa] == fb[sb];
-                            repeated |= fa[before(sa)] == fb[before(sb)];
-                            return;
-                          }
-                          const uint32_t e = record(near, far, first, std::min(last, first + 2));
-                          if (last - first == 1) {
-                            ++singles;
-                            single_edges.push_back(e);
-                            const uint32_t a = H::corner(first[0]);
-                            partner[a] = kNone, same[a] = 0;
-                          } else {
-                            ++count;
-                            for (const uint64_t* h = first; h < last; ++h) {
-                              const uint32_t a = H::corner(*h);
-                              partner[a] = kNone, same[a] = 0;
-                              cut.push_back(a);
-                              for (const uint64_t* g = first; g < h; ++g) repeated |= opposite(*g) == opposite(*h);
-                            }
-                          }
-                        });
+    // The half-edges' triangles lie anywhere: the triangle read and the
+    // three slots written (partner, same, the topology's triangle_edges) of
+    // the half-edges kAhead entries on are asked for now (natively; WASM has
+    // no prefetch).
+    constexpr ptrdiff_t kAhead = 16;
+    const uint64_t* stop = order.entries.data() + order.start[end];
+    std::array<uint32_t, 3>* triangle_edges = topology.triangle_edges.data();
+    auto prefetch = [=](uint64_t h) {
+      const uint32_t t = H::triangle(h), c = 3 * t + H::side(h);
+      __builtin_prefetch(&triangles[t]);
+      __builtin_prefetch(&partner[c], 1);
+      __builtin_prefetch(&same[c], 1);
+      __builtin_prefetch(&triangle_edges[t], 1);
+    };
+    order.for_each_edge(
+        begin, end,
+        [&count, &singles, &single_edges, &cut, &repeated, record, triangles, before, opposite, partner, same, stop,
+         prefetch](uint32_t near, uint32_t far, const uint64_t* first, const uint64_t* last) {
+          if (stop - first > kAhead + 1) prefetch(first[kAhead]), prefetch(first[kAhead + 1]);
+          if (last - first == 2) {
+            // Nearly every edge: each half-edge's triangle,
+            // side and corner taken from its entry once.
+            const uint32_t ta = H::triangle(first[0]), sa = H::side(first[0]);
+            const uint32_t tb = H::triangle(first[1]), sb = H::side(first[1]);
+            const uint32_t a = 3 * ta + sa, b = 3 * tb + sb;
+            record(near, far, ta, sa, tb, sb);
+            partner[a] = b, partner[b] = a;
+            const Triangle &fa = triangles[ta], &fb = triangles[tb];
+            same[a] = same[b] = fa[sa] == fb[sb];
+            repeated |= fa[before(sa)] == fb[before(sb)];
+            return;
+          }
+          const uint32_t e = record(near, far, first, std::min(last, first + 2));
+          if (last - first == 1) {
+            ++singles;
+            single_edges.push_back(e);
+            const uint32_t a = H::corner(first[0]);
+            partner[a] = kNone, same[a] = 0;
+          } else {
+            ++count;
+            for (const uint64_t* h = first; h < last; ++h) {
+              const uint32_t a = H::corner(*h);
+              partner[a] = kNone, same[a] = 0;
+              cut.push_back(a);
+              for (const uint64_t* g = first; g < h; ++g) repeated |= opposite(*g) == opposite(*h);
+            }
+          }
+        });
     nonmanifold += count;
     single += singles;
     if (!single_edges.empty() || !cut.empty()) {
@@ -481,6 +506,17 @@ Orientation orient(std::vector<Triangle>& tris, const std::vector<Vec3>& points,
     while (top > 0) {
       const uint32_t t = base[--top];
       ++triangles, flips += flip[t];
+      // The neighbours lie anywhere: all three asked for before the first
+      // is read, so that their misses overlap, and their own partners for
+      // when they are popped (natively; WASM has no prefetch).
+      for (uint32_t corner = 3 * t; corner < 3 * t + 3; ++corner) {
+        if (partner[corner] == kNone) continue;
+        const uint32_t u = partner[corner] / 3;
+        __builtin_prefetch(&component[u]);
+        __builtin_prefetch(&flip[u]);
+        __builtin_prefetch(&partner[3 * u]);
+        __builtin_prefetch(&same[3 * u]);
+      }
       for (uint32_t corner = 3 * t; corner < 3 * t + 3; ++corner) {
         const uint32_t other = partner[corner];
         if (other == kNone) {
@@ -645,6 +681,18 @@ bool split_fans(std::vector<Triangle>& tris, std::vector<Vec3>& points, const Or
   parallel_for(nv, [&](size_t begin, size_t end) {
     bool found = false;
     for (size_t v = begin; v < end; ++v) {
+      // A fan's triangles lie anywhere in the triangle list: each step of
+      // the walk waits for a corner's partner, then its triangle. The
+      // triangles of the vertex kAhead on, all on its list, are asked for
+      // now (natively; WASM has no prefetch).
+      constexpr size_t kAhead = 4;
+      if (v + kAhead < end)
+        for (uint32_t i = offsets[v + kAhead], last = offsets[v + kAhead + 1]; i < last; ++i) {
+          const uint32_t u = lists.vertex_triangles[i];
+          __builtin_prefetch(&tris[u]);
+          __builtin_prefetch(&partner[3 * u]);
+          __builtin_prefetch(&partner[3 * u + 2]);
+        }
       const uint32_t count = offsets[v + 1] - offsets[v];
       several[v] = 0;
       if (count == 0) continue;
@@ -806,6 +854,18 @@ RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options)
                           p = points.data(), out = tris.data()](size_t begin, size_t end) {
     size_t part_nonfinite = 0, part_degenerate = 0;
     for (size_t t = begin; t < end; ++t) {
+      // The corners lie anywhere: their welded numbers are asked for
+      // 2 kAhead triangles on, their flags and positions kAhead on
+      // (natively; WASM has no prefetch).
+      constexpr size_t kAhead = 8;
+      if (t + 2 * kAhead < end)
+        for (size_t i = 3 * (t + 2 * kAhead); i < 3 * (t + 2 * kAhead) + 3; ++i) __builtin_prefetch(&to[indices[i]]);
+      if (t + kAhead < end)
+        for (size_t i = 3 * (t + kAhead); i < 3 * (t + kAhead) + 3; ++i) {
+          const uint32_t v = to[indices[i]];
+          __builtin_prefetch(&is_finite[v]);
+          __builtin_prefetch(&p[v]);
+        }
       Triangle f = {to[indices[3 * t]], to[indices[3 * t + 1]], to[indices[3 * t + 2]]};
       if (!is_finite[f[0]] || !is_finite[f[1]] || !is_finite[f[2]])
         f[0] = kNone, ++part_nonfinite;
