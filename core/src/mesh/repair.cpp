@@ -551,9 +551,9 @@ Orientation orient(std::vector<Triangle>& tris, const std::vector<Vec3>& points,
     while (head < tail && agree) {
       if (head + kAhead < tail) {
         const uint32_t u = base[head + kAhead];
-        __builtin_prefetch(&partner[3 * u]);
-        __builtin_prefetch(&partner[3 * u + 2]);
-        __builtin_prefetch(&same[3 * u]);
+        __builtin_prefetch(&partner[3 * size_t{u}]);
+        __builtin_prefetch(&partner[3 * size_t{u} + 2]);
+        __builtin_prefetch(&same[3 * size_t{u}]);
       }
       if (head + kAhead / 2 < tail)
         for (uint32_t corner = 3 * base[head + kAhead / 2], last = corner + 3; corner < last; ++corner)
@@ -742,8 +742,8 @@ bool split_fans(std::vector<Triangle>& tris, std::vector<Vec3>& points, const Or
         for (uint32_t i = offsets[v + kAhead], last = offsets[v + kAhead + 1]; i < last; ++i) {
           const uint32_t u = lists.vertex_triangles[i];
           __builtin_prefetch(&tris[u]);
-          __builtin_prefetch(&partner[3 * u]);
-          __builtin_prefetch(&partner[3 * u + 2]);
+          __builtin_prefetch(&partner[3 * size_t{u}]);
+          __builtin_prefetch(&partner[3 * size_t{u} + 2]);
         }
       const uint32_t count = offsets[v + 1] - offsets[v];
       several[v] = 0;
