@@ -23,17 +23,36 @@ namespace crestline::detail {
 /// bucket b's values in the order emitted. Large inputs are counted and
 /// placed in up to 8 consecutive parts on as many threads, each part after
 /// the ones before it in every bucket, and the buckets' offsets summed over
-/// as many ranges of buckets: the same result for any thread count.
+/// as many ranges of buckets: the same result for any thread count. visit
+/// may be called more than twice for an item (prefetches), so it must only emit.
 template <typename Visit, typename Entries>
 void group_by_bucket(size_t count, size_t buckets, const Visit& visit, std::vector<uint32_t>& start, Entries& entries) {
   using T = typename Entries::value_type;
   start.assign(buckets + 1, 0);
   const size_t parts = part_count(count);
   auto each_part = [&](const auto& body) { for_each_part(parts, count, body); };
+  // The buckets lie anywhere: the counters (cursors) of the item kAhead on
+  // are asked for now, and in the placing pass the cursors 2 kAhead on and
+  // the slots kAhead on (natively; WASM has no prefetch).
+  constexpr size_t kAhead = 8;
+  auto count_part = [&](uint32_t* counts, size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      if (i + kAhead < end) visit(i + kAhead, [&](uint32_t b, const T&) { __builtin_prefetch(&counts[b], 1); });
+      visit(i, [&](uint32_t b, const T&) { ++counts[b]; });
+    }
+  };
+  auto place_part = [&](uint32_t* fill, size_t begin, size_t end) {
+    T* out = entries.data();
+    for (size_t i = begin; i < end; ++i) {
+      if (i + 2 * kAhead < end) visit(i + 2 * kAhead, [&](uint32_t b, const T&) { __builtin_prefetch(&fill[b], 1); });
+      if (i + kAhead < end) visit(i + kAhead, [&](uint32_t b, const T&) { __builtin_prefetch(&out[fill[b]], 1); });
+      visit(i, [&](uint32_t b, const T& value) { out[fill[b]++] = value; });
+    }
+  };
   if (parts == 1) {
     // One part: start[b + 1] counts bucket b, then holds where its next
     // entry goes, and ends as bucket b + 1's start (no cursor array).
-    for (size_t i = 0; i < count; ++i) visit(i, [&](uint32_t b, const T&) { ++start[b + 1]; });
+    count_part(start.data() + 1, 0, count);
     uint32_t sum = 0;
     for (size_t b = 0; b < buckets; ++b) {
       const uint32_t n = start[b + 1];
@@ -41,7 +60,7 @@ void group_by_bucket(size_t count, size_t buckets, const Visit& visit, std::vect
       sum += n;
     }
     entries.resize(sum);
-    for (size_t i = 0; i < count; ++i) visit(i, [&](uint32_t b, const T& value) { entries[start[b + 1]++] = value; });
+    place_part(start.data() + 1, 0, count);
     return;
   }
   // next[p * buckets + b]: part p's count in bucket b, then where its next
@@ -50,7 +69,7 @@ void group_by_bucket(size_t count, size_t buckets, const Visit& visit, std::vect
   each_part([&](size_t p, size_t begin, size_t end) {
     uint32_t* counts = next.data() + p * buckets;
     std::fill(counts, counts + buckets, 0u);
-    for (size_t i = begin; i < end; ++i) visit(i, [&](uint32_t b, const T&) { ++counts[b]; });
+    count_part(counts, begin, end);
   });
   // The offsets on every thread too: each range of buckets' total, then its
   // offsets from the totals of the ranges before it.
@@ -76,10 +95,7 @@ void group_by_bucket(size_t count, size_t buckets, const Visit& visit, std::vect
   const uint32_t sum = range_start[parts];
   start[buckets] = sum;
   entries.resize(sum);
-  each_part([&](size_t p, size_t begin, size_t end) {
-    uint32_t* fill = next.data() + p * buckets;
-    for (size_t i = begin; i < end; ++i) visit(i, [&](uint32_t b, const T& value) { entries[fill[b]++] = value; });
-  });
+  each_part([&](size_t p, size_t begin, size_t end) { place_part(next.data() + p * buckets, begin, end); });
 }
 
 /// Calls body(first, last) on consecutive ranges of buckets covering

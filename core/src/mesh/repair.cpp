@@ -140,25 +140,35 @@ std::vector<uint32_t> weld(const std::vector<Vec3>& points, const std::vector<ui
   const double tol2 = tolerance * tolerance;
   auto near = [&](uint32_t j, uint32_t i) { return (points[j] - points[i]).squaredNorm() <= tol2; };
   if (one_thread) {
-    // A slot's key is read only once its head is set, a vertex's next only
-    // once it is in a list: neither is filled first (they were 21 of the 30 M
-    // instructions of memset here at 1.1M triangles, 2205fb1).
-    UninitialisedVector<uint64_t> keys(mask + 1);
-    std::vector<uint32_t> head(mask + 1, kNone);
+    // A slot holds its list's head and a 32-bit tag of its cell's key, side
+    // by side: one cache line a probe (the table is far larger than the
+    // caches, and a separate array of 64-bit keys cost a second miss). Cells
+    // whose tags collide share a list, which only costs distance tests. A
+    // vertex's next is read only once it is in a list: not filled first.
+    struct Slot {
+      uint32_t head, tag;
+    };
+    std::vector<Slot> table(mask + 1, Slot{kNone, 0});
     UninitialisedVector<uint32_t> next(points.size());
-    // The slot of a cell (empty if head == kNone); cells whose keys collide
-    // share a list, which only costs distance tests.
+    auto tag_of = [](uint64_t key) { return static_cast<uint32_t>(key * 0x9E3779B97F4A7C15ull); };
+    // The slot of a cell (empty if its head is kNone).
     auto slot = [&](uint64_t key) {
       size_t s = hashed(key);
-      while (head[s] != kNone && keys[s] != key) s = (s + 1) & mask;
+      const uint32_t tag = tag_of(key);
+      while (table[s].head != kNone && table[s].tag != tag) s = (s + 1) & mask;
       return s;
     };
     for (uint32_t i = 0; i < points.size(); ++i) {
+      // Cells hash anywhere in the table: the slot of the cell of the
+      // vertex kAhead on (nearly always the only one searched) is asked for
+      // now (natively; WASM has no prefetch).
+      constexpr size_t kAhead = 16;
+      if (i + kAhead < points.size()) __builtin_prefetch(&table[hashed(key_at(scaled(points[i + kAhead])))]);
       if (!weldable[i]) continue;
       uint32_t found = kNone;
       const Vec3 q = scaled(points[i]);  // once for the search and the insertion
       for_cells_near(q, [&](uint64_t key) {
-        for (uint32_t j = head[slot(key)]; j != kNone; j = next[j])
+        for (uint32_t j = table[slot(key)].head; j != kNone; j = next[j])
           if (j < found && near(j, i)) found = j;
       });
       if (found != kNone) {
@@ -167,9 +177,8 @@ std::vector<uint32_t> weld(const std::vector<Vec3>& points, const std::vector<ui
         // Lists in descending index order (each vertex is pushed at its head).
         const uint64_t key = key_at(q);
         const size_t s = slot(key);
-        keys[s] = key;
-        next[i] = head[s];
-        head[s] = i;
+        next[i] = table[s].head;
+        table[s] = {i, tag_of(key)};
       }
     }
     return representative;
@@ -258,38 +267,54 @@ EdgePairs pair_half_edges(const std::vector<Triangle>& tris, size_t vertex_count
     size_t count = 0, singles = 0;
     std::vector<uint32_t> single_edges, cut;
     bool repeated = false;
-    order.for_each_edge(begin, end,
-                        [&count, &singles, &single_edges, &cut, &repeated, record, triangles, before, opposite, partner,
-                         same](uint32_t near, uint32_t far, const uint64_t* first, const uint64_t* last) {
-                          if (last - first == 2) {
-                            // Nearly every edge: each half-edge's triangle,
-                            // side and corner taken from its entry once.
-                            const uint32_t ta = H::triangle(first[0]), sa = H::side(first[0]);
-                            const uint32_t tb = H::triangle(first[1]), sb = H::side(first[1]);
-                            const uint32_t a = 3 * ta + sa, b = 3 * tb + sb;
-                            record(near, far, ta, sa, tb, sb);
-                            partner[a] = b, partner[b] = a;
-                            const Triangle &fa = triangles[ta], &fb = triangles[tb];
-                            same[a] = same[b] = fa[sa] == fb[sb];
-                            repeated |= fa[before(sa)] == fb[before(sb)];
-                            return;
-                          }
-                          const uint32_t e = record(near, far, first, std::min(last, first + 2));
-                          if (last - first == 1) {
-                            ++singles;
-                            single_edges.push_back(e);
-                            const uint32_t a = H::corner(first[0]);
-                            partner[a] = kNone, same[a] = 0;
-                          } else {
-                            ++count;
-                            for (const uint64_t* h = first; h < last; ++h) {
-                              const uint32_t a = H::corner(*h);
-                              partner[a] = kNone, same[a] = 0;
-                              cut.push_back(a);
-                              for (const uint64_t* g = first; g < h; ++g) repeated |= opposite(*g) == opposite(*h);
-                            }
-                          }
-                        });
+    // The half-edges' triangles lie anywhere: the triangle read and the
+    // three slots written (partner, same, the topology's triangle_edges) of
+    // the half-edges kAhead entries on are asked for now (natively; WASM has
+    // no prefetch).
+    constexpr ptrdiff_t kAhead = 16;
+    const uint64_t* stop = order.entries.data() + order.start[end];
+    std::array<uint32_t, 3>* triangle_edges = topology.triangle_edges.data();
+    auto prefetch = [=](uint64_t h) {
+      const uint32_t t = H::triangle(h), c = 3 * t + H::side(h);
+      __builtin_prefetch(&triangles[t]);
+      __builtin_prefetch(&partner[c], 1);
+      __builtin_prefetch(&same[c], 1);
+      __builtin_prefetch(&triangle_edges[t], 1);
+    };
+    order.for_each_edge(
+        begin, end,
+        [&count, &singles, &single_edges, &cut, &repeated, record, triangles, before, opposite, partner, same, stop,
+         prefetch](uint32_t near, uint32_t far, const uint64_t* first, const uint64_t* last) {
+          if (stop - first > kAhead + 1) prefetch(first[kAhead]), prefetch(first[kAhead + 1]);
+          if (last - first == 2) {
+            // Nearly every edge: each half-edge's triangle,
+            // side and corner taken from its entry once.
+            const uint32_t ta = H::triangle(first[0]), sa = H::side(first[0]);
+            const uint32_t tb = H::triangle(first[1]), sb = H::side(first[1]);
+            const uint32_t a = 3 * ta + sa, b = 3 * tb + sb;
+            record(near, far, ta, sa, tb, sb);
+            partner[a] = b, partner[b] = a;
+            const Triangle &fa = triangles[ta], &fb = triangles[tb];
+            same[a] = same[b] = fa[sa] == fb[sb];
+            repeated |= fa[before(sa)] == fb[before(sb)];
+            return;
+          }
+          const uint32_t e = record(near, far, first, std::min(last, first + 2));
+          if (last - first == 1) {
+            ++singles;
+            single_edges.push_back(e);
+            const uint32_t a = H::corner(first[0]);
+            partner[a] = kNone, same[a] = 0;
+          } else {
+            ++count;
+            for (const uint64_t* h = first; h < last; ++h) {
+              const uint32_t a = H::corner(*h);
+              partner[a] = kNone, same[a] = 0;
+              cut.push_back(a);
+              for (const uint64_t* g = first; g < h; ++g) repeated |= opposite(*g) == opposite(*h);
+            }
+          }
+        });
     nonmanifold += count;
     single += singles;
     if (!single_edges.empty() || !cut.empty()) {
@@ -502,13 +527,76 @@ Orientation orient(std::vector<Triangle>& tris, const std::vector<Vec3>& points,
     }
     if (tally) size.push_back(triangles), nflip.push_back(flips), open.push_back(opening);
   };
+  // The same in breadth-first order, which knows the triangles it will take
+  // next: their partners and same are asked for kAhead places ahead in the
+  // queue, their neighbours' component and flip kAhead / 2 ahead (natively;
+  // WASM has no prefetch; the depth-first stack pops what it has just pushed,
+  // nothing to ask for early). The order decides only where a component that
+  // cannot agree is cut: sweep cuts nothing, and on the first disagreement
+  // it returns false with the component's triangles unvisited again (the
+  // queue holds them all), for traverse. Counts the component if it agrees.
+  auto sweep = [&, partner, same, flip, component](uint32_t c) {
+    uint32_t* base = stack.data();
+    size_t head = 0, tail = 0, capacity = stack.size();
+    auto push = [&](uint32_t t) {
+      if (tail == capacity) stack.resize(capacity = 2 * capacity + 64), base = stack.data();
+      base[tail++] = t;
+    };
+    push(seeds[c]);
+    component[seeds[c]] = c;
+    uint32_t flips = 0;
+    uint8_t opening = 0;
+    bool agree = true;
+    constexpr size_t kAhead = 16;
+    while (head < tail && agree) {
+      if (head + kAhead < tail) {
+        const uint32_t u = base[head + kAhead];
+        __builtin_prefetch(&partner[3 * size_t{u}]);
+        __builtin_prefetch(&partner[3 * size_t{u} + 2]);
+        __builtin_prefetch(&same[3 * size_t{u}]);
+      }
+      if (head + kAhead / 2 < tail)
+        for (uint32_t corner = 3 * base[head + kAhead / 2], last = corner + 3; corner < last; ++corner)
+          if (partner[corner] != kNone) {
+            __builtin_prefetch(&component[partner[corner] / 3]);
+            __builtin_prefetch(&flip[partner[corner] / 3]);
+          }
+      const uint32_t t = base[head++];
+      flips += flip[t];
+      for (uint32_t corner = 3 * t; corner < 3 * t + 3; ++corner) {
+        const uint32_t other = partner[corner];
+        if (other == kNone) {
+          opening = 1;
+          continue;
+        }
+        const uint32_t u = other / 3;
+        const uint8_t disagree = same[corner] ^ flip[t];
+        if (component[u] == kNone) {
+          flip[u] = disagree;
+          component[u] = c;
+          push(u);
+        } else if (disagree != flip[u]) {
+          agree = false;
+        }
+      }
+    }
+    if (!agree) {
+      for (size_t i = 0; i < tail; ++i) component[base[i]] = kNone, flip[base[i]] = 0;
+      return false;
+    }
+    size.push_back(uint32_t(tail)), nflip.push_back(flips), open.push_back(opening);
+    return true;
+  };
   // On one thread the traversal counts the components; on several they are
   // counted by parts on every thread (on one part when they are many).
   const bool one_part = detail::part_count(nt) == 1;
   if (one_part) {
     std::fill(out.component.begin(), out.component.end(), kNone);
     for (uint32_t t = 0; t < nt; ++t)
-      if (component[t] == kNone) seeds.push_back(t), traverse(uint32_t(seeds.size() - 1), true);
+      if (component[t] == kNone) {
+        seeds.push_back(t);
+        if (!sweep(uint32_t(seeds.size() - 1))) traverse(uint32_t(seeds.size() - 1), true);
+      }
   } else {
     const std::vector<uint8_t> unorientable = link_components(out.partner, pairs.same, out.component, flipped, seeds);
     for (uint32_t c = 0; c < seeds.size(); ++c)
@@ -645,6 +733,18 @@ bool split_fans(std::vector<Triangle>& tris, std::vector<Vec3>& points, const Or
   parallel_for(nv, [&](size_t begin, size_t end) {
     bool found = false;
     for (size_t v = begin; v < end; ++v) {
+      // A fan's triangles lie anywhere in the triangle list: each step of
+      // the walk waits for a corner's partner, then its triangle. The
+      // triangles of the vertex kAhead on, all on its list, are asked for
+      // now (natively; WASM has no prefetch).
+      constexpr size_t kAhead = 4;
+      if (v + kAhead < end)
+        for (uint32_t i = offsets[v + kAhead], last = offsets[v + kAhead + 1]; i < last; ++i) {
+          const uint32_t u = lists.vertex_triangles[i];
+          __builtin_prefetch(&tris[u]);
+          __builtin_prefetch(&partner[3 * size_t{u}]);
+          __builtin_prefetch(&partner[3 * size_t{u} + 2]);
+        }
       const uint32_t count = offsets[v + 1] - offsets[v];
       several[v] = 0;
       if (count == 0) continue;
@@ -806,6 +906,18 @@ RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options)
                           p = points.data(), out = tris.data()](size_t begin, size_t end) {
     size_t part_nonfinite = 0, part_degenerate = 0;
     for (size_t t = begin; t < end; ++t) {
+      // The corners lie anywhere: their welded numbers are asked for
+      // 2 kAhead triangles on, their flags and positions kAhead on
+      // (natively; WASM has no prefetch).
+      constexpr size_t kAhead = 8;
+      if (t + 2 * kAhead < end)
+        for (size_t i = 3 * (t + 2 * kAhead); i < 3 * (t + 2 * kAhead) + 3; ++i) __builtin_prefetch(&to[indices[i]]);
+      if (t + kAhead < end)
+        for (size_t i = 3 * (t + kAhead); i < 3 * (t + kAhead) + 3; ++i) {
+          const uint32_t v = to[indices[i]];
+          __builtin_prefetch(&is_finite[v]);
+          __builtin_prefetch(&p[v]);
+        }
       Triangle f = {to[indices[3 * t]], to[indices[3 * t + 1]], to[indices[3 * t + 2]]};
       if (!is_finite[f[0]] || !is_finite[f[1]] || !is_finite[f[2]])
         f[0] = kNone, ++part_nonfinite;
