@@ -192,8 +192,8 @@ void Pipeline::measure_creases(const std::function<void(double)>& progress) {
   CreaseMeasureOptions measure{options_.creases.normal_filter_steps};
   const double noise = noise_levels_.empty() ? 0.0 : noise_levels_[frames_.largest()];
   if (measure.normal_filter_steps < 0) measure.normal_filter_steps = automatic_normal_filter_steps(noise);
-  // With one component its level is the whole mesh's, which the stage would measure again.
-  if (frames_.count() == 1 && !noise_levels_.empty()) measure.noise_level = noise_levels_[0];
+  // With one component its level (`noise`) is the whole mesh's, which the stage would measure again.
+  if (frames_.count() == 1 && !noise_levels_.empty()) measure.noise_level = noise;
   crease_angles_ = measure_crease_angles(local_input(), topology(), measure, progress);
   // Where the filter does not run the stage measures no noise, but the
   // automatic angle asks whether the mesh is piecewise planar.
