@@ -708,7 +708,8 @@ class GltfReader {
       for_serial_blocks(used, [&](size_t begin, size_t end) {
         for (size_t k = begin; k < end; ++k) largest = std::max(largest, indices[k]);
       });
-      for (size_t k = 0; used > 0 && largest >= vertices; ++k) {
+      // Only when one is out of range: find the first to name it.
+      for (size_t k = 0; largest >= vertices && k < used; ++k) {
         if (indices[k] >= vertices) {
           invalid(where + " refers to vertex " + std::to_string(indices[k]) + " but has only " +
                   std::to_string(vertices) + " vertices.");
