@@ -273,20 +273,10 @@ FaceNormals face_normals(const Mesh& mesh) {
   return out;
 }
 
-// The normals alone, as triangle_areas_normals makes them (its loop, the
-// corners of the triangle kAhead on asked for now, natively).
+// The normals alone (triangle_normals: triangle_areas_normals' bits).
 FaceNormals face_normals_only(const Mesh& mesh) {
   FaceNormals out;
-  out.normal.resize(mesh.triangles.size());
-  parallel_for(mesh.triangles.size(), [&](size_t begin, size_t end) {
-    for (size_t t = begin; t < end; ++t) {
-      constexpr size_t kAhead = 8;
-      if (t + kAhead < end)
-        for (uint32_t v : mesh.triangles[t + kAhead]) __builtin_prefetch(&mesh.positions[v]);
-      const Triangle& f = mesh.triangles[t];
-      triangle_normal(mesh.positions[f[0]], mesh.positions[f[1]], mesh.positions[f[2]], out.normal[t]);
-    }
-  });
+  triangle_normals(mesh.positions, mesh.triangles, out.normal);
   return out;
 }
 

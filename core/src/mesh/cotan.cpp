@@ -14,9 +14,12 @@ namespace crestline {
 // unchanged (the bunny's 0.1 % above 3 are slivers too).
 constexpr double kMaxCotanWeight = 5.0;
 
-void triangle_areas_normals(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles,
-                            std::vector<double>& areas, std::vector<Vec3>& normals) {
-  areas.resize(triangles.size());
+namespace {
+
+// The unit normals, and ½ the cross product's length into areas if given:
+// one loop for both callers, so their bits are the same.
+void fill_triangle_normals(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles,
+                           std::vector<Vec3>& normals, double* areas) {
   normals.resize(triangles.size());
   parallel_for(triangles.size(), [&](size_t begin, size_t end) {
     for (size_t t = begin; t < end; ++t) {
@@ -26,9 +29,23 @@ void triangle_areas_normals(const std::vector<Vec3>& positions, const std::vecto
       if (t + kAhead < end)
         for (uint32_t v : triangles[t + kAhead]) __builtin_prefetch(&positions[v]);
       const Triangle& f = triangles[t];
-      areas[t] = 0.5 * triangle_normal(positions[f[0]], positions[f[1]], positions[f[2]], normals[t]);
+      const double area = 0.5 * triangle_normal(positions[f[0]], positions[f[1]], positions[f[2]], normals[t]);
+      if (areas != nullptr) areas[t] = area;
     }
   });
+}
+
+}  // namespace
+
+void triangle_areas_normals(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles,
+                            std::vector<double>& areas, std::vector<Vec3>& normals) {
+  areas.resize(triangles.size());
+  fill_triangle_normals(positions, triangles, normals, areas.data());
+}
+
+void triangle_normals(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles,
+                      std::vector<Vec3>& normals) {
+  fill_triangle_normals(positions, triangles, normals, nullptr);
 }
 
 CotanWeights cotan_weights(const std::vector<Vec3>& positions, const Mesh& mesh, const Topology& topology) {

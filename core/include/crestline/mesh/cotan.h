@@ -33,5 +33,8 @@ inline double triangle_normal(const Vec3& p0, const Vec3& p1, const Vec3& p2, Ve
 /// ½ triangle_normal and its normal (the crease measure's face normals too).
 void triangle_areas_normals(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles,
                             std::vector<double>& areas, std::vector<Vec3>& normals);
+/// The unit normals alone, the same bits as triangle_areas_normals'.
+void triangle_normals(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles,
+                      std::vector<Vec3>& normals);
 
 }  // namespace crestline
