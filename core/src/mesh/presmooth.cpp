@@ -5,6 +5,8 @@
 #include <cmath>
 #include <functional>
 
+#include "../curvature/vertex_scatter.h"
+#include "crestline/error.h"
 #include "crestline/mesh/cotan.h"
 #include "crestline/mesh/frame.h"
 #include "crestline/numerics/constants.h"
@@ -51,27 +53,40 @@ static void edges_at(const Mesh& mesh, const Topology& topology, uint32_t v, std
   out.erase(std::unique(out.begin(), out.end()), out.end());
 }
 
+namespace {
+// A triangle's unnormalised normal (twice its area) and its norm, side by
+// side: an edge's test and a vertex's normal find both in one cache line.
+struct alignas(32) FaceNormal {
+  Vec3 n;
+  double norm;
+};
+using FaceNormals = UninitialisedVector<FaceNormal>;
+// A vertex's sum over the neighbours a sweep (sweep_edges) has met, and their count.
+template <typename T>
+struct alignas(sizeof(T) > 8 ? 32 : 16) NeighbourSum {
+  T sum;
+  uint32_t count;
+};
+}  // namespace
+
 // The angle between an edge's two face normals as its cosine; 0 where a
-// normal vanishes (degenerate), 1 on the boundary. n: each triangle's
-// unnormalised normal (twice its area), n_norm its norm.
-static double edge_cosine(const Topology& topology, const std::vector<Vec3>& n,
-                          const UninitialisedVector<double>& n_norm, uint32_t e, bool& degenerate) {
+// normal vanishes (degenerate), 1 on the boundary.
+static double edge_cosine(const Topology& topology, const FaceNormals& n, uint32_t e, bool& degenerate) {
   const auto& tt = topology.edge_triangles[e];
   degenerate = false;
   if (tt[1] == kNone) return 1.0;
-  const double norms = n_norm[tt[0]] * n_norm[tt[1]];
+  const double norms = n[tt[0]].norm * n[tt[1]].norm;
   degenerate = !(norms > 0);
-  return norms > 0 ? n[tt[0]].dot(n[tt[1]]) / norms : 0.0;
+  return norms > 0 ? n[tt[0]].n.dot(n[tt[1]].n) / norms : 0.0;
 }
 
 static double cos_clean_crease_turn() { return portable_cos(kCleanCreaseTurn); }
 
 // Whether an edge is sharp enough for a clean crease: only a vertex with one
 // can be on a clean crease or a wall (below).
-static bool sharp_edge(const Topology& topology, const std::vector<Vec3>& n, const UninitialisedVector<double>& n_norm,
-                       uint32_t e, double cos_sharp) {
+static bool sharp_edge(const Topology& topology, const FaceNormals& n, uint32_t e, double cos_sharp) {
   bool degenerate;
-  const double c = edge_cosine(topology, n, n_norm, e, degenerate);
+  const double c = edge_cosine(topology, n, e, degenerate);
   return topology.edge_triangles[e][1] != kNone && !degenerate && c <= cos_sharp;
 }
 
@@ -81,15 +96,14 @@ enum : uint8_t { kOnWall = 1, kClean = 2, kCleanIfEqual = 4 };
 // ones and none in between (counts up to 2; a degenerate edge means never
 // clean), or on a wall (a sharp edge and one in between), where `turn` is
 // set to the total turn over the in-between edges, added in edge order.
-static uint8_t crease_state(const Mesh& mesh, const Topology& topology, const std::vector<Vec3>& n,
-                            const UninitialisedVector<double>& n_norm, double cos_sharp, double cos_flat, uint32_t v,
-                            std::vector<uint32_t>& edges, double& turn) {
+static uint8_t crease_state(const Mesh& mesh, const Topology& topology, const FaceNormals& n, double cos_sharp,
+                            double cos_flat, uint32_t v, std::vector<uint32_t>& edges, double& turn) {
   edges_at(mesh, topology, v, edges);
   int sharp = 0, flat = 0, between = 0;
   double sum = 0.0;
   for (uint32_t e : edges) {
     bool degenerate;
-    const double c = edge_cosine(topology, n, n_norm, e, degenerate);
+    const double c = edge_cosine(topology, n, e, degenerate);
     if (topology.edge_triangles[e][1] == kNone) continue;
     if (degenerate) {
       between = 2;
@@ -110,14 +124,13 @@ static uint8_t crease_state(const Mesh& mesh, const Topology& topology, const st
 
 // sharp: the sharp edges (sharp_edge) in ascending order; few on a smooth
 // mesh, so the rest is found only at their vertices.
-static std::vector<uint8_t> clean_crease_vertices(const Mesh& mesh, const Topology& topology,
-                                                  const std::vector<Vec3>& n, const UninitialisedVector<double>& n_norm,
+static std::vector<uint8_t> clean_crease_vertices(const Mesh& mesh, const Topology& topology, const FaceNormals& n,
                                                   const std::vector<uint32_t>& sharp) {
   const double cos_sharp = cos_clean_crease_turn(), cos_flat = portable_cos(kFlatTurn);
   const size_t nv = mesh.positions.size();
   std::vector<uint8_t> out(nv, 0);
   if (sharp.empty()) return out;
-  auto cosine = [&](uint32_t e, bool& degenerate) { return edge_cosine(topology, n, n_norm, e, degenerate); };
+  auto cosine = [&](uint32_t e, bool& degenerate) { return edge_cosine(topology, n, e, degenerate); };
   // Their vertices, gathered in ascending order on every thread.
   std::vector<uint32_t> candidates;
   std::vector<uint8_t> state(nv, 0);  // 1 for a candidate, then its state (below)
@@ -136,8 +149,7 @@ static std::vector<uint8_t> clean_crease_vertices(const Mesh& mesh, const Topolo
       [&](size_t begin, size_t end) {
         std::vector<uint32_t> edges;
         for (size_t i = begin; i < end; ++i)
-          state[candidates[i]] =
-              crease_state(mesh, topology, n, n_norm, cos_sharp, cos_flat, candidates[i], edges, turn[i]);
+          state[candidates[i]] = crease_state(mesh, topology, n, cos_sharp, cos_flat, candidates[i], edges, turn[i]);
       },
       256);
   // Clean where it qualified outright, or where two neighbours along sharp
@@ -169,93 +181,177 @@ static std::vector<uint8_t> clean_crease_vertices(const Mesh& mesh, const Topolo
   return out;
 }
 
+// The edges' sums onto their ends, taken in one sweep over the edges in
+// order rather than gathered over grouped neighbour lists (no grouping,
+// 13 MB at 1.1M triangles): the edges run by smaller end, ascending, then
+// by larger end (build_topology's and repair_mesh's order), so vertex v
+// meets its smaller neighbours first, from the edges (w, v) the runs of the
+// vertices before it scatter to it, then its larger ones in its own run:
+// ascending order, that of the gather. own(part, v, first, last, mine) is
+// called for v with [first, last) its run, after every edge (w, v) has been
+// scattered, scatter(v, w) for an edge (v, w) in another part's run whose w
+// is this part's. Split over the threads by vertex (VertexParts): each goes
+// through every edge and adds only to its own vertices, so every sum is in
+// edge order for any thread count.
+template <typename Own, typename Scatter>
+static void sweep_edges(const Topology& topology, size_t nv, size_t parts_wanted, const Own& own,
+                        const Scatter& scatter) {
+  const detail::VertexParts parts(parts_wanted);
+  const size_t ne = topology.edges.size();
+  parallel_for(
+      parts.parts,
+      [&](size_t first_part, size_t last_part) {
+        const auto* edges = topology.edges.data();
+        const auto run = [&](size_t part, const auto& mine) {
+          size_t e = 0;
+          for (uint32_t v = 0; v < nv; ++v) {
+            const size_t first = e;
+            while (e < ne && edges[e][0] == v) ++e;
+            if (mine(v)) {
+              own(part, v, first, e, mine);
+            } else {
+              for (size_t i = first; i < e; ++i)
+                if (mine(edges[i][1])) scatter(v, edges[i][1]);
+            }
+          }
+          if (e != ne) throw Error(ErrorKind::InvalidInput, "the adjacency's edges are not in ascending order.");
+        };
+        // One part tests nothing.
+        if (parts.parts == 1) return run(0, [](uint32_t) { return true; });
+        for (size_t part = first_part; part < last_part; ++part)
+          run(part, [part, parts](uint32_t v) { return parts.of(v) == part; });
+      },
+      1);
+}
+
 std::vector<double> surface_noise_levels(const Mesh& mesh, const Topology& topology,
                                          const std::vector<uint32_t>& vertex_component, size_t components) {
   // Signed offset of each vertex from its neighbours' centroid along its
   // normal: curvature makes it vary smoothly, noise makes it jump. The jump,
   // offset minus its neighbours' mean offset, measures the noise alone.
-  // Every per-vertex sum is gathered over the vertex's triangles or its
-  // neighbours in ascending order (the order of a scatter over the
-  // triangles or the edges), on every thread: the same bits for any count.
+  // Every per-vertex sum is over the vertex's triangles (gathered) or its
+  // neighbours (swept: sweep_edges) in ascending order (the order of a
+  // scatter over the triangles or the edges), on every thread: the same
+  // bits for any count.
   const size_t nv = mesh.positions.size(), nt = mesh.triangles.size(), ne = topology.edges.size();
   const std::vector<Vec3>& x = mesh.positions;
   const std::vector<uint8_t>& boundary = topology.boundary_vertex;
-  std::vector<uint32_t> neighbour_start;
-  UninitialisedVector<uint32_t> neighbours;
-  detail::group_by_bucket(
-      ne, nv,
-      [&](size_t e, const auto& emit) {
-        emit(topology.edges[e][0], topology.edges[e][1]);
-        emit(topology.edges[e][1], topology.edges[e][0]);
-      },
-      neighbour_start, neighbours);
-  std::vector<Vec3> face_normal(nt);
-  UninitialisedVector<double> face_norm(nt);
+  const auto* edges = topology.edges.data();
+  const auto* edge_triangles = topology.edge_triangles.data();
+  const uint32_t* fan = topology.vertex_triangles.data();
+  const size_t fan_size = topology.vertex_triangles.size();
+  // Items kAhead on lie anywhere in the arrays they index: asked for now
+  // (natively; WASM has no prefetch).
+  constexpr size_t kAhead = 8;
+  FaceNormals face(nt);
   parallel_for(nt, [&](size_t begin, size_t end) {
     for (size_t f = begin; f < end; ++f) {
+      if (f + kAhead < end)
+        for (uint32_t v : mesh.triangles[f + kAhead]) __builtin_prefetch(&x[v]);
       const Triangle& t = mesh.triangles[f];
-      face_normal[f] = (x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]);
-      face_norm[f] = face_normal[f].norm();
+      face[f].n = (x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]);
+      face[f].norm = face[f].n.norm();
     }
   });
-  // The sharp edges in ascending order: each part's, then joined in part
-  // order (few on a smooth mesh).
+  // One sweep over the edges (sweep_edges) measures them for the side sums
+  // (each once, below), finds the sharp ones (each part's in ascending
+  // order; few on a smooth mesh) and sums each vertex's neighbours, and at
+  // each vertex the offset (valid where it has one; on a clean crease it
+  // is dropped below).
   const double cos_sharp = cos_clean_crease_turn();
-  const size_t edge_parts = detail::part_count(ne);
-  std::vector<std::vector<uint32_t>> part_sharp(edge_parts);
-  detail::for_each_part(edge_parts, ne, [&](size_t p, size_t begin, size_t end) {
-    for (size_t e = begin; e < end; ++e)
-      if (sharp_edge(topology, face_normal, face_norm, uint32_t(e), cos_sharp)) part_sharp[p].push_back(uint32_t(e));
-  });
-  std::vector<uint32_t> sharp = std::move(part_sharp[0]);
-  for (size_t p = 1; p < edge_parts; ++p) sharp.insert(sharp.end(), part_sharp[p].begin(), part_sharp[p].end());
-  part_sharp = {};
-  // Vertices on clean creases count as jump 0 and stay out of their
-  // neighbours' means.
-  const std::vector<uint8_t> on_crease = clean_crease_vertices(mesh, topology, face_normal, face_norm, sharp);
-  face_norm = UninitialisedVector<double>();
-  // Every entry written; offset only where valid.
+  const size_t parts = detail::part_count(ne);
+  std::vector<std::vector<uint32_t>> part_sharp(parts);
+  UninitialisedVector<double> length(ne);
   UninitialisedVector<double> offset(nv);
   UninitialisedVector<uint8_t> valid(nv);
-  parallel_for(nv, [&](size_t begin, size_t end) {
-    for (size_t v = begin; v < end; ++v) {
-      valid[v] = 0;
-      const uint32_t first = neighbour_start[v], last = neighbour_start[v + 1];
-      if (boundary[v] || on_crease[v] || first == last) continue;
-      Vec3 normal = Vec3::Zero(), neighbour_sum = Vec3::Zero();
-      for (uint32_t i = topology.vertex_offsets[v]; i < topology.vertex_offsets[v + 1]; ++i)
-        normal += face_normal[topology.vertex_triangles[i]];
-      // normalized()'s own norm, taken once (its division by the same root).
-      const double length = normal.norm();
-      if (!(length > 0)) continue;
-      for (uint32_t i = first; i < last; ++i) neighbour_sum += x[neighbours[i]];
-      offset[v] = (normal / length).dot(x[v] - neighbour_sum / (last - first));
-      valid[v] = 1;
-    }
-  });
-  face_normal = std::vector<Vec3>();  // freed (`= {}` would only clear it)
-  // Each vertex's jump, where it has one.
+  {
+    std::vector<NeighbourSum<Vec3>> around(nv, NeighbourSum<Vec3>{Vec3::Zero(), 0});
+    sweep_edges(
+        topology, nv, parts,
+        [&](size_t part, uint32_t v, size_t first, size_t last, const auto& mine) {
+          Vec3 sum = around[v].sum;
+          uint32_t count = around[v].count;
+          const Vec3 xv = x[v];
+          for (size_t e = first; e < last; ++e) {
+            if (e + kAhead < ne) {
+              const uint32_t w = edges[e + kAhead][1];
+              __builtin_prefetch(&x[w]);
+              __builtin_prefetch(&around[w], 1);
+              const auto& tt = edge_triangles[e + kAhead];
+              __builtin_prefetch(&face[tt[0]]);
+              if (tt[1] != kNone) __builtin_prefetch(&face[tt[1]]);
+            }
+            const uint32_t w = edges[e][1];
+            const Vec3 xw = x[w];
+            length[e] = (xw - xv).norm();
+            if (sharp_edge(topology, face, uint32_t(e), cos_sharp)) part_sharp[part].push_back(uint32_t(e));
+            sum += xw, ++count;
+            if (mine(w)) around[w].sum += xv, ++around[w].count;
+          }
+          valid[v] = 0;
+          if (boundary[v] || count == 0) return;
+          Vec3 normal = Vec3::Zero();
+          const uint32_t fan_end = topology.vertex_offsets[v + 1];
+          for (uint32_t i = topology.vertex_offsets[v]; i < fan_end; ++i) {
+            if (i + kAhead < fan_size) __builtin_prefetch(&face[fan[i + kAhead]]);
+            normal += face[fan[i]].n;
+          }
+          // normalized()'s own norm, taken once (its division by the same root).
+          const double norm = normal.norm();
+          if (!(norm > 0)) return;
+          offset[v] = (normal / norm).dot(xv - sum / count);
+          valid[v] = 1;
+        },
+        [&](uint32_t v, uint32_t w) { around[w].sum += x[v], ++around[w].count; });
+  }
+  std::vector<uint32_t> sharp = std::move(part_sharp[0]);
+  for (size_t p = 1; p < parts; ++p) sharp.insert(sharp.end(), part_sharp[p].begin(), part_sharp[p].end());
+  part_sharp = {};
+  // The parts' runs of vertices interleave: ascending again.
+  if (parts > 1) std::sort(sharp.begin(), sharp.end());
+  // Vertices on clean creases count as jump 0 and stay out of their
+  // neighbours' means.
+  const std::vector<uint8_t> on_crease = clean_crease_vertices(mesh, topology, face, sharp);
+  face = FaceNormals();
+  if (!sharp.empty())
+    parallel_for(nv, [&](size_t begin, size_t end) {
+      for (size_t v = begin; v < end; ++v)
+        if (on_crease[v]) valid[v] = 0;
+    });
+  // Each vertex's jump, where it has one, in a second sweep: the sums of
+  // its valid neighbours' offsets.
   UninitialisedVector<double> jump(nv);
   UninitialisedVector<uint8_t> has_jump(nv);
-  parallel_for(nv, [&](size_t begin, size_t end) {
-    for (size_t v = begin; v < end; ++v) {
-      jump[v] = 0.0, has_jump[v] = on_crease[v] && !boundary[v];
-      if (!valid[v]) continue;
-      double offset_sum = 0.0;
-      uint32_t valid_count = 0;
-      for (uint32_t i = neighbour_start[v]; i < neighbour_start[v + 1]; ++i)
-        if (valid[neighbours[i]]) offset_sum += offset[neighbours[i]], ++valid_count;
-      if (valid_count > 0) jump[v] = std::abs(offset[v] - offset_sum / valid_count), has_jump[v] = 1;
-    }
-  });
-  neighbours = UninitialisedVector<uint32_t>();
+  {
+    std::vector<NeighbourSum<double>> around(nv, NeighbourSum<double>{0.0, 0});
+    sweep_edges(
+        topology, nv, parts,
+        [&](size_t, uint32_t v, size_t first, size_t last, const auto& mine) {
+          jump[v] = 0.0, has_jump[v] = on_crease[v] && !boundary[v];
+          // An invalid vertex's offset is not added to its neighbours.
+          if (!valid[v]) return;
+          double sum = around[v].sum;
+          uint32_t count = around[v].count;
+          const double own = offset[v];
+          for (size_t e = first; e < last; ++e) {
+            if (e + kAhead < ne) {
+              const uint32_t w = edges[e + kAhead][1];
+              __builtin_prefetch(&offset[w]);
+              __builtin_prefetch(&around[w], 1);
+            }
+            const uint32_t w = edges[e][1];
+            if (valid[w]) sum += offset[w], ++count;
+            if (mine(w)) around[w].sum += own, ++around[w].count;
+          }
+          if (count > 0) jump[v] = std::abs(own - sum / count), has_jump[v] = 1;
+        },
+        [&](uint32_t v, uint32_t w) {
+          if (valid[v]) around[w].sum += offset[v], ++around[w].count;
+        });
+  }
   // Each component's jumps, in units of its own mean edge length (as
   // mean_edge_length measures it: over the triangles' sides, added in
-  // triangle order; each edge measured once, on every thread).
-  UninitialisedVector<double> length(ne);
-  parallel_for(ne, [&](size_t begin, size_t end) {
-    for (size_t e = begin; e < end; ++e) length[e] = (x[topology.edges[e][1]] - x[topology.edges[e][0]]).norm();
-  });
+  // triangle order; each edge measured once above, on every thread).
   // The sums are serial; beside them (a second thread if there is one) each
   // component's jumps in vertex order (as a copy: the median does not depend
   // on it) are grouped and their medians found.

@@ -8,6 +8,7 @@
 #include <map>
 
 #include "analytic_meshes.h"
+#include "crestline/error.h"
 #include "crestline/lines/creases.h"
 #include "crestline/mesh/cotan.h"
 #include "crestline/mesh/repair.h"
@@ -280,6 +281,16 @@ TEST_CASE("noise levels are gathered per vertex on every thread: the same bits a
   CHECK(levels[0] == serial);
   CHECK(levels[1] == serial);
   CHECK(levels[2] == serial);
+}
+
+TEST_CASE("the noise level refuses an adjacency whose edges are out of order", "[presmooth]") {
+  // Its sweep (sweep_edges) meets each vertex's neighbours in ascending
+  // order only over edges in build_topology's order.
+  const Mesh mesh = repair_mesh(testing::icosphere(2)).mesh;
+  Topology topology = build_topology(mesh);
+  std::swap(topology.edges.front(), topology.edges.back());
+  std::swap(topology.edge_triangles.front(), topology.edge_triangles.back());
+  CHECK_THROWS_AS(surface_noise_level(mesh, topology), Error);
 }
 
 // A noisy height field whose jittered grid (0.45 cell) has slivers, with a

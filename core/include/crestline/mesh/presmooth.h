@@ -26,6 +26,8 @@ struct PresmoothOptions {
 /// between, or between-edges turning by the same total as along the crease,
 /// as on a coarse cylinder's rim) count as 0, so coarse CAD tessellations,
 /// where nearly every vertex is one, read as clean (presmooth.cpp).
+/// `topology` is the mesh's with its triangle lists, its edges in ascending
+/// order as build_topology and repair_mesh give them (Error otherwise).
 double surface_noise_level(const Mesh& mesh, const Topology& topology);
 /// The same per component (vertex_component numbers them 0 … components−1),
 /// each in units of its own mean edge length.
