@@ -353,20 +353,29 @@ std::vector<double> surface_noise_levels(const Mesh& mesh, const Topology& topol
   // mean_edge_length measures it: over the triangles' sides, added in
   // triangle order; each edge measured once above, on every thread).
   // The sums are serial; beside them (a second thread if there is one) each
-  // component's jumps in vertex order (as a copy: the median does not depend
-  // on it) are grouped and their medians found.
+  // component's jumps in vertex order (the median does not depend on it)
+  // are grouped and their medians found: one component's in place (the
+  // jumps are not read after), several as a copy.
   SideSums sums;
   std::vector<double> median(components, 0.0);
   std::vector<uint8_t> has_median(components, 0);
   const auto find_medians = [&] {
     std::vector<uint32_t> jump_start;
     UninitialisedVector<double> jumps;
-    detail::group_by_bucket(
-        nv, components,
-        [&](size_t v, const auto& emit) {
-          if (has_jump[v]) emit(components == 1 ? 0 : vertex_component[v], jump[v]);
-        },
-        jump_start, jumps);
+    if (components == 1) {
+      uint32_t count = 0;
+      for (size_t v = 0; v < nv; ++v)
+        if (has_jump[v]) jump[count++] = jump[v];
+      jump_start = {0, count};
+      jumps = std::move(jump);
+    } else {
+      detail::group_by_bucket(
+          nv, components,
+          [&](size_t v, const auto& emit) {
+            if (has_jump[v]) emit(vertex_component[v], jump[v]);
+          },
+          jump_start, jumps);
+    }
     for (size_t c = 0; c < components; ++c) {
       const auto first = jumps.begin() + jump_start[c], last = jumps.begin() + jump_start[c + 1];
       if (first == last) continue;
