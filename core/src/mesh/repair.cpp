@@ -501,6 +501,30 @@ Orientation orient(std::vector<Triangle>& tris, const std::vector<Vec3>& points,
   // corner without a partner, or cut: every non-orientable one).
   std::vector<uint32_t> size, nflip;
   std::vector<uint8_t> open;
+  // Triangle t's step of a traversal of component c: each neighbour across
+  // a joined corner not yet visited takes the flip that agrees with t's and
+  // is pushed; disagree(corner, other) is called where a visited one's flip
+  // does not agree. Returns 1 if t has a corner without a partner (open).
+  auto step = [partner, same, flip, component](uint32_t t, uint32_t c, const auto& push, const auto& disagree) {
+    uint8_t opening = 0;
+    for (uint32_t corner = 3 * t; corner < 3 * t + 3; ++corner) {
+      const uint32_t other = partner[corner];
+      if (other == kNone) {
+        opening = 1;
+        continue;
+      }
+      const uint32_t u = other / 3;
+      const uint8_t disagree_flip = same[corner] ^ flip[t];
+      if (component[u] == kNone) {
+        flip[u] = disagree_flip;
+        component[u] = c;
+        push(u);
+      } else if (disagree_flip != flip[u]) {
+        disagree(corner, other);
+      }
+    }
+    return opening;
+  };
   // Component c from its seed, over the triangles not yet visited (kNone);
   // counts it in size, nflip and open if `tally`.
   // The arrays by value and the stack as a raw array: the byte stores below
@@ -520,24 +544,12 @@ Orientation orient(std::vector<Triangle>& tris, const std::vector<Vec3>& points,
     while (top > 0) {
       const uint32_t t = base[--top];
       ++triangles, flips += flip[t];
-      for (uint32_t corner = 3 * t; corner < 3 * t + 3; ++corner) {
-        const uint32_t other = partner[corner];
-        if (other == kNone) {
-          opening = 1;
-          continue;
-        }
-        const uint32_t u = other / 3;
-        const uint8_t disagree = same[corner] ^ flip[t];
-        if (component[u] == kNone) {
-          flip[u] = disagree;
-          component[u] = c;
-          push(u);
-        } else if (disagree != flip[u]) {
-          same[corner] = same[other] = 2;  // cut: non-orientable here
-          partner[corner] = partner[other] = kNone;
-          traversal_cut = true, opening = 1;
-        }
-      }
+      if (step(t, c, push, [&](uint32_t corner, uint32_t other) {
+            same[corner] = same[other] = 2;  // cut: non-orientable here
+            partner[corner] = partner[other] = kNone;
+            traversal_cut = true, opening = 1;
+          }))
+        opening = 1;
     }
     if (tally) size.push_back(triangles), nflip.push_back(flips), open.push_back(opening);
   };
@@ -577,22 +589,7 @@ Orientation orient(std::vector<Triangle>& tris, const std::vector<Vec3>& points,
           }
       const uint32_t t = base[head++];
       flips += flip[t];
-      for (uint32_t corner = 3 * t; corner < 3 * t + 3; ++corner) {
-        const uint32_t other = partner[corner];
-        if (other == kNone) {
-          opening = 1;
-          continue;
-        }
-        const uint32_t u = other / 3;
-        const uint8_t disagree = same[corner] ^ flip[t];
-        if (component[u] == kNone) {
-          flip[u] = disagree;
-          component[u] = c;
-          push(u);
-        } else if (disagree != flip[u]) {
-          agree = false;
-        }
-      }
+      if (step(t, c, push, [&](uint32_t, uint32_t) { agree = false; })) opening = 1;
     }
     if (!agree) {
       for (size_t i = 0; i < tail; ++i) component[base[i]] = kNone, flip[base[i]] = 0;
