@@ -9,6 +9,7 @@
 #include <mutex>
 #include <numeric>
 #include <string>
+#include <type_traits>
 
 #include "crestline/error.h"
 #include "crestline/mesh/topology.h"
@@ -913,33 +914,43 @@ RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options)
   // time, cost 30 M instructions at 1.1M triangles.)
   std::vector<Triangle> tris(input_nt);
   std::atomic<size_t> nonfinite{0}, degenerate{0};
-  parallel_for(input_nt, [&, indices = soup.indices.data(), to = rep.data(), is_finite = finite.data(),
-                          p = points.data(), out = tris.data()](size_t begin, size_t end) {
-    size_t part_nonfinite = 0, part_degenerate = 0;
-    for (size_t t = begin; t < end; ++t) {
-      // The corners lie anywhere: their welded numbers are asked for
-      // 2 kAhead triangles on, their flags and positions kAhead on
-      // (natively; WASM has no prefetch).
-      constexpr size_t kAhead = 8;
-      if (t + 2 * kAhead < end)
-        for (size_t i = 3 * (t + 2 * kAhead); i < 3 * (t + 2 * kAhead) + 3; ++i) __builtin_prefetch(&to[indices[i]]);
-      if (t + kAhead < end)
-        for (size_t i = 3 * (t + kAhead); i < 3 * (t + kAhead) + 3; ++i) {
-          const uint32_t v = to[indices[i]];
-          __builtin_prefetch(&is_finite[v]);
-          __builtin_prefetch(&p[v]);
-        }
-      Triangle f = {to[indices[3 * t]], to[indices[3 * t + 1]], to[indices[3 * t + 2]]};
-      if (!is_finite[f[0]] || !is_finite[f[1]] || !is_finite[f[2]])
-        f[0] = kNone, ++part_nonfinite;
-      else if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2] ||
-               !(((p[f[1]] - p[f[0]]) * inv_diagonal).cross((p[f[2]] - p[f[0]]) * inv_diagonal).norm() >
-                 kMinRelativeDoubleArea))
-        f[0] = kNone, ++part_degenerate;
-      out[t] = f;
-    }
-    nonfinite += part_nonfinite, degenerate += part_degenerate;
-  });
+  // Where no vertex was welded (a clean mesh) the corners are the input's:
+  // not looked up in `rep` (1.1M triangles, 1 thread: 143 -> 119 M
+  // instructions).
+  auto test_triangles = [&](auto renumbered) {
+    parallel_for(input_nt, [&, indices = soup.indices.data(), to = rep.data(), is_finite = finite.data(),
+                            p = points.data(), out = tris.data()](size_t begin, size_t end) {
+      auto corner = [indices, to](size_t i) { return decltype(renumbered)::value ? to[indices[i]] : indices[i]; };
+      size_t part_nonfinite = 0, part_degenerate = 0;
+      for (size_t t = begin; t < end; ++t) {
+        // The corners lie anywhere: their welded numbers are asked for
+        // 2 kAhead triangles on, their flags and positions kAhead on
+        // (natively; WASM has no prefetch).
+        constexpr size_t kAhead = 8;
+        if (decltype(renumbered)::value && t + 2 * kAhead < end)
+          for (size_t i = 3 * (t + 2 * kAhead); i < 3 * (t + 2 * kAhead) + 3; ++i) __builtin_prefetch(&to[indices[i]]);
+        if (t + kAhead < end)
+          for (size_t i = 3 * (t + kAhead); i < 3 * (t + kAhead) + 3; ++i) {
+            const uint32_t v = corner(i);
+            __builtin_prefetch(&is_finite[v]);
+            __builtin_prefetch(&p[v]);
+          }
+        Triangle f = {corner(3 * t), corner(3 * t + 1), corner(3 * t + 2)};
+        if (!is_finite[f[0]] || !is_finite[f[1]] || !is_finite[f[2]])
+          f[0] = kNone, ++part_nonfinite;
+        else if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2] ||
+                 !(((p[f[1]] - p[f[0]]) * inv_diagonal).cross((p[f[2]] - p[f[0]]) * inv_diagonal).norm() >
+                   kMinRelativeDoubleArea))
+          f[0] = kNone, ++part_degenerate;
+        out[t] = f;
+      }
+      nonfinite += part_nonfinite, degenerate += part_degenerate;
+    });
+  };
+  if (report.welded_vertices > 0)
+    test_triangles(std::true_type{});
+  else
+    test_triangles(std::false_type{});
   report.nonfinite_triangles = nonfinite, report.degenerate_triangles = degenerate;
   if (nonfinite + degenerate > 0) {
     std::vector<Triangle> kept;
