@@ -9,6 +9,7 @@
 #include <mutex>
 #include <numeric>
 #include <string>
+#include <type_traits>
 
 #include "crestline/error.h"
 #include "crestline/mesh/topology.h"
@@ -122,10 +123,15 @@ std::vector<uint32_t> weld(const std::vector<Vec3>& points, const std::vector<ui
            static_cast<uint64_t>(z) * 83492791u;
   };
   const bool one_thread = max_threads() == 1;
-  // Slots: twice the vertices (the open-addressing table; on several
-  // threads, lists of 1.5 entries on average where a search looks).
+  // Slots: on one thread, 1.5 times the vertices (the open-addressing
+  // table, at most two thirds full; its 8-byte slots, 8 MB at 1.1M
+  // triangles, fit the TLB's reach where the 16 MB of twice the vertices
+  // did not: the weld's CPU time 45-62 -> 34-45 ms over 6 runs each, as
+  // much as 2 MB pages gave the 16 MB); on several, twice (lists of 1.5
+  // entries on average where a search looks).
+  const size_t slots = one_thread ? points.size() + points.size() / 2 : 2 * points.size();
   int bits = 1;
-  while ((size_t{1} << bits) < 2 * points.size()) ++bits;
+  while ((size_t{1} << bits) < slots) ++bits;
   const size_t mask = (size_t{1} << bits) - 1;
   auto hashed = [&](uint64_t key) { return static_cast<size_t>((key * 0x9E3779B97F4A7C15ull) >> (64 - bits)); };
   // Calls visit(key) for the cells within reach of a vertex at q (scaled).
@@ -158,27 +164,36 @@ std::vector<uint32_t> weld(const std::vector<Vec3>& points, const std::vector<ui
       while (table[s].head != kNone && table[s].tag != tag) s = (s + 1) & mask;
       return s;
     };
+    // Cells hash anywhere in the table: the slot of the cell of the vertex
+    // kAhead on (nearly always the only one searched) is asked for now
+    // (natively; WASM has no prefetch), and that cell's key kept for its
+    // turn (ahead[i % kAhead] is vertex i's).
+    constexpr size_t kAhead = 16;
+    std::array<uint64_t, kAhead> ahead{};
+    for (size_t i = 0; i < std::min(kAhead, points.size()); ++i) ahead[i] = key_at(scaled(points[i]));
     for (uint32_t i = 0; i < points.size(); ++i) {
-      // Cells hash anywhere in the table: the slot of the cell of the
-      // vertex kAhead on (nearly always the only one searched) is asked for
-      // now (natively; WASM has no prefetch).
-      constexpr size_t kAhead = 16;
-      if (i + kAhead < points.size()) __builtin_prefetch(&table[hashed(key_at(scaled(points[i + kAhead])))]);
+      const uint64_t home = ahead[i % kAhead];
+      if (i + kAhead < points.size()) {
+        const uint64_t key = key_at(scaled(points[i + kAhead]));
+        ahead[i % kAhead] = key;
+        __builtin_prefetch(&table[hashed(key)]);
+      }
       if (!weldable[i]) continue;
       uint32_t found = kNone;
-      const Vec3 q = scaled(points[i]);  // once for the search and the insertion
-      for_cells_near(q, [&](uint64_t key) {
-        for (uint32_t j = table[slot(key)].head; j != kNone; j = next[j])
+      size_t home_slot = 0;  // the home cell is always among those searched
+      for_cells_near(scaled(points[i]), [&](uint64_t key) {
+        const size_t s = slot(key);
+        if (key == home) home_slot = s;
+        for (uint32_t j = table[s].head; j != kNone; j = next[j])
           if (j < found && near(j, i)) found = j;
       });
       if (found != kNone) {
         representative[i] = found, ++welded;
       } else {
-        // Lists in descending index order (each vertex is pushed at its head).
-        const uint64_t key = key_at(q);
-        const size_t s = slot(key);
-        next[i] = table[s].head;
-        table[s] = {i, tag_of(key)};
+        // Lists in descending index order (each vertex is pushed at its
+        // head), in the slot the search found for its cell.
+        next[i] = table[home_slot].head;
+        table[home_slot] = {i, tag_of(home)};
       }
     }
     return representative;
@@ -487,6 +502,30 @@ Orientation orient(std::vector<Triangle>& tris, const std::vector<Vec3>& points,
   // corner without a partner, or cut: every non-orientable one).
   std::vector<uint32_t> size, nflip;
   std::vector<uint8_t> open;
+  // Triangle t's step of a traversal of component c: each neighbour across
+  // a joined corner not yet visited takes the flip that agrees with t's and
+  // is pushed; disagree(corner, other) is called where a visited one's flip
+  // does not agree. Returns 1 if t has a corner without a partner (open).
+  auto step = [partner, same, flip, component](uint32_t t, uint32_t c, const auto& push, const auto& disagree) {
+    uint8_t opening = 0;
+    for (uint32_t corner = 3 * t; corner < 3 * t + 3; ++corner) {
+      const uint32_t other = partner[corner];
+      if (other == kNone) {
+        opening = 1;
+        continue;
+      }
+      const uint32_t u = other / 3;
+      const uint8_t disagree_flip = same[corner] ^ flip[t];
+      if (component[u] == kNone) {
+        flip[u] = disagree_flip;
+        component[u] = c;
+        push(u);
+      } else if (disagree_flip != flip[u]) {
+        disagree(corner, other);
+      }
+    }
+    return opening;
+  };
   // Component c from its seed, over the triangles not yet visited (kNone);
   // counts it in size, nflip and open if `tally`.
   // The arrays by value and the stack as a raw array: the byte stores below
@@ -506,24 +545,12 @@ Orientation orient(std::vector<Triangle>& tris, const std::vector<Vec3>& points,
     while (top > 0) {
       const uint32_t t = base[--top];
       ++triangles, flips += flip[t];
-      for (uint32_t corner = 3 * t; corner < 3 * t + 3; ++corner) {
-        const uint32_t other = partner[corner];
-        if (other == kNone) {
-          opening = 1;
-          continue;
-        }
-        const uint32_t u = other / 3;
-        const uint8_t disagree = same[corner] ^ flip[t];
-        if (component[u] == kNone) {
-          flip[u] = disagree;
-          component[u] = c;
-          push(u);
-        } else if (disagree != flip[u]) {
-          same[corner] = same[other] = 2;  // cut: non-orientable here
-          partner[corner] = partner[other] = kNone;
-          traversal_cut = true, opening = 1;
-        }
-      }
+      if (step(t, c, push, [&](uint32_t corner, uint32_t other) {
+            same[corner] = same[other] = 2;  // cut: non-orientable here
+            partner[corner] = partner[other] = kNone;
+            traversal_cut = true, opening = 1;
+          }))
+        opening = 1;
     }
     if (tally) size.push_back(triangles), nflip.push_back(flips), open.push_back(opening);
   };
@@ -563,22 +590,7 @@ Orientation orient(std::vector<Triangle>& tris, const std::vector<Vec3>& points,
           }
       const uint32_t t = base[head++];
       flips += flip[t];
-      for (uint32_t corner = 3 * t; corner < 3 * t + 3; ++corner) {
-        const uint32_t other = partner[corner];
-        if (other == kNone) {
-          opening = 1;
-          continue;
-        }
-        const uint32_t u = other / 3;
-        const uint8_t disagree = same[corner] ^ flip[t];
-        if (component[u] == kNone) {
-          flip[u] = disagree;
-          component[u] = c;
-          push(u);
-        } else if (disagree != flip[u]) {
-          agree = false;
-        }
-      }
+      if (step(t, c, push, [&](uint32_t, uint32_t) { agree = false; })) opening = 1;
     }
     if (!agree) {
       for (size_t i = 0; i < tail; ++i) component[base[i]] = kNone, flip[base[i]] = 0;
@@ -902,33 +914,43 @@ RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options)
   // time, cost 30 M instructions at 1.1M triangles.)
   std::vector<Triangle> tris(input_nt);
   std::atomic<size_t> nonfinite{0}, degenerate{0};
-  parallel_for(input_nt, [&, indices = soup.indices.data(), to = rep.data(), is_finite = finite.data(),
-                          p = points.data(), out = tris.data()](size_t begin, size_t end) {
-    size_t part_nonfinite = 0, part_degenerate = 0;
-    for (size_t t = begin; t < end; ++t) {
-      // The corners lie anywhere: their welded numbers are asked for
-      // 2 kAhead triangles on, their flags and positions kAhead on
-      // (natively; WASM has no prefetch).
-      constexpr size_t kAhead = 8;
-      if (t + 2 * kAhead < end)
-        for (size_t i = 3 * (t + 2 * kAhead); i < 3 * (t + 2 * kAhead) + 3; ++i) __builtin_prefetch(&to[indices[i]]);
-      if (t + kAhead < end)
-        for (size_t i = 3 * (t + kAhead); i < 3 * (t + kAhead) + 3; ++i) {
-          const uint32_t v = to[indices[i]];
-          __builtin_prefetch(&is_finite[v]);
-          __builtin_prefetch(&p[v]);
-        }
-      Triangle f = {to[indices[3 * t]], to[indices[3 * t + 1]], to[indices[3 * t + 2]]};
-      if (!is_finite[f[0]] || !is_finite[f[1]] || !is_finite[f[2]])
-        f[0] = kNone, ++part_nonfinite;
-      else if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2] ||
-               !(((p[f[1]] - p[f[0]]) * inv_diagonal).cross((p[f[2]] - p[f[0]]) * inv_diagonal).norm() >
-                 kMinRelativeDoubleArea))
-        f[0] = kNone, ++part_degenerate;
-      out[t] = f;
-    }
-    nonfinite += part_nonfinite, degenerate += part_degenerate;
-  });
+  // Where no vertex was welded (a clean mesh) the corners are the input's:
+  // not looked up in `rep` (1.1M triangles, 1 thread: 143 -> 119 M
+  // instructions).
+  auto test_triangles = [&](auto renumbered) {
+    parallel_for(input_nt, [&, indices = soup.indices.data(), to = rep.data(), is_finite = finite.data(),
+                            p = points.data(), out = tris.data()](size_t begin, size_t end) {
+      auto corner = [indices, to](size_t i) { return decltype(renumbered)::value ? to[indices[i]] : indices[i]; };
+      size_t part_nonfinite = 0, part_degenerate = 0;
+      for (size_t t = begin; t < end; ++t) {
+        // The corners lie anywhere: their welded numbers are asked for
+        // 2 kAhead triangles on, their flags and positions kAhead on
+        // (natively; WASM has no prefetch).
+        constexpr size_t kAhead = 8;
+        if (decltype(renumbered)::value && t + 2 * kAhead < end)
+          for (size_t i = 3 * (t + 2 * kAhead); i < 3 * (t + 2 * kAhead) + 3; ++i) __builtin_prefetch(&to[indices[i]]);
+        if (t + kAhead < end)
+          for (size_t i = 3 * (t + kAhead); i < 3 * (t + kAhead) + 3; ++i) {
+            const uint32_t v = corner(i);
+            __builtin_prefetch(&is_finite[v]);
+            __builtin_prefetch(&p[v]);
+          }
+        Triangle f = {corner(3 * t), corner(3 * t + 1), corner(3 * t + 2)};
+        if (!is_finite[f[0]] || !is_finite[f[1]] || !is_finite[f[2]])
+          f[0] = kNone, ++part_nonfinite;
+        else if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2] ||
+                 !(((p[f[1]] - p[f[0]]) * inv_diagonal).cross((p[f[2]] - p[f[0]]) * inv_diagonal).norm() >
+                   kMinRelativeDoubleArea))
+          f[0] = kNone, ++part_degenerate;
+        out[t] = f;
+      }
+      nonfinite += part_nonfinite, degenerate += part_degenerate;
+    });
+  };
+  if (report.welded_vertices > 0)
+    test_triangles(std::true_type{});
+  else
+    test_triangles(std::false_type{});
   report.nonfinite_triangles = nonfinite, report.degenerate_triangles = degenerate;
   if (nonfinite + degenerate > 0) {
     std::vector<Triangle> kept;
