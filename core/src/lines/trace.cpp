@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <vector>
 
@@ -171,17 +172,34 @@ void trace_field(const Mesh& mesh, const Topology& topology, const Field& field,
                      out[i] = segment_edges(mesh, field, t, regular[t], crossings[j] & 7);
                    }
                  });
-    for (uint32_t t = begin; t < end; ++t) {
+    // Eight codes at a time: most are 0 (no segment), and runs of them
+    // are skipped whole.
+    const uint32_t count = end - begin;
+    auto word = [&code](uint32_t i) {
+      uint64_t w;
+      std::memcpy(&w, code.data() + i, sizeof w);
+      return w;
+    };
+    for (uint32_t i = 0; i < count; i += 8) {
       // The crossed edges' nodes lie anywhere in edge_node: those of the
-      // triangle kAhead on are asked for now (natively).
+      // triangles kAhead on are asked for now (natively).
       constexpr uint32_t kAhead = 16;
-      if (t + kAhead < end && code[t + kAhead - begin])
-        for (uint32_t edge : topology.triangle_edges[t + kAhead]) __builtin_prefetch(&graph.edge_node[edge]);
-      if (!code[t - begin]) continue;
-      const int edges = code[t - begin] - 1;
-      const uint32_t a = node_on(graph, topology.triangle_edges[t][edges % 3]);
-      const uint32_t b = node_on(graph, topology.triangle_edges[t][edges / 3]);
-      graph.segments.push_back({a, b});
+      if (i + kAhead + 8 <= count)
+        for (uint64_t w = word(i + kAhead); w;) {
+          const unsigned byte = unsigned(__builtin_ctzll(w)) / 8;
+          for (uint32_t edge : topology.triangle_edges[begin + i + kAhead + byte])
+            __builtin_prefetch(&graph.edge_node[edge]);
+          w &= ~(0xffull << (8 * byte));
+        }
+      if (i + 8 <= count && word(i) == 0) continue;
+      for (uint32_t j = i; j < std::min(count, i + 8); ++j) {
+        if (!code[j]) continue;
+        const uint32_t t = begin + j;
+        const int edges = code[j] - 1;
+        const uint32_t a = node_on(graph, topology.triangle_edges[t][edges % 3]);
+        const uint32_t b = node_on(graph, topology.triangle_edges[t][edges / 3]);
+        graph.segments.push_back({a, b});
+      }
     }
   }
   const size_t nodes = graph.source.size();
