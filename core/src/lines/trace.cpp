@@ -118,95 +118,47 @@ inline uint8_t segment_edges(const Mesh& mesh, const Field& field, uint32_t t, u
   return crossing_segment(mesh, field, t, code, first, second);
 }
 
-// The tests run on every thread, block by block; the segments and their
-// crossing nodes' numbers are then made in triangle order on the calling
-// thread, and the nodes placed on every thread: the graph is the same for
-// any number of threads.
-void trace_field(const Mesh& mesh, const Topology& topology, const Field& field, const std::vector<uint8_t>& excluded,
-                 const std::function<void(double)>& progress, FeatureGraph& graph) {
-  graph.type = field.type;
-  graph.edge_node.assign(topology.edges.size(), kNone);
-  const size_t first = graph.source.size();  // the first node made here
-  const uint32_t nt = static_cast<uint32_t>(mesh.triangles.size());
-  std::vector<uint8_t> code(std::min<uint32_t>(nt, kProgressStride));
-  for (uint32_t begin = 0; begin < nt; begin += kProgressStride) {
-    if (progress && begin > 0) progress(double(begin) / nt);
-    const uint32_t end = std::min(nt, begin + kProgressStride);
-    // The arrays by address: a byte store may alias anything, so the
-    // vectors' data would be reloaded after each.
-    // In two passes: the signs of every triangle, then the crossing ones'
-    // tests. The corners' values lie anywhere in their arrays: those kAhead
-    // triangles (crossings) on are asked for while these are tested
-    // (natively; WASM has no prefetch). In the loops: GCC drops a lambda
-    // made only of prefetches.
-    parallel_for(end - begin,
-                 [&, tris = mesh.triangles.data(), e = field.e.data(), skip = excluded.data(),
-                  regular = field.regular.data(), out = code.data(), x = mesh.positions.data(), dir = field.dir.data(),
-                  own = field.kappa_own.data(), other = field.kappa_other.data()](size_t first, size_t last) {
-                   constexpr size_t kAhead = 8;
-                   // (i << 3 | positive) of the triangles whose signs differ:
-                   // each thread's list, kept for its next piece (1.1M
-                   // triangles, 1 thread: 2.9 M instructions less, 1.5 M
-                   // for a list reserved per piece).
-                   thread_local std::vector<uint32_t> crossings;
-                   crossings.clear();
-                   for (size_t i = first; i < last; ++i) {
-                     const uint32_t t = begin + static_cast<uint32_t>(i);
-                     if (i + kAhead < last)
-                       for (uint32_t v : tris[t + kAhead]) __builtin_prefetch(&e[v]);
-                     const uint8_t c = regular[t];
-                     out[i] = 0;
-                     if (skip[t] || !c) continue;
-                     const unsigned positive = positive_corners(e, tris[t], c);
-                     if (positive != 0 && positive != 7) crossings.push_back(static_cast<uint32_t>(i) << 3 | positive);
-                   }
-                   for (size_t j = 0; j < crossings.size(); ++j) {
-                     if (j + kAhead < crossings.size())
-                       for (uint32_t v : tris[begin + (crossings[j + kAhead] >> 3)]) {
-                         __builtin_prefetch(&x[v]);
-                         __builtin_prefetch(&dir[v]);
-                         __builtin_prefetch(&own[v]);
-                         __builtin_prefetch(&other[v]);
-                       }
-                     const uint32_t i = crossings[j] >> 3, t = begin + i;
-                     out[i] = segment_edges(mesh, field, t, regular[t], crossings[j] & 7);
-                   }
-                 });
-    // Eight codes at a time: most are 0 (no segment), and runs of them
-    // are skipped whole.
-    const uint32_t count = end - begin;
-    auto word = [&code](uint32_t i) {
-      uint64_t w;
-      std::memcpy(&w, code.data() + i, sizeof w);
-      return w;
-    };
-    for (uint32_t i = 0; i < count; i += 8) {
-      // The crossed edges' nodes lie anywhere in edge_node: those of the
-      // triangles kAhead on are asked for now (natively).
-      constexpr uint32_t kAhead = 16;
-      if (i + kAhead + 8 <= count)
-        for (uint64_t w = word(i + kAhead); w;) {
-          const unsigned byte = unsigned(__builtin_ctzll(w)) / 8;
-          for (uint32_t edge : topology.triangle_edges[begin + i + kAhead + byte])
-            __builtin_prefetch(&graph.edge_node[edge]);
-          w &= ~(0xffull << (8 * byte));
-        }
-      if (i + 8 <= count && word(i) == 0) continue;
-      for (uint32_t j = i; j < std::min(count, i + 8); ++j) {
-        if (!code[j]) continue;
-        const uint32_t t = begin + j;
-        const int edges = code[j] - 1;
-        const uint32_t a = node_on(graph, topology.triangle_edges[t][edges % 3]);
-        const uint32_t b = node_on(graph, topology.triangle_edges[t][edges / 3]);
-        graph.segments.push_back({a, b});
+// The segments of the triangles [begin, begin + count) from their codes,
+// with their crossing nodes numbered in triangle order. Eight codes at a
+// time: most are 0 (no segment), and runs of them are skipped whole.
+void make_segments(const Topology& topology, const std::vector<uint8_t>& code, uint32_t begin, uint32_t count,
+                   FeatureGraph& graph) {
+  auto word = [&code](uint32_t i) {
+    uint64_t w;
+    std::memcpy(&w, code.data() + i, sizeof w);
+    return w;
+  };
+  for (uint32_t i = 0; i < count; i += 8) {
+    // The crossed edges' nodes lie anywhere in edge_node: those of the
+    // triangles kAhead on are asked for now (natively).
+    constexpr uint32_t kAhead = 16;
+    if (i + kAhead + 8 <= count)
+      for (uint64_t w = word(i + kAhead); w;) {
+        const unsigned byte = unsigned(__builtin_ctzll(w)) / 8;
+        for (uint32_t edge : topology.triangle_edges[begin + i + kAhead + byte])
+          __builtin_prefetch(&graph.edge_node[edge]);
+        w &= ~(0xffull << (8 * byte));
       }
+    if (i + 8 <= count && word(i) == 0) continue;
+    for (uint32_t j = i; j < std::min(count, i + 8); ++j) {
+      if (!code[j]) continue;
+      const uint32_t t = begin + j;
+      const int edges = code[j] - 1;
+      const uint32_t a = node_on(graph, topology.triangle_edges[t][edges % 3]);
+      const uint32_t b = node_on(graph, topology.triangle_edges[t][edges / 3]);
+      graph.segments.push_back({a, b});
     }
   }
+}
+
+// Places the nodes from `first` on (place_crossing). Each node's edge and
+// its ends' values lie anywhere in their arrays: asked for 2 kAhead and
+// kAhead nodes on (natively).
+void place_crossings(const Mesh& mesh, const Topology& topology, const Field& field, size_t first,
+                     FeatureGraph& graph) {
   const size_t nodes = graph.source.size();
   graph.points.resize(nodes), graph.curvature.resize(nodes);
   graph.edge_parameter.resize(nodes), graph.trisector.resize(nodes);
-  // Each node's edge and its ends' values lie anywhere in their arrays:
-  // asked for 2 kAhead and kAhead nodes on (natively).
   parallel_for(nodes - first, [&](size_t begin, size_t end) {
     constexpr size_t kAhead = 8;
     for (size_t i = begin; i < end; ++i) {
@@ -221,6 +173,88 @@ void trace_field(const Mesh& mesh, const Topology& topology, const Field& field,
       place_crossing(graph, mesh, topology, field, uint32_t(first + i));
     }
   });
+}
+
+// Both fields (ridges, valleys) in one pass over the triangles, each into
+// its graph: the triangles, their exclusion and the loop are read once for
+// both (1.1M triangles, 1 thread: trace_regular_triangles 389.7 -> 369.2 M
+// instructions against a pass per field). The tests run on every thread,
+// block by block; the segments and their crossing nodes' numbers are then
+// made in triangle order on the calling thread, each graph's apart, and the
+// nodes placed on every thread: the graphs are the same for any number of
+// threads, and as a pass per field makes them.
+void trace_fields(const Mesh& mesh, const Topology& topology, const Field (&fields)[2],
+                  const std::vector<uint8_t>& excluded, const std::function<void(double)>& progress,
+                  FeatureGraph* (&graphs)[2]) {
+  size_t first[2];  // the first node made here
+  for (int k = 0; k < 2; ++k) {
+    graphs[k]->type = fields[k].type;
+    graphs[k]->edge_node.assign(topology.edges.size(), kNone);
+    first[k] = graphs[k]->source.size();
+  }
+  const uint32_t nt = static_cast<uint32_t>(mesh.triangles.size());
+  std::vector<uint8_t> code[2];
+  for (auto& c : code) c.resize(std::min<uint32_t>(nt, kProgressStride));
+  for (uint32_t begin = 0; begin < nt; begin += kProgressStride) {
+    if (progress && begin > 0) progress(double(begin) / nt);
+    const uint32_t end = std::min(nt, begin + kProgressStride);
+    // The arrays by address: a byte store may alias anything, so the
+    // vectors' data would be reloaded after each.
+    // In two passes: the signs of every triangle, then the crossing ones'
+    // tests. The corners' values lie anywhere in their arrays: those kAhead
+    // triangles (crossings) on are asked for while these are tested
+    // (natively; WASM has no prefetch). In the loops: GCC drops a lambda
+    // made only of prefetches.
+    parallel_for(end - begin, [&, tris = mesh.triangles.data(), skip = excluded.data(), x = mesh.positions.data(),
+                               e_max = fields[0].e.data(), e_min = fields[1].e.data(),
+                               regular_max = fields[0].regular.data(), regular_min = fields[1].regular.data(),
+                               out_max = code[0].data(), out_min = code[1].data()](size_t first, size_t last) {
+      constexpr size_t kAhead = 8;
+      // (i << 3 | positive) of the triangles whose signs differ, per field:
+      // each thread's lists, kept for its next piece (1.1M triangles, 1
+      // thread: 2.9 M instructions less, 1.5 M for a list reserved per
+      // piece).
+      thread_local std::vector<uint32_t> crossings[2];
+      crossings[0].clear(), crossings[1].clear();
+      for (size_t i = first; i < last; ++i) {
+        const uint32_t t = begin + static_cast<uint32_t>(i);
+        if (i + kAhead < last)
+          for (uint32_t v : tris[t + kAhead]) __builtin_prefetch(&e_max[v]), __builtin_prefetch(&e_min[v]);
+        out_max[i] = out_min[i] = 0;
+        if (skip[t]) continue;
+        const uint8_t c_max = regular_max[t], c_min = regular_min[t];
+        if (c_max) {
+          const unsigned positive = positive_corners(e_max, tris[t], c_max);
+          if (positive != 0 && positive != 7) crossings[0].push_back(static_cast<uint32_t>(i) << 3 | positive);
+        }
+        if (c_min) {
+          const unsigned positive = positive_corners(e_min, tris[t], c_min);
+          if (positive != 0 && positive != 7) crossings[1].push_back(static_cast<uint32_t>(i) << 3 | positive);
+        }
+      }
+      for (int k = 0; k < 2; ++k) {
+        const Field& field = fields[k];
+        const std::vector<uint32_t>& list = crossings[k];
+        uint8_t* out = k == 0 ? out_max : out_min;
+        const uint8_t* regular = field.regular.data();
+        const Direction* dir = field.dir.data();
+        const double *own = field.kappa_own.data(), *other = field.kappa_other.data();
+        for (size_t j = 0; j < list.size(); ++j) {
+          if (j + kAhead < list.size())
+            for (uint32_t v : tris[begin + (list[j + kAhead] >> 3)]) {
+              __builtin_prefetch(&x[v]);
+              __builtin_prefetch(&dir[v]);
+              __builtin_prefetch(&own[v]);
+              __builtin_prefetch(&other[v]);
+            }
+          const uint32_t i = list[j] >> 3, t = begin + i;
+          out[i] = segment_edges(mesh, field, t, regular[t], list[j] & 7);
+        }
+      }
+    });
+    for (int k = 0; k < 2; ++k) make_segments(topology, code[k], begin, end - begin, *graphs[k]);
+  }
+  for (int k = 0; k < 2; ++k) place_crossings(mesh, topology, fields[k], first[k], *graphs[k]);
 }
 
 }  // namespace
@@ -257,15 +291,12 @@ TraceResult trace_regular_triangles(const Mesh& mesh, const Topology& topology, 
     }
   });
 
-  const Field ridge{LineType::Ridge,     extremality.e_max,   curvature.dir_max,
-                    curvature.kappa_max, curvature.kappa_min, regularity.regular_max};
-  const Field valley{LineType::Valley,    extremality.e_min,   curvature.dir_min,
-                     curvature.kappa_min, curvature.kappa_max, regularity.regular_min};
-  std::function<void(double)> half[2];
-  if (progress)
-    for (int k = 0; k < 2; ++k) half[k] = [&progress, k](double fraction) { progress(0.5 * (k + fraction)); };
-  trace_field(mesh, topology, ridge, out.excluded, half[0], out.ridges);
-  trace_field(mesh, topology, valley, out.excluded, half[1], out.valleys);
+  const Field fields[2] = {{LineType::Ridge, extremality.e_max, curvature.dir_max, curvature.kappa_max,
+                            curvature.kappa_min, regularity.regular_max},
+                           {LineType::Valley, extremality.e_min, curvature.dir_min, curvature.kappa_min,
+                            curvature.kappa_max, regularity.regular_min}};
+  FeatureGraph* graphs[2] = {&out.ridges, &out.valleys};
+  trace_fields(mesh, topology, fields, out.excluded, progress, graphs);
   return out;
 }
 
