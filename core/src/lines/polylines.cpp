@@ -111,15 +111,16 @@ std::vector<Polyline> walk_chains(const FeatureGraph& graph, const NodeIncidence
     const uint32_t p = partner[slot(node, segment)];
     return p == kNone ? kNone : inc.incident[p];
   };
+  // A line's nodes, gathered here and then copied into vectors of their
+  // size: one allocation each, not one per doubling (1.1M triangles, 1
+  // thread: join_polylines 165.0 -> 135.2 M instructions).
+  std::vector<uint32_t> nodes;
   auto walk = [&](uint32_t start, uint32_t first_segment) {
     Polyline line;
     line.type = graph.type;
-    auto add = [&](uint32_t n) {
-      line.points.push_back(graph.points[n]);
-      line.curvature.push_back(graph.curvature[n]);
-    };
+    nodes.clear();
     uint32_t node = start, segment = first_segment;
-    add(node);
+    nodes.push_back(node);
     while (true) {
       used[segment] = 1;
       node = other_end(graph, segment, node);
@@ -128,9 +129,12 @@ std::vector<Polyline> walk_chains(const FeatureGraph& graph, const NodeIncidence
         line.closed = true;
         break;
       }
-      add(node);
+      nodes.push_back(node);
       if (segment == kNone || used[segment]) break;
     }
+    line.points.resize(nodes.size()), line.curvature.resize(nodes.size());
+    for (size_t i = 0; i < nodes.size(); ++i)
+      line.points[i] = graph.points[nodes[i]], line.curvature[i] = graph.curvature[nodes[i]];
     // Line ends at degree-1 nodes may be bridged to a neighbouring line later.
     open_end_node.push_back(!line.closed && inc.degree(start) == 1);
     open_end_node.push_back(!line.closed && inc.degree(node) == 1);
