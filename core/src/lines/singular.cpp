@@ -10,17 +10,18 @@ namespace {
 // byte arrays, eight triangles at a time where all are regular (nearly all).
 std::vector<uint32_t> singular_triangles(const std::vector<uint8_t>& regular, const std::vector<uint8_t>& excluded) {
   std::vector<uint32_t> out;
+  const auto is_singular = [&](size_t t) { return regular[t] == 0 && excluded[t] == 0; };
   const size_t nt = regular.size();
   size_t t = 0;
   for (; t + 8 <= nt; t += 8) {
     uint64_t word = 0;
-    for (size_t k = 0; k < 8; ++k) word |= uint64_t(regular[t + k] == 0 && !excluded[t + k]) << (8 * k);
+    for (size_t k = 0; k < 8; ++k) word |= uint64_t(is_singular(t + k)) << (8 * k);
     if (word == 0) continue;
     for (size_t k = t; k < t + 8; ++k)
-      if (!regular[k] && !excluded[k]) out.push_back(static_cast<uint32_t>(k));
+      if (is_singular(k)) out.push_back(static_cast<uint32_t>(k));
   }
   for (; t < nt; ++t)
-    if (!regular[t] && !excluded[t]) out.push_back(static_cast<uint32_t>(t));
+    if (is_singular(t)) out.push_back(static_cast<uint32_t>(t));
   return out;
 }
 

@@ -216,21 +216,19 @@ void trace_fields(const Mesh& mesh, const Topology& topology, const Field (&fiel
       // piece).
       thread_local std::vector<uint32_t> crossings[2];
       crossings[0].clear(), crossings[1].clear();
+      const auto note_crossing = [tris](std::vector<uint32_t>& list, const double* e, uint8_t c, size_t i, uint32_t t) {
+        if (c == 0) return;
+        const unsigned positive = positive_corners(e, tris[t], c);
+        if (positive != 0 && positive != 7) list.push_back(static_cast<uint32_t>(i) << 3 | positive);
+      };
       for (size_t i = first; i < last; ++i) {
         const uint32_t t = begin + static_cast<uint32_t>(i);
         if (i + kAhead < last)
           for (uint32_t v : tris[t + kAhead]) __builtin_prefetch(&e_max[v]), __builtin_prefetch(&e_min[v]);
         out_max[i] = out_min[i] = 0;
         if (skip[t]) continue;
-        const uint8_t c_max = regular_max[t], c_min = regular_min[t];
-        if (c_max) {
-          const unsigned positive = positive_corners(e_max, tris[t], c_max);
-          if (positive != 0 && positive != 7) crossings[0].push_back(static_cast<uint32_t>(i) << 3 | positive);
-        }
-        if (c_min) {
-          const unsigned positive = positive_corners(e_min, tris[t], c_min);
-          if (positive != 0 && positive != 7) crossings[1].push_back(static_cast<uint32_t>(i) << 3 | positive);
-        }
+        note_crossing(crossings[0], e_max, regular_max[t], i, t);
+        note_crossing(crossings[1], e_min, regular_min[t], i, t);
       }
       for (int k = 0; k < 2; ++k) {
         const Field& field = fields[k];
