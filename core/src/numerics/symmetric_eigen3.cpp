@@ -160,9 +160,13 @@ inline void qr_step(Tridiagonal& t, Mask step) {
   // td + (td > 0 ? h : −h), h ≥ 0: h's sign bit set unless td > 0.
   const Lanes denominator = td + (Lanes)((Mask)h | (kSignBit & ~(td > 0)));
   Lanes shifted = t.d[end] - e2 / denominator;
-  // e² underflowed to 0 (|e| below about 1e-162): rare enough for a branch.
-  const Mask underflow = (e2 == 0) & (e != 0) & (td != 0) & step;
-  if (any(underflow)) shifted = select(underflow, t.d[end] - e / (denominator / e), shifted);
+  // e² underflowed to 0 (|e| below about 1e-162): rare enough for a branch,
+  // and the full test only where e² is 0 at all.
+  const Mask e2_zero = e2 == 0;
+  if (any(e2_zero)) {
+    const Mask underflow = e2_zero & (e != 0) & (td != 0) & step;
+    if (any(underflow)) shifted = select(underflow, t.d[end] - e / (denominator / e), shifted);
+  }
   const Lanes mu = select(td == 0, t.d[end] - abs(e), select(e != 0, shifted, t.d[end]));
   Lanes x = t.d[start] - mu;
   Lanes z = t.e[start];
@@ -254,15 +258,19 @@ void solve_pair(const SymmetricLower3& first, const SymmetricLower3& second, Sym
   // lane before every step here, which changes nothing more. A lane on a
   // 2×2 block waits while others take (0, 2) steps, so that most steps serve
   // all lanes (Eigen: usually 2 to 5 steps on (0, 2), then one on (0, 1)).
+  // A lane's steps are at most the steps taken, so `over` is tested only
+  // once those pass the limit (a 64-bit lane comparison is several SSE2
+  // instructions).
   constexpr int kMaxIterations = 30 * 3;
   Mask iterations = {}, over = {};
+  int steps = 0;
   for (;;) {
     deflate<0>(t);
     deflate<1>(t);
     const Mask e0 = t.e[0] != 0, e1 = t.e[1] != 0;
     auto count = [&](Mask step) {
       iterations -= step;
-      over |= step & (iterations > kMaxIterations);
+      if (++steps > kMaxIterations) over |= step & (iterations > kMaxIterations);
       return step & ~over;
     };
     if (any(e0 & e1 & ~over)) {
