@@ -19,7 +19,6 @@ Regularity classify_triangles(const Mesh& mesh, const Curvature& curvature) {
   parallel_for(nt,
                [&, tris = mesh.triangles.data(), dir_max = curvature.dir_max.data(), dir_min = curvature.dir_min.data(),
                 regular_max = r.regular_max.data(), regular_min = r.regular_min.data()](size_t begin, size_t end) {
-                 std::array<double, 3> signs;
                  size_t count_max = 0, count_min = 0;
                  for (size_t t = begin; t < end; ++t) {
                    // The corners' directions lie anywhere in their arrays:
@@ -34,10 +33,8 @@ Regularity classify_triangles(const Mesh& mesh, const Curvature& curvature) {
                      }
                    }
                    const Triangle f = tris[t];
-                   const uint8_t code_max =
-                       regularity_code(consistent_signs(dir_max[f[0]], dir_max[f[1]], dir_max[f[2]], signs), signs);
-                   const uint8_t code_min =
-                       regularity_code(consistent_signs(dir_min[f[0]], dir_min[f[1]], dir_min[f[2]], signs), signs);
+                   const uint8_t code_max = regularity_code(dir_max[f[0]], dir_max[f[1]], dir_max[f[2]]);
+                   const uint8_t code_min = regularity_code(dir_min[f[0]], dir_min[f[1]], dir_min[f[2]]);
                    regular_max[t] = code_max, regular_min[t] = code_min;
                    count_max += !code_max;
                    count_min += !code_min;
