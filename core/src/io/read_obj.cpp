@@ -404,14 +404,24 @@ std::optional<TriangleSoup> read_in_parts(const Input& in, const ReadOptions& op
     vertices += soups[p].vertex_count(), triangles += soups[p].triangle_count();
   }
   if (vertices > max_vertices(options) || triangles > options.max_triangles) return std::nullopt;
-  TriangleSoup soup = std::move(soups[0]);
+  // The parts' positions and indices joined in part order, each array on a
+  // thread of its own: the copies write fresh pages (26 MB at 1.1M
+  // triangles), whose faults cost more than the copying. Allocated on this
+  // thread (a block allocated on a kept thread would sit in that thread's
+  // malloc arena).
+  TriangleSoup soup;
   soup.positions.reserve(3 * vertices);
   soup.indices.reserve(3 * triangles);
-  for (size_t p = 1; p < parts; ++p) {
-    soup.positions.insert(soup.positions.end(), soups[p].positions.begin(), soups[p].positions.end());
-    soup.indices.insert(soup.indices.end(), soups[p].indices.begin(), soups[p].indices.end());
-    soups[p] = TriangleSoup();
-  }
+  const auto join = [&](auto member) {
+    auto& joined = soup.*member;
+    for (TriangleSoup& part : soups) {
+      auto& piece = part.*member;
+      joined.insert(joined.end(), piece.begin(), piece.end());
+      piece = std::decay_t<decltype(piece)>();
+    }
+  };
+  run_side_by_side([&] { join(&TriangleSoup::positions); }, [&] { join(&TriangleSoup::indices); });
+  soup.notes = std::move(soups[0].notes);
   return soup;
 }
 
