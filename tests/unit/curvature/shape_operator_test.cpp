@@ -2,6 +2,7 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <random>
 #include <vector>
 
 #include "../../../core/src/curvature/vertex_scatter.h"
@@ -154,6 +155,28 @@ TEST_CASE("consistent signs follow Definition 1", "[regularity]") {
   // Three directions 60° apart as line fields (a trisector): no consistent choice.
   const double c = std::cos(testing::kPi / 3), d = std::sin(testing::kPi / 3);
   CHECK_FALSE(consistent_signs(Vec3(1, 0, 0), Vec3(c, d, 0), Vec3(-c, d, 0), s));
+}
+
+TEST_CASE("regularity_code from three directions is consistent_signs' code", "[regularity]") {
+  // Coordinates from a few values, zeros of both signs and a NaN among them,
+  // so that the dot products take every sign, ±0 and NaN.
+  const double values[] = {1.0, -1.0, 0.5, -0.25, 0.0, -0.0, std::nan("")};
+  std::mt19937 random(3);
+  std::uniform_int_distribution<int> pick(0, 6), pick_finite(0, 5);
+  size_t regular = 0, singular = 0, nan_seen = 0;
+  for (int i = 0; i < 20000; ++i) {
+    Vec3 d[3];
+    for (Vec3& v : d)
+      for (int k = 0; k < 3; ++k) v[k] = values[i % 10 == 0 ? pick(random) : pick_finite(random)];
+    std::array<double, 3> s;
+    const uint8_t expected = regularity_code(consistent_signs(d[0], d[1], d[2], s), s);
+    REQUIRE(regularity_code(d[0], d[1], d[2]) == expected);
+    (expected ? regular : singular) += 1;
+    nan_seen += std::isnan(d[0].dot(d[1]) + d[0].dot(d[2]) + d[1].dot(d[2]));
+  }
+  CHECK(regular > 1000);
+  CHECK(singular > 1000);
+  CHECK(nan_seen > 100);
 }
 
 TEST_CASE("classify_triangles keeps each regular triangle's signs for the tracer", "[regularity]") {
