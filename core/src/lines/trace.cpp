@@ -107,10 +107,11 @@ uint8_t crossing_segment(const Mesh& mesh, const Field& field, uint32_t t, uint8
 
 // The edges (k, k + 1) of triangle t that carry a segment of the field's
 // line, as 1 + first + 3 · second (first < second); 0 where there is none.
-// `code`: the triangle's regularity_code (nonzero), whose signs are
-// consistent_signs' of the field's directions. The signs alone decide most
-// triangles (no crossing); a crossing edge is one whose ends' signs differ,
-// and a triangle has none or two. `positive`: positive_corners', neither 0 nor 7.
+// `code`: the triangle's regularity_code (nonzero), whose signs (code_signs)
+// are Definition 1's consistent choice for the field's directions. The signs
+// alone decide most triangles (no crossing); a crossing edge is one whose
+// ends' signs differ, and a triangle has none or two. `positive`:
+// positive_corners', neither 0 nor 7.
 inline uint8_t segment_edges(const Mesh& mesh, const Field& field, uint32_t t, uint8_t code, unsigned positive) {
   // Edge k crosses where bits k and k + 1 (mod 3) differ.
   const unsigned crossing = (positive ^ (positive >> 1 | positive << 2)) & 7;
