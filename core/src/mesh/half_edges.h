@@ -214,11 +214,12 @@ inline HalfEdgeOrder order_half_edges(const std::vector<Triangle>& tris, size_t 
 /// Topology's edge arrays numbered from order_half_edges' per-vertex edge
 /// counts: sizes them, and turns `first_edge` into each vertex's next edge
 /// number (the sum of the counts before it), for EdgeRecorder.
-/// The three arrays' fills write fresh pages (40 MB at 1.1M triangles),
-/// whose faults cost more than the writes: each array filled on a thread of
-/// its own, but allocated here (a block allocated on a kept thread would sit
-/// in that thread's malloc arena, apart from the caller's: the CLI's max
-/// RSS rose by 18-33 MB so).
+/// The three arrays' fills write fresh pages (40 MB at 1.1M triangles, a
+/// third each), whose faults cost more than the writes: the triangles'
+/// edges filled on one thread, the edges and their triangles on another,
+/// but allocated here (a block allocated on a kept thread would sit in that
+/// thread's malloc arena, apart from the caller's: the CLI's max RSS rose
+/// by 18-33 MB so).
 inline void number_edges(std::vector<uint32_t>& first_edge, size_t triangle_count, Topology& topology) {
   const size_t nv = first_edge.size() - 1;
   for (size_t v = 0; v < nv; ++v) first_edge[v + 1] += first_edge[v];
@@ -226,16 +227,14 @@ inline void number_edges(std::vector<uint32_t>& first_edge, size_t triangle_coun
   topology.triangle_edges.reserve(triangle_count);
   topology.edges.reserve(edges);
   topology.edge_triangles.reserve(edges);
-  parallel_for(
-      3,
-      [&](size_t begin, size_t end) {
-        for (size_t array = begin; array < end; ++array) {
-          if (array == 0) topology.triangle_edges.assign(triangle_count, {kNone, kNone, kNone});
-          if (array == 1) topology.edges.resize(edges);
-          if (array == 2) topology.edge_triangles.resize(edges);
-        }
+  run_side_by_side(
+      [&] {
+        topology.triangle_edges.assign(triangle_count, {kNone, kNone, kNone});
       },
-      1);
+      [&] {
+        topology.edges.resize(edges);
+        topology.edge_triangles.resize(edges);
+      });
 }
 
 /// Records the edge (near, far) whose half-edges are [first, last) (at most
