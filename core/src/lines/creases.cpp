@@ -1,6 +1,7 @@
 #include "crestline/lines/creases.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -17,14 +18,6 @@ namespace crestline {
 namespace {
 
 constexpr double kDegree = kPi / 180.0;
-
-// The element at size / 2 in order (the upper median); reorders `values`,
-// which must not be empty.
-double upper_median(std::vector<double>& values) {
-  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
-}
 
 // The normal filter: a guided bilateral filter [Zhang et al. 2015, without
 // the spatial kernel]. Each face normal becomes the area-weighted mean of the
@@ -1094,24 +1087,28 @@ CreaseAngles measure_crease_angles(const Mesh& mesh, const Topology& topology, c
   parts = total(out.normal_filter_steps);
   const double edge_share = out.normal_filter_steps > 0 ? 3.0 : 1.0;
   const size_t ne = topology.edges.size();
-  // The per-edge results, and 1 − cos of every fourth edge's angle (NaN on
-  // boundary edges, which are left out) kept by its index for the median
-  // (monotonic in the angle). Where no filter runs, made before the face
+  // The per-edge results, and 1 − cos of each edge's angle and its length
+  // for the medians (1 − cos: monotonic in the angle; single precision: the
+  // rounding moves the automatic angle by parts in 10^7). Where no filter runs, made before the face
   // normals, so that those, freed first, are the heap's top, which glibc
   // returns, not a hole beneath the results (the CLI at 1.1M triangles: max
   // RSS −2 MB on 1 thread, −6 on 2); with the filter, after it (not held
   // through its steps).
-  std::vector<double> quarter;
+  std::vector<float> complement, length;
   // Their fills write fresh pages (30 MB at 1.1M triangles), whose faults
   // cost more than the writes: the angles on one thread, the rest on
   // another, allocated on this one (see detail::number_edges).
   const auto make_results = [&] {
-    out.angle.reserve(ne), out.support.reserve(ne), quarter.reserve(ne / 4 + 1);
-    run_side_by_side([&] { out.angle.assign(ne, 0.0); },
-                     [&] {
-                       out.support.assign(ne, 0.0);
-                       quarter.assign(ne / 4 + 1, std::numeric_limits<double>::quiet_NaN());
-                     });
+    out.angle.reserve(ne), out.support.reserve(ne), complement.reserve(ne), length.reserve(ne);
+    run_side_by_side(
+        [&] {
+          out.angle.assign(ne, 0.0);
+          length.assign(ne, std::numeric_limits<float>::infinity());
+        },
+        [&] {
+          out.support.assign(ne, 0.0);
+          complement.assign(ne, std::numeric_limits<float>::infinity());
+        });
   };
   if (out.normal_filter_steps == 0) make_results();
   // Without the filter the areas are read only by the support, of the few
@@ -1130,12 +1127,14 @@ CreaseAngles measure_crease_angles(const Mesh& mesh, const Topology& topology, c
   const int rings = very_noisy ? kVeryNoisySupportRings : out.normal_filter_steps > 0 ? kNoisySupportRings : 1;
   const double candidate = portable_cos(kCandidateAngle * kDegree);
   // Each edge alone, on every thread, in blocks with progress between them.
+  std::atomic<size_t> boundary_edges{0};
   constexpr size_t kBlock = size_t{1} << 16;
   const double block_share =
       edge_share * static_cast<double>(kBlock) / static_cast<double>(std::max<size_t>(ne, kBlock));
   for (size_t block = 0; block < ne; block += kBlock) {
     parallel_for(std::min(ne, block + kBlock) - block, [&](size_t first, size_t last) {
       RingScratch scratch;
+      size_t boundary = 0;
       for (size_t e = block + first; e < block + last; ++e) {
         // The faces' normals lie anywhere in their array: those of the edge
         // kAhead on are asked for now (natively; WASM has no prefetch). In
@@ -1145,12 +1144,18 @@ CreaseAngles measure_crease_angles(const Mesh& mesh, const Topology& topology, c
           const auto& ahead = topology.edge_triangles[e + kAhead];
           __builtin_prefetch(&normal[ahead[0]]);
           if (ahead[1] != kNone) __builtin_prefetch(&normal[ahead[1]]);
+          for (uint32_t v : topology.edges[e + kAhead]) __builtin_prefetch(&mesh.positions[v]);
         }
-        if (topology.is_boundary_edge(static_cast<uint32_t>(e))) continue;
+        if (topology.is_boundary_edge(static_cast<uint32_t>(e))) {
+          ++boundary;
+          continue;
+        }
         const uint32_t f0 = topology.edge_triangles[e][0], f1 = topology.edge_triangles[e][1];
         const Vec3 &n0 = normal[f0], &n1 = normal[f1];
         const double cosine = n0.dot(n1);
-        if (e % 4 == 0) quarter[e / 4] = 1.0 - cosine;
+        complement[e] = static_cast<float>(1.0 - cosine);
+        length[e] =
+            static_cast<float>((mesh.positions[topology.edges[e][1]] - mesh.positions[topology.edges[e][0]]).norm());
         if (cosine > candidate) continue;  // below kCandidateAngle: never a crease, left 0
         // The edge as f0 runs along it (counter-clockwise seen from outside):
         // (n0 × n1)·d > 0 where the surface folds away below f0's plane.
@@ -1172,6 +1177,7 @@ CreaseAngles measure_crease_angles(const Mesh& mesh, const Topology& topology, c
             side_support(mesh, topology, faces, e, n0 + n1, rings, scratch, kSuppressionShift * d.norm(), shifted));
         if (s >= std::max(std::abs(shifted[0]), std::abs(shifted[1]))) out.support[e] = s;
       }
+      boundary_edges.fetch_add(boundary, std::memory_order_relaxed);
     });
     if (block + kBlock < ne) report(block_share);
   }
@@ -1179,27 +1185,27 @@ CreaseAngles measure_crease_angles(const Mesh& mesh, const Topology& topology, c
   // are made (at 1.1M triangles 32 bytes per triangle beside them).
   faces = FaceNormals(), filtered = std::vector<Vec3>();
   // The median angle and the same edges' median length (the spur rule's
-  // scale), each on a thread of its own if there are two: 2 × 15 M
-  // instructions on the dragon, all on the calling thread before. Each
-  // samples every fourth edge that is not a boundary edge, in edge order;
-  // the angles' sample is `quarter` itself, its boundary edges' entries
-  // squeezed out (the same values in the same order, no second array).
+  // scale), each on a thread of its own if there are two. Over every
+  // interior edge: a sample of every fourth edge in edge order (before
+  // 2026-12-07) depended on how the file numbers its vertices and
+  // triangles (bench/relabel.mjs: a shuffled spot.obj's automatic angle
+  // 62.8° against 60.8°; a 96-edge cylinder's sample mostly its rims',
+  // median 90°, no creases at all). Boundary edges' entries are +∞, above
+  // every interior edge's, so the upper median of the interior edges is the
+  // element at half their count.
+  const size_t interior = ne - boundary_edges.load();
+  const auto median_of = [&](std::vector<float>& values) {
+    if (interior == 0) return -1.0;
+    const auto middle = values.begin() + static_cast<std::ptrdiff_t>(interior / 2);
+    std::nth_element(values.begin(), middle, values.end());
+    return double(*middle);
+  };
   run_side_by_side(
       [&] {
-        size_t count = 0;
-        for (size_t e = 0; e < ne; e += 4)
-          if (!topology.is_boundary_edge(static_cast<uint32_t>(e))) quarter[count++] = quarter[e / 4];
-        quarter.resize(count);
-        if (!quarter.empty()) out.median = portable_acos_of_complement(upper_median(quarter)) / kDegree;
+        const double m = median_of(complement);
+        if (m >= 0) out.median = portable_acos_of_complement(m) / kDegree;
       },
-      [&] {
-        std::vector<double> lengths;
-        lengths.reserve(ne / 4 + 1);
-        for (size_t e = 0; e < ne; e += 4)
-          if (!topology.is_boundary_edge(static_cast<uint32_t>(e)))
-            lengths.push_back((mesh.positions[topology.edges[e][1]] - mesh.positions[topology.edges[e][0]]).norm());
-        if (!lengths.empty()) out.median_edge_length = upper_median(lengths);
-      });
+      [&] { out.median_edge_length = std::max(0.0, median_of(length)); });
   return out;
 }
 

@@ -98,8 +98,8 @@ struct CreaseAngles {
   /// edge. A crease must have both.
   std::vector<double> support;
   int normal_filter_steps = 0;  // used (the automatic choice resolved)
-  /// The median |angle| over (every fourth) interior edge, degrees: how much
-  /// a smooth edge of this mesh turns.
+  /// The median |angle| over every interior edge, degrees: how much a
+  /// smooth edge of this mesh turns (single precision, creases.cpp).
   double median = 0;
   /// The median length of the same edges (mesh units).
   double median_edge_length = 0;
