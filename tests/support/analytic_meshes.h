@@ -2,9 +2,11 @@
 // Meshes with known differential geometry, for tests and the quality harness.
 // Every generator is deterministic (seeded) and returns a TriangleSoup that
 // goes through repair_mesh like any file would.
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <map>
+#include <numeric>
 #include <random>
 #include <utility>
 
@@ -123,6 +125,24 @@ inline TriangleSoup cylinder(double r, double h, const GridOptions& o) {
 inline TriangleSoup height_field(const std::function<double(double, double)>& f, double wx, double wy,
                                  const GridOptions& o) {
   return parametric_grid([&](double u, double v) { return Vec3(u * wx, v * wy, f(u * wx, v * wy)); }, o);
+}
+
+/// The mesh numbered otherwise: its vertices and triangles in a random order
+/// (components interleave in both), each triangle's corners rotated at
+/// random (its orientation kept).
+inline Mesh shuffled(const Mesh& mesh, unsigned seed) {
+  std::mt19937 random(seed);
+  std::vector<uint32_t> order(mesh.positions.size()), rename(mesh.positions.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::shuffle(order.begin(), order.end(), random);
+  Mesh out;
+  for (uint32_t i = 0; i < order.size(); ++i) rename[order[i]] = i, out.positions.push_back(mesh.positions[order[i]]);
+  for (const Triangle& t : mesh.triangles) {
+    const int r = int(random() % 3);
+    out.triangles.push_back({rename[t[r]], rename[t[(r + 1) % 3]], rename[t[(r + 2) % 3]]});
+  }
+  std::shuffle(out.triangles.begin(), out.triangles.end(), random);
+  return out;
 }
 
 /// Moves every vertex along its (area-weighted) normal by N(0, sigma²).

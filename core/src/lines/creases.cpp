@@ -1165,15 +1165,16 @@ CreaseAngles measure_crease_angles(const Mesh& mesh, const Topology& topology, c
   const size_t ne = topology.edges.size();
   // The per-edge results, and 1 − cos of each edge's angle and its length
   // for the medians (1 − cos: monotonic in the angle; single precision: the
-  // rounding moves the automatic angle by parts in 10^7). Where no filter runs, made before the face
-  // normals, so that those, freed first, are the heap's top, which glibc
-  // returns, not a hole beneath the results (the CLI at 1.1M triangles: max
-  // RSS −2 MB on 1 thread, −6 on 2); with the filter, after it (not held
-  // through its steps).
+  // rounding moves the automatic angle by parts in 10^7). Where no filter
+  // runs, made before the face normals, so that those, freed first, are the
+  // heap's top, which glibc returns, not a hole beneath the results (the
+  // CLI at 1.1M triangles: max RSS −2 MB on 1 thread, −6 on 2); with the
+  // filter, after it (not held through its steps).
   std::vector<float> complement, length;
-  // Their fills write fresh pages (30 MB at 1.1M triangles), whose faults
-  // cost more than the writes: the angles on one thread, the rest on
-  // another, allocated on this one (see detail::number_edges).
+  // Their fills write fresh pages (40 MB at 1.1M triangles: 16 bytes an
+  // edge of doubles, 8 of floats), whose faults cost more than the writes:
+  // half on one thread, half on another, allocated on this one (see
+  // detail::number_edges).
   const auto make_results = [&] {
     out.angle.reserve(ne), out.support.reserve(ne), complement.reserve(ne), length.reserve(ne);
     run_side_by_side(

@@ -5,7 +5,6 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <numeric>
 #include <random>
 
 #include "../mesh/on_threads.h"
@@ -474,27 +473,6 @@ Mesh jittered_cylinder() {
   return m;
 }
 
-// The same surface numbered otherwise: vertices and triangles in a random
-// order, each triangle's corners rotated (its orientation kept).
-Mesh relabelled_mesh(const Mesh& mesh, unsigned seed) {
-  std::mt19937 random(seed);
-  std::vector<uint32_t> place(mesh.positions.size());
-  std::iota(place.begin(), place.end(), 0u);
-  std::shuffle(place.begin(), place.end(), random);
-  Mesh out;
-  out.positions.resize(mesh.positions.size());
-  for (size_t v = 0; v < place.size(); ++v) out.positions[place[v]] = mesh.positions[v];
-  std::vector<size_t> order(mesh.triangles.size());
-  std::iota(order.begin(), order.end(), size_t{0});
-  std::shuffle(order.begin(), order.end(), random);
-  for (size_t t : order) {
-    const Triangle& f = mesh.triangles[t];
-    const int r = int(random() % 3);
-    out.triangles.push_back({place[f[r]], place[f[(r + 1) % 3]], place[f[(r + 2) % 3]]});
-  }
-  return out;
-}
-
 // Each line as its points: what a relabelling must not change.
 std::vector<std::vector<Vec3>> line_points(const CreaseResult& result) {
   std::vector<std::vector<Vec3>> lines;
@@ -540,7 +518,7 @@ TEST_CASE("the creases do not depend on how the mesh is numbered", "[creases]") 
     REQUIRE(!expected.lines.empty());
     for (unsigned seed : {1u, 2u, 3u}) {
       INFO("mesh " << i << ", seed " << seed);
-      const Run other = measure(relabelled_mesh(meshes[i], seed));
+      const Run other = measure(testing::shuffled(meshes[i], seed));
       const CreaseResult got = select_creases(other.mesh, other.topology, other.angles, options, h);
       CHECK(got.edges.size() == expected.edges.size());
       CHECK(line_points(got) == line_points(expected));
@@ -559,7 +537,7 @@ TEST_CASE("the automatic angle's medians do not depend on how the mesh is number
   const Run base = measure(mesh);
   REQUIRE(base.angles.median > 1.0);  // degrees: the noise turns the edges
   for (unsigned seed : {1u, 2u, 3u}) {
-    const Run relabelled = measure(relabelled_mesh(mesh, seed));
+    const Run relabelled = measure(testing::shuffled(mesh, seed));
     CHECK(relabelled.angles.median == Approx(base.angles.median).epsilon(1e-6));
     CHECK(relabelled.angles.median_edge_length == base.angles.median_edge_length);
   }

@@ -92,23 +92,6 @@ void append(Mesh& mesh, const TriangleSoup& soup, const Vec3& offset) {
         {base + soup.indices[3 * t], base + soup.indices[3 * t + 1], base + soup.indices[3 * t + 2]});
 }
 
-// The mesh with its vertices and triangles in a random order (the
-// components interleave in both), corners rotated at random.
-Mesh shuffled(const Mesh& mesh, unsigned seed) {
-  std::mt19937 random(seed);
-  std::vector<uint32_t> order(mesh.positions.size()), rename(mesh.positions.size());
-  std::iota(order.begin(), order.end(), 0u);
-  std::shuffle(order.begin(), order.end(), random);
-  Mesh out;
-  for (uint32_t i = 0; i < order.size(); ++i) rename[order[i]] = i, out.positions.push_back(mesh.positions[order[i]]);
-  for (const Triangle& t : mesh.triangles) {
-    const int r = int(random() % 3);
-    out.triangles.push_back({rename[t[r]], rename[t[(r + 1) % 3]], rename[t[(r + 2) % 3]]});
-  }
-  std::shuffle(out.triangles.begin(), out.triangles.end(), random);
-  return out;
-}
-
 }  // namespace
 
 TEST_CASE("component frames are those of one serial pass, on 1, 2 and 3 threads", "[frame][threads]") {
@@ -125,7 +108,7 @@ TEST_CASE("component frames are those of one serial pass, on 1, 2 and 3 threads"
   append(several, testing::icosphere(4, 2), Vec3(-1e3, 5, 2));
   const TriangleSoup tetrahedron = testing::icosphere(0, 0.1);
   for (int i = 0; i < 100; ++i) append(several, tetrahedron, Vec3(i, -i, 0.5 * i));
-  Mesh mesh = shuffled(several, 3);
+  Mesh mesh = testing::shuffled(several, 3);
   const uint32_t nv = uint32_t(mesh.positions.size());
   mesh.positions.insert(mesh.positions.begin(), Vec3(-0.0, 1, 1));
   for (Triangle& t : mesh.triangles)
@@ -141,7 +124,7 @@ TEST_CASE("component frames are those of one serial pass, on 1, 2 and 3 threads"
     for (int k = 0; k < 3; ++k) singles.positions.push_back(Vec3(unit(random), unit(random), unit(random)));
     singles.triangles.push_back({3 * t, 3 * t + 1, 3 * t + 2});
   }
-  singles = shuffled(singles, 4);
+  singles = testing::shuffled(singles, 4);
 
   for (const Mesh* m : {&mesh, &singles}) {
     const ComponentFrames want = serial_frames(*m);
