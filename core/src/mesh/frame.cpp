@@ -142,8 +142,7 @@ ComponentFrames component_frames(const Mesh& mesh, const Topology& topology, Ver
   // Mean edge length on coordinates divided by the extent (|y| ≤ 1: squares
   // neither overflow nor underflow), then scaled back. Each edge is measured
   // once, on every thread (a side's length has the same bits either way
-  // round), and the sums add the triangles' sides in triangle order on the
-  // calling thread (rounding depends on the order). Measuring each side
+  // round), and side_sums adds the triangles' sides exactly. Measuring each side
   // instead, at 1.1M triangles: 12 M instructions more, on one thread and on
   // the calling one of two, and on several twice the memory (26 MB).
   const size_t ne = topology.edges.size();
@@ -164,24 +163,73 @@ ComponentFrames component_frames(const Mesh& mesh, const Topology& topology, Ver
   return f;
 }
 
+namespace {
+
+// Sides are added as integer multiples of a quantum, 2^-62 of the power of
+// two above the longest edge, into 128 bits (3 · 2^32 sides of up to 2^62
+// quanta): integer sums do not depend on the order they are made in, so the
+// mean edge lengths, and with them the working frame and everything
+// computed in it, have the same bits however the file numbers its
+// triangles, and for any number of threads. (Added in triangle order as
+// doubles, before 2026-12-07, a shuffled file's scale differed in the last
+// bit.) The quantum is at most 2^-61 of the longest edge: far below a
+// double's rounding of the mean.
+__extension__ typedef unsigned __int128 WideSum;
+constexpr int kSideBits = 62;
+
+}  // namespace
+
 SideSums side_sums(const Mesh& mesh, const Topology& topology, const std::vector<uint32_t>& vertex_component,
                    size_t components, const double* length) {
   SideSums out{std::vector<double>(components, 0.0), std::vector<size_t>(components, 0)};
   const auto* sides = topology.triangle_edges.data();
-  const size_t nt = mesh.triangles.size();
-  // A run of one component's triangles is summed in a register; one run
-  // when there is one component.
-  for (size_t t = 0; t < nt;) {
-    const uint32_t c = components == 1 ? 0 : vertex_component[mesh.triangles[t][0]];
-    const size_t first = t;
-    double sum = out.sum[c];
-    if (components == 1) {
-      for (; t < nt; ++t) sum += length[sides[t][0]], sum += length[sides[t][1]], sum += length[sides[t][2]];
-    } else {
-      for (; t < nt && vertex_component[mesh.triangles[t][0]] == c; ++t)
-        sum += length[sides[t][0]], sum += length[sides[t][1]], sum += length[sides[t][2]];
+  const size_t nt = mesh.triangles.size(), ne = topology.edges.size();
+  const size_t edge_parts = detail::part_count(ne);
+  std::vector<double> part_longest(edge_parts, 0.0);
+  detail::for_each_part(edge_parts, ne, [&](size_t p, size_t begin, size_t end) {
+    double longest = 0;
+    for (size_t e = begin; e < end; ++e) longest = std::max(longest, length[e]);
+    part_longest[p] = longest;
+  });
+  const double longest = *std::max_element(part_longest.begin(), part_longest.end());
+  if (!(longest > 0) || !std::isfinite(longest)) {
+    // No length to quantise by: added as doubles, in triangle order.
+    for (size_t t = 0; t < nt; ++t) {
+      const uint32_t c = components == 1 ? 0 : vertex_component[mesh.triangles[t][0]];
+      out.sum[c] += length[sides[t][0]] + length[sides[t][1]] + length[sides[t][2]], ++out.triangles[c];
     }
-    out.sum[c] = sum, out.triangles[c] += t - first;
+    return out;
+  }
+  int exponent = 0;
+  std::frexp(longest, &exponent);  // longest < 2^exponent
+  const double to_quanta = std::ldexp(1.0, kSideBits - exponent);
+  const auto quanta = [&](size_t t) {
+    return WideSum(uint64_t(length[sides[t][0]] * to_quanta)) + uint64_t(length[sides[t][1]] * to_quanta) +
+           uint64_t(length[sides[t][2]] * to_quanta);
+  };
+  // Parts by triangle, each with its own sums: one part when the components
+  // are many and small.
+  const size_t parts = components * 64 <= nt ? detail::part_count(nt) : 1;
+  std::vector<WideSum> sum(parts * components, 0);
+  std::vector<size_t> count(parts * components, 0);
+  detail::for_each_part(parts, nt, [&](size_t p, size_t begin, size_t end) {
+    WideSum* part_sum = sum.data() + p * components;
+    size_t* part_count = count.data() + p * components;
+    if (components == 1) {
+      WideSum total = 0;
+      for (size_t t = begin; t < end; ++t) total += quanta(t);
+      part_sum[0] = total, part_count[0] = end - begin;
+      return;
+    }
+    for (size_t t = begin; t < end; ++t) {
+      const uint32_t c = vertex_component[mesh.triangles[t][0]];
+      part_sum[c] += quanta(t), ++part_count[c];
+    }
+  });
+  for (size_t c = 0; c < components; ++c) {
+    WideSum total = 0;
+    for (size_t p = 0; p < parts; ++p) total += sum[p * components + c], out.triangles[c] += count[p * components + c];
+    out.sum[c] = std::ldexp(static_cast<double>(total), exponent - kSideBits);
   }
   return out;
 }

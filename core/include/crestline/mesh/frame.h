@@ -58,10 +58,11 @@ struct VertexComponents {
 ComponentFrames component_frames(const Mesh& mesh, const Topology& topology, VertexComponents components = {});
 
 /// Each component's sum of its triangles' sides, length[e] for each edge e
-/// of `topology` (the mesh's), added side by side in triangle order on the
-/// calling thread (the bits depend on that order; the mean edge lengths are
-/// these sums over 3 · triangles). vertex_component numbers the components
-/// 0 … components−1.
+/// of `topology` (the mesh's; finite, ≥ 0), added as integer multiples of
+/// 2^-62 of the power of two above the longest (frame.cpp): the same bits
+/// for any order of the triangles and any number of threads (the mean edge
+/// lengths are these sums over 3 · triangles). vertex_component numbers the
+/// components 0 … components−1.
 struct SideSums {
   std::vector<double> sum;
   std::vector<size_t> triangles;
