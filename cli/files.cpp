@@ -78,13 +78,18 @@ std::vector<double> read_vertex_weights(const std::string& path, const TriangleS
       throw Error(ErrorKind::InvalidInput, "line " + std::to_string(number) + " is not a finite non-negative number.");
     weights.push_back(value);
   }
-  if (weights.size() == mesh.vertex_count()) return weights;
-  if (weights.size() != soup.vertex_count())
+  // One weight per input vertex, in the file's order, unless the count is
+  // the repaired mesh's only (the order of --with-mesh's surface, which
+  // reads back numbered the same). Repair renumbers the vertices by first
+  // use, so even with equal counts the file's order is not the mesh's.
+  if (weights.size() != soup.vertex_count()) {
+    if (weights.size() == mesh.vertex_count()) return weights;
     throw Error(ErrorKind::InvalidInput, "it has " + std::to_string(weights.size()) + " weights but the mesh has " +
                                              std::to_string(soup.vertex_count()) + " vertices (" +
                                              std::to_string(mesh.vertex_count()) + " after repair).");
-  // One weight per input vertex: repair keeps one of each group of welded
-  // vertices at its position, so positions identify them.
+  }
+  // Repair keeps one of each group of welded vertices at its position, so
+  // positions identify them.
   using Key = std::tuple<double, double, double>;
   std::map<Key, double> by_position;
   for (size_t v = 0; v < soup.vertex_count(); ++v) {

@@ -23,10 +23,11 @@ void write_file_atomically(const std::string& path, const std::function<void(con
 uint64_t max_weights_bytes(size_t vertices);
 
 /// Reads one number per line (blank lines and lines starting with # are
-/// skipped) and matches them to the repaired mesh's vertices: either one per
-/// repaired vertex, or one per vertex of the input file, carried over by
-/// position (repair welds and drops vertices). Only a regular file is read,
-/// and at most max_weights_bytes of it. Throws Error(InvalidInput), Io, TooLarge.
+/// skipped) and matches them to the repaired mesh's vertices: one per vertex
+/// of the input file, in its order, carried over by position (repair welds,
+/// drops and renumbers vertices), or else one per repaired vertex (the order
+/// of the surface --with-mesh writes). Only a regular file is read, and at
+/// most max_weights_bytes of it. Throws Error(InvalidInput), Io, TooLarge.
 std::vector<double> read_vertex_weights(const std::string& path, const TriangleSoup& soup, const Mesh& mesh);
 
 }  // namespace crestline::cli

@@ -299,7 +299,7 @@ CadCase make_cad_case(const std::string& name, Triangulation t, double noise, un
   CadCase c;
   params.triangulation = t;
   c.surface = make_cad_surface(name, params);
-  c.clean = repair_mesh(c.surface.soup).mesh;
+  c.clean = testing::repaired_in_input_order(c.surface.soup);
   c.h = mean_edge_length(c.clean);
   c.mesh = c.clean;
   if (noise > 0) testing::add_normal_noise(c.mesh, noise * c.h, noise_seed);

@@ -167,7 +167,7 @@ Score score_lines(const Surface& surface, const std::vector<Polyline>& lines, do
 }
 
 Mesh noisy_mesh(const Surface& surface, double noise, unsigned noise_seed, double& h) {
-  Mesh mesh = repair_mesh(surface.soup).mesh;
+  Mesh mesh = testing::repaired_in_input_order(surface.soup);
   h = mean_edge_length(mesh);
   if (noise > 0) testing::add_normal_noise(mesh, noise * h, noise_seed);
   return mesh;

@@ -8,9 +8,11 @@
 #include <map>
 #include <numeric>
 #include <random>
+#include <stdexcept>
 #include <utility>
 
 #include "crestline/mesh/mesh.h"
+#include "crestline/mesh/repair.h"
 
 namespace crestline::testing {
 
@@ -142,6 +144,34 @@ inline Mesh shuffled(const Mesh& mesh, unsigned seed) {
     out.triangles.push_back({rename[t[r]], rename[t[(r + 1) % 3]], rename[t[(r + 2) % 3]]});
   }
   std::shuffle(out.triangles.begin(), out.triangles.end(), random);
+  return out;
+}
+
+/// The soup repaired, its vertices numbered as the soup numbers them (each
+/// at its earliest copy) instead of by first use: for tests whose data are
+/// defined per vertex in the input's order (noise drawn vertex by vertex,
+/// values pinned at vertex numbers). For soups whose triangles all survive
+/// repair, which keeps their order.
+inline Mesh repaired_in_input_order(const TriangleSoup& soup) {
+  const Mesh m = repair_mesh(soup).mesh;
+  if (m.triangles.size() != soup.triangle_count()) throw std::runtime_error("repair dropped triangles");
+  std::vector<uint32_t> earliest(m.vertex_count(), UINT32_MAX);
+  for (size_t t = 0; t < m.triangles.size(); ++t)
+    for (uint32_t v : m.triangles[t])
+      for (int k = 0; k < 3; ++k) {  // repair may have turned the triangle round: any corner at v's position
+        const uint32_t i = soup.indices[3 * t + k];
+        if (Vec3(soup.positions[3 * i], soup.positions[3 * i + 1], soup.positions[3 * i + 2]) == m.positions[v])
+          earliest[v] = std::min(earliest[v], i);
+      }
+  std::vector<uint32_t> order(m.vertex_count()), rename(m.vertex_count());
+  std::iota(order.begin(), order.end(), 0u);
+  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+    return earliest[a] != earliest[b] ? earliest[a] < earliest[b]
+                                      : a < b;  // a split vertex's copies: in repair's order
+  });
+  Mesh out;
+  for (uint32_t i = 0; i < order.size(); ++i) rename[order[i]] = i, out.positions.push_back(m.positions[order[i]]);
+  for (const Triangle& t : m.triangles) out.triangles.push_back({rename[t[0]], rename[t[1]], rename[t[2]]});
   return out;
 }
 

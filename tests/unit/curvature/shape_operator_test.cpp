@@ -246,7 +246,7 @@ TEST_CASE(
     "[curvature][extremality][threads]") {
   // A noisy sphere of 123k edges and 82k triangles: blocks of 16,384 edges
   // and 65,536 triangles, each vertex's sum split over the threads by vertex.
-  Mesh mesh = repair_mesh(testing::icosphere(6)).mesh;
+  Mesh mesh = testing::repaired_in_input_order(testing::icosphere(6));
   testing::add_normal_noise(mesh, 0.002, 11);
   const Topology topology = build_topology(mesh);
   const int before = max_threads();

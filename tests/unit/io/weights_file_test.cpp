@@ -47,3 +47,27 @@ TEST_CASE("the weights file of --weights is read only if regular, and only up to
         "the weights file is longer than 1048876 bytes, the most read for a mesh of 3 vertices.");
   std::filesystem::remove(path);
 }
+
+TEST_CASE("a weights file follows the input's vertices through repair's renumbering", "[io][weights]") {
+  // Four vertices the triangles first use in the order 3, 1, 2, 0: repair
+  // numbers them so; the weights, one per input vertex, go with positions.
+  TriangleSoup soup;
+  soup.positions = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0};
+  soup.indices = {3, 1, 2, 0, 2, 1};
+  const Mesh mesh = repair_mesh(soup).mesh;
+  REQUIRE(mesh.vertex_count() == 4);
+  CHECK(mesh.positions[0] == Vec3(1, 1, 0));  // renumbered: else this test proves nothing
+  const std::filesystem::path path =
+      std::filesystem::temp_directory_path() / ("crestline-weights-order-" + std::to_string(::getpid()) + ".txt");
+  { std::ofstream(path) << "10\n11\n12\n13\n"; }
+  const std::vector<double> weights = cli::read_vertex_weights(path.string(), soup, mesh);
+  std::filesystem::remove(path);
+  REQUIRE(weights.size() == 4);
+  for (uint32_t v = 0; v < 4; ++v) {
+    uint32_t input = 0;
+    while (Vec3(soup.positions[3 * input], soup.positions[3 * input + 1], soup.positions[3 * input + 2]) !=
+           mesh.positions[v])
+      ++input;
+    CHECK(weights[v] == 10 + input);
+  }
+}

@@ -141,7 +141,7 @@ TEST_CASE("coarse CAD parts read as clean: vertices on clean sharp edges are not
 
   // Noise gives turns of every size, so noisy surfaces measure what they did
   // (the icosphere of the test above, the same values before and after).
-  Mesh sphere = repair_mesh(testing::icosphere(4)).mesh;
+  Mesh sphere = testing::repaired_in_input_order(testing::icosphere(4));
   const double h = mean_edge_length(sphere);
   const double before[] = {0.088827147, 0.209062154};
   int i = 0;
@@ -153,7 +153,7 @@ TEST_CASE("coarse CAD parts read as clean: vertices on clean sharp edges are not
   // A box of fine cells under noise: noise rarely leaves a vertex with sharp
   // turns and flat ones only (its long thin side cells tilt little), so a few
   // vertices drop out: within 0.5 % of the value before (0.103836, 0.210864).
-  Mesh box = repair_mesh(coarse_box(Vec3(4, 4, 1), {16, 16, 16}, false)).mesh;
+  Mesh box = testing::repaired_in_input_order(coarse_box(Vec3(4, 4, 1), {16, 16, 16}, false));
   const double box_h = mean_edge_length(box), box_before[] = {0.103836, 0.210864};
   i = 0;
   for (double sigma : {0.1, 0.25}) {
@@ -210,7 +210,7 @@ TEST_CASE("coarse CAD cylinders read as clean: their walls turn equally along th
   }
   // Noise turns each vertex's edges by its own amounts, so a finely divided
   // cylinder under noise measures exactly what it did.
-  Mesh cylinder = repair_mesh(coarse_cylinder(24, 40, 4, 16, 0)).mesh;
+  Mesh cylinder = testing::repaired_in_input_order(coarse_cylinder(24, 40, 4, 16, 0));
   const double h = mean_edge_length(cylinder);
   const double before[] = {0.085000090, 0.191512318, 0.307274613};
   int i = 0;
@@ -264,9 +264,9 @@ TEST_CASE("noise levels are gathered per vertex on every thread: the same bits a
     for (Triangle t : part.triangles) mesh.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
     component.resize(mesh.positions.size(), component.empty() ? 0 : component.back() + 1);
   };
-  append(repair_mesh(testing::icosphere(6)).mesh, 0.1, Vec3::Zero());
-  append(repair_mesh(coarse_box(Vec3(32, 8, 4), {8, 2, 2}, true)).mesh, 0, Vec3(10, 0, 0));
-  append(repair_mesh(coarse_box(Vec3(4, 4, 1), {16, 16, 16}, false)).mesh, 0.1, Vec3(-10, 0, 0));
+  append(testing::repaired_in_input_order(testing::icosphere(6)), 0.1, Vec3::Zero());
+  append(testing::repaired_in_input_order(coarse_box(Vec3(32, 8, 4), {8, 2, 2}, true)), 0, Vec3(10, 0, 0));
+  append(testing::repaired_in_input_order(coarse_box(Vec3(4, 4, 1), {16, 16, 16}, false)), 0.1, Vec3(-10, 0, 0));
   const Topology topology = build_topology(mesh);
   const int before = max_threads();
   std::vector<std::vector<double>> levels;
