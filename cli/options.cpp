@@ -25,8 +25,9 @@ const OwnOption kOwn[] = {
     {Own::Output, "-o", "--output", "FILE",
      "Output lines (required); the format follows the extension: .obj, .json, .svg or .glb"},
     {Own::Weights, "", "--weights", "FILE",
-     "Per-vertex smoothing strength for inhomogeneous smoothing: a text file with one number per vertex and "
-     "line (0 freezes a vertex, 1 is the global time step)"},
+     "Per-vertex smoothing strength for inhomogeneous smoothing: a text file with one number per line for "
+     "each vertex of the input file, in its order, or of the welded surface --with-mesh writes (0 freezes a "
+     "vertex, 1 is the global time step)"},
     {Own::WithMesh, "", "--with-mesh", "",
      "Also write the welded surface into the output, so it opens in any viewer (.obj and .glb only)"},
     {Own::Stats, "", "--stats", "", "Print one JSON object of statistics and per-stage seconds on stdout"},
