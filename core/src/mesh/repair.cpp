@@ -234,6 +234,47 @@ std::vector<uint32_t> weld(const std::vector<Vec3>& points, const std::vector<ui
   return representative;
 }
 
+// Numbers the vertices in the order the triangles first use them (corner
+// by corner, in triangle order), renames the corners and keeps only the
+// used points, in their new order: a vertex welded into another, one no
+// triangle refers to and one only on dropped triangles get no number. A
+// triangle's corners then lie near each other in the numbering wherever the
+// triangles themselves are in a local order, which is where a file's
+// numbering often is not (subdivision appends each edge's midpoint after
+// the old vertices: at 1.1M triangles a triangle's corners spanned a median
+// of 320k numbers, 22 in this order), so the gathers of every later stage
+// read nearby memory. Serial, so the numbers are the same for any thread
+// count. Returns the number of vertices used.
+size_t number_by_first_use(std::vector<Triangle>& tris, std::vector<Vec3>& points) {
+  const size_t nv = points.size(), nt = tris.size();
+  std::vector<uint32_t> number(nv, kNone);
+  UninitialisedVector<uint32_t> source(nv);  // the old number of each new one
+  uint32_t used = 0;
+  Triangle* out = tris.data();
+  uint32_t* to = number.data();
+  for (size_t t = 0; t < nt; ++t) {
+    // The corners lie anywhere in the input's numbering: their numbers are
+    // asked for kAhead triangles on (natively; WASM has no prefetch).
+    constexpr size_t kAhead = 8;
+    if (t + kAhead < nt)
+      for (uint32_t v : out[t + kAhead]) __builtin_prefetch(&to[v]);
+    for (uint32_t& v : out[t]) {
+      if (to[v] == kNone) to[v] = used, source[used++] = v;
+      v = to[v];
+    }
+  }
+  std::vector<Vec3> kept(used);
+  parallel_for(used, [&, from = source.data(), p = points.data()](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      constexpr size_t kAhead = 8;
+      if (i + kAhead < end) __builtin_prefetch(&p[from[i + kAhead]]);
+      kept[i] = p[from[i]];
+    }
+  });
+  points = std::move(kept);
+  return used;
+}
+
 // Half-edges (corners) paired across their undirected edges: the partner
 // across a manifold edge, whether it runs the same way, and every corner of
 // a non-manifold edge cut. Also finds duplicate triangles (the same three
@@ -962,13 +1003,20 @@ RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options)
   if (tris.empty())
     throw Error(ErrorKind::InvalidInput,
                 "no usable triangle remains (all are degenerate or have non-finite coordinates).");
+  // From here on the vertices are numbered by first use, every one used:
+  // dropping a duplicate (a later triangle on an earlier one's vertices)
+  // leaves every vertex used and its number the first use's, a flip below
+  // swaps two corners of a triangle (so two vertices first used by a
+  // flipped triangle keep the order of its corners before the flip), and a
+  // split vertex's copies come last.
+  const size_t used = number_by_first_use(tris, points);
+  report.unreferenced_vertices = nv - report.welded_vertices - used;
 
   // Triangles at each vertex, the topology's lists, grouped on every
-  // thread: split_fans finds vertices of several fans by them, and a vertex
-  // is used after the split if it had any (its first fan keeps it; its
-  // copies are all used). They stay the repaired mesh's unless a vertex is
-  // split (rare). (A count and a corner per vertex, found on the calling
-  // thread, cost 31 M instructions at 1.1M triangles on either thread count.)
+  // thread: split_fans finds vertices of several fans by them. They stay
+  // the repaired mesh's unless a vertex is split (rare). (A count and a
+  // corner per vertex, found on the calling thread, cost 31 M instructions
+  // at 1.1M triangles on either thread count.)
   // Grouped before the pairing (the orientation's flips do not move a
   // triangle between vertices): their 15 MB then take the heap's space the
   // weld left, not new space beside the pairing's arrays (the WASM heap at
@@ -977,12 +1025,12 @@ RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options)
   // the half-edges are paired, and only a mesh that has some is paired again.
   // The edges are recorded in result.topology meanwhile.
   Topology& topology = result.topology;
-  detail::group_vertex_triangles(tris, nv, topology);
-  EdgePairs pairs = pair_half_edges(tris, points.size(), topology);
+  detail::group_vertex_triangles(tris, used, topology);
+  EdgePairs pairs = pair_half_edges(tris, used, topology);
   if (pairs.duplicates) {
-    drop_duplicates(tris, points.size(), report);
-    detail::group_vertex_triangles(tris, nv, topology);
-    pairs = pair_half_edges(tris, points.size(), topology);
+    drop_duplicates(tris, used, report);
+    detail::group_vertex_triangles(tris, used, topology);
+    pairs = pair_half_edges(tris, used, topology);
   }
   // The boundary edges of the recorded topology, where it stays the repaired mesh's (below).
   const std::vector<uint32_t> boundary_edges = std::move(pairs.single_edges);
@@ -996,75 +1044,27 @@ RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options)
   const bool split = split_fans(tris, points, orientation, topology, report);
   orientation.partner = {};
 
-  // Compact: keep used vertices in input order (copies last), on every thread.
-  // Where every vertex is used (no weld and none unreferenced: a clean mesh)
-  // the numbering stays, so the points move and nothing is renumbered (at
-  // 1.1M triangles 46 M instructions and a 13 MB copy fewer).
-  // Whether v < nv has a triangle (before the split, which leaves each
-  // vertex one of its fans).
-  const std::vector<uint32_t>& offsets = topology.vertex_offsets;
-  auto has_triangles = [&](size_t v) { return offsets[v + 1] > offsets[v]; };
-  std::atomic<bool> any_unused{false};
-  parallel_for(nv, [&](size_t begin, size_t end) {
-    for (size_t v = begin; v < end; ++v)
-      if (!has_triangles(v)) {
-        any_unused = true;
-        return;
-      }
-  });
-  const size_t point_count = points.size();  // the input's and the copies
-  UninitialisedVector<uint32_t> index;
-  size_t used = point_count;
-  if (any_unused) {
-    index.resize(point_count);
-    used = detail::place_kept(
-        point_count, [&](size_t v) { return v >= nv || has_triangles(v); },
-        [&](size_t n) { result.mesh.positions.resize(n); },
-        [&](size_t v, size_t rank) { index[v] = uint32_t(rank), result.mesh.positions[rank] = points[v]; });
-  } else {
-    result.mesh.positions = std::move(points);
-  }
-  report.unreferenced_vertices = nv - report.welded_vertices - (used - (point_count - nv));
+  result.mesh.positions = std::move(points);
   result.mesh.triangles = std::move(tris);
-  if (any_unused)
-    parallel_for(result.mesh.triangles.size(), [&](size_t begin, size_t end) {
-      for (size_t t = begin; t < end; ++t)
-        for (uint32_t& v : result.mesh.triangles[t]) v = index[v];
-    });
+  const size_t vertex_count = result.mesh.positions.size();  // the copies too
 
   report.boundary_edges = count_boundary_edges(result.mesh.triangles, orientation);
   // The recorded edges are the repaired mesh's unless an edge had more than
-  // two triangles or a vertex was split (both rare): their ends renumbered
-  // (in order, so the edges stay in build_topology's order), and so are the
-  // vertices' triangles (the unused vertices' empty lists dropped). At 1.1M
-  // triangles (2205fb1, callgrind, 1 thread) the Pipeline's build_topology
-  // took 0.44 G instructions; this 0.17 G more here.
-  if (report.nonmanifold_edges == 0 && !split) {
-    if (any_unused) {
-      parallel_for(topology.edges.size(), [&](size_t begin, size_t end) {
-        for (size_t e = begin; e < end; ++e)
-          for (uint32_t& v : topology.edges[e]) v = index[v];
-      });
-      std::vector<uint32_t> kept_offsets(used + 1);
-      kept_offsets[used] = offsets[nv];
-      parallel_for(nv, [&](size_t begin, size_t end) {
-        for (size_t v = begin; v < end; ++v)
-          if (has_triangles(v)) kept_offsets[index[v]] = offsets[v];
-      });
-      topology.vertex_offsets = std::move(kept_offsets);
-    }
-    detail::flag_boundary_vertices(used, topology, &boundary_edges);
-  } else {
+  // two triangles or a vertex was split (both rare). At 1.1M triangles
+  // (2205fb1, callgrind, 1 thread) the Pipeline's build_topology took 0.44 G
+  // instructions; this 0.17 G more here.
+  if (report.nonmanifold_edges == 0 && !split)
+    detail::flag_boundary_vertices(vertex_count, topology, &boundary_edges);
+  else
     topology = build_topology(result.mesh);
-  }
   // Each vertex's component is its first triangle's: once its fans are split
   // a vertex's triangles are one fan, joined through uncut edges, so in one
   // component (numbered in order of seeds, the first triangle of each:
   // component_frames' order of first appearance).
   result.components.count = orientation.components;
   if (several) {
-    result.components.vertex.resize(used);
-    parallel_for(used, [&](size_t begin, size_t end) {
+    result.components.vertex.resize(vertex_count);
+    parallel_for(vertex_count, [&](size_t begin, size_t end) {
       for (size_t v = begin; v < end; ++v)
         result.components.vertex[v] = triangle_component[topology.vertex_triangles[topology.vertex_offsets[v]]];
     });

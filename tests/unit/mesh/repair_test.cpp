@@ -532,9 +532,9 @@ TEST_CASE("repair splits fans as the per-vertex grouping of 2ff2dda did", "[repa
     split += copies > 0;
   }
   CHECK(rounds > 250);
-  CHECK(split > 100);    // the soups exercise the split
-  CHECK(several > 100);  // and components next to it
-  CHECK(hash == 0xe651af74da85eb42ull);
+  CHECK(split > 100);                    // the soups exercise the split
+  CHECK(several > 100);                  // and components next to it
+  CHECK(hash == 0x7a4cc39a6973665dull);  // 0xe651af74da85eb42 before the vertices were numbered by first use
 }
 
 namespace {
@@ -709,4 +709,105 @@ TEST_CASE("repair records its mesh's topology while pairing, on 1, 2 and 3 threa
     check_own_topology(other);
     check_same_repair(other, one);
   }
+}
+
+namespace {
+
+// The median over the triangles of the span of their corners' numbers.
+uint32_t median_corner_span(const std::vector<Triangle>& tris) {
+  std::vector<uint32_t> span;
+  for (const Triangle& t : tris) span.push_back(std::max({t[0], t[1], t[2]}) - std::min({t[0], t[1], t[2]}));
+  std::nth_element(span.begin(), span.begin() + ptrdiff_t(span.size() / 2), span.end());
+  return span[span.size() / 2];
+}
+
+// Whether the vertices are numbered in the order the triangles first use
+// them, corner by corner.
+bool numbered_by_first_use(const Mesh& m) {
+  uint32_t seen = 0;
+  for (const Triangle& t : m.triangles)
+    for (uint32_t v : t) {
+      if (v > seen) return false;
+      if (v == seen) ++seen;
+    }
+  return seen == m.vertex_count();
+}
+
+}  // namespace
+
+// Subdivision appends each edge's midpoint after the old vertices, so a
+// triangle's corners lie far apart in the input's numbering (the 1.1M bench
+// mesh: a median of 320k numbers apart); repair numbers the vertices by
+// first use, so they lie close. The mesh repair returns then does not depend
+// on how the input numbers its vertices: the icosphere with its vertices
+// shuffled, or with two copies of each (a seam, welded), repairs to the same
+// mesh, topology and components, on 1 and 2 threads.
+TEST_CASE("repair numbers the vertices in the order the triangles first use them", "[repair][threads]") {
+  const TriangleSoup sphere = testing::icosphere(6);  // 81,920 triangles: over 2^15, split over threads
+  REQUIRE(sphere.triangle_count() > size_t{1} << 15);
+  CHECK(median_corner_span(repair_on(1, sphere).mesh.triangles) < 100);
+  {
+    std::vector<Triangle> input(sphere.triangle_count());
+    for (size_t t = 0; t < input.size(); ++t)
+      for (int k = 0; k < 3; ++k) input[t][k] = sphere.indices[3 * t + k];
+    CHECK(median_corner_span(input) > 10000);
+  }
+  std::mt19937 random(29);
+  std::vector<uint32_t> new_number(sphere.vertex_count());
+  std::iota(new_number.begin(), new_number.end(), 0u);
+  std::shuffle(new_number.begin(), new_number.end(), random);
+  TriangleSoup shuffled_vertices, seam;
+  shuffled_vertices.positions.resize(sphere.positions.size());
+  for (size_t v = 0; v < sphere.vertex_count(); ++v)
+    for (int k = 0; k < 3; ++k) shuffled_vertices.positions[3 * new_number[v] + k] = sphere.positions[3 * v + k];
+  for (uint32_t v : sphere.indices) shuffled_vertices.indices.push_back(new_number[v]);
+  append_soup(seam, sphere, Vec3::Zero(), 0.0, true, random);
+
+  const RepairResult want = repair_on(1, sphere);
+  CHECK(numbered_by_first_use(want.mesh));
+  CHECK(want.report.flipped_triangles == 0);
+  check_own_topology(want);
+  for (int threads : {1, 2}) {
+    INFO("threads: " << threads);
+    for (const TriangleSoup* input : std::array<const TriangleSoup*, 3>{&sphere, &shuffled_vertices, &seam}) {
+      const RepairResult got = repair_on(threads, *input);
+      CHECK(got.mesh.triangles == want.mesh.triangles);
+      CHECK(got.mesh.positions == want.mesh.positions);
+      testing::check_same_topology(got.topology, want.topology);
+      CHECK(got.components.count == 1);
+      // The seam's copies either welded or never used.
+      CHECK(got.report.welded_vertices + got.report.unreferenced_vertices ==
+            (input == &seam ? sphere.vertex_count() : 0));
+    }
+  }
+}
+
+// Welded, unreferenced and only-on-dropped-triangle vertices get no number;
+// the others keep the first use's order past dropped and duplicate
+// triangles.
+TEST_CASE("repair numbers by first use past dropped triangles and vertices", "[repair]") {
+  TriangleSoup s;
+  for (const Vec3& p : {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0), Vec3(9, 9, 9), Vec3(1, 1, 0), Vec3(2, 1, 0.5),
+                        Vec3(3, 1, 0), Vec3(3, 1, 0), Vec3(NAN, 0, 0)})
+    add_vertex(s, p);        // 0 and 3 unreferenced, 7 a copy of 6
+  add_triangle(s, 5, 4, 8);  // non-finite: dropped (8 then unused)
+  add_triangle(s, 6, 6, 2);  // degenerate: dropped
+  add_triangle(s, 7, 5, 2);  // 7 welded into 6
+  add_triangle(s, 2, 5, 7);  // a duplicate (the same vertex set): dropped
+  add_triangle(s, 1, 2, 5);
+  add_triangle(s, 1, 5, 4);
+  const RepairResult r = repair_mesh(s);
+  CHECK(r.report.welded_vertices == 1);
+  CHECK(r.report.nonfinite_triangles == 1);
+  CHECK(r.report.degenerate_triangles == 1);
+  CHECK(r.report.duplicate_triangles == 1);
+  CHECK(r.report.unreferenced_vertices == 3);  // 0, 3 and 8
+  CHECK(r.report.flipped_triangles == 0);
+  REQUIRE(r.mesh.vertex_count() == 5);
+  // Numbered as the kept triangles first use them: 6, 5, 2, then 1, then 4.
+  const std::vector<Vec3> want = {Vec3(3, 1, 0), Vec3(2, 1, 0.5), Vec3(2, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0)};
+  for (uint32_t v = 0; v < 5; ++v) CHECK(r.mesh.positions[v] == want[v]);
+  CHECK(r.mesh.triangles == std::vector<Triangle>{{0, 1, 2}, {3, 2, 1}, {3, 1, 4}});
+  check_own_topology(r);
+  check_own_components(r);
 }

@@ -53,6 +53,13 @@ struct RepairResult {
 /// and vertices into manifold pieces. Throws Error(InvalidInput) when no
 /// usable triangle remains or an index is out of range, and Error(TooLarge)
 /// beyond options.max_triangles.
+/// The vertices are numbered in the order the kept triangles first use them
+/// (a triangle's corners in the input's order; a split vertex's copies
+/// last), so that a triangle's corners, and its neighbours', lie near each
+/// other in memory for every later stage. The triangles keep the input's
+/// order. So the repaired numbering is not the input's, even on a clean
+/// mesh: a per-vertex field given for the input's vertices has to be mapped
+/// (by position, say).
 RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options = {});
 
 }  // namespace crestline
