@@ -250,6 +250,7 @@ size_t number_by_first_use(std::vector<Triangle>& tris, std::vector<Vec3>& point
   std::vector<uint32_t> number(nv, kNone);
   UninitialisedVector<uint32_t> source(nv);  // the old number of each new one
   uint32_t used = 0;
+  bool same = true;  // every vertex keeps its number (a file already in this order)
   Triangle* out = tris.data();
   uint32_t* to = number.data();
   for (size_t t = 0; t < nt; ++t) {
@@ -259,10 +260,11 @@ size_t number_by_first_use(std::vector<Triangle>& tris, std::vector<Vec3>& point
     if (t + kAhead < nt)
       for (uint32_t v : out[t + kAhead]) __builtin_prefetch(&to[v]);
     for (uint32_t& v : out[t]) {
-      if (to[v] == kNone) to[v] = used, source[used++] = v;
+      if (to[v] == kNone) same = same && v == used, to[v] = used, source[used++] = v;
       v = to[v];
     }
   }
+  if (same && used == nv) return used;  // the points stay where they are
   std::vector<Vec3> kept(used);
   parallel_for(used, [&, from = source.data(), p = points.data()](size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) {

@@ -767,6 +767,13 @@ TEST_CASE("repair numbers the vertices in the order the triangles first use them
   CHECK(numbered_by_first_use(want.mesh));
   CHECK(want.report.flipped_triangles == 0);
   check_own_topology(want);
+  {
+    // Its own numbering is kept: repairing the repaired mesh changes nothing.
+    TriangleSoup again;
+    for (const Vec3& p : want.mesh.positions) add_vertex(again, p);
+    for (const Triangle& t : want.mesh.triangles) add_triangle(again, t[0], t[1], t[2]);
+    check_same_repair(repair_on(1, again), want);
+  }
   for (int threads : {1, 2}) {
     INFO("threads: " << threads);
     for (const TriangleSoup* input : std::array<const TriangleSoup*, 3>{&sphere, &shuffled_vertices, &seam}) {
