@@ -194,6 +194,8 @@ void Pipeline::measure_creases(const std::function<void(double)>& progress) {
   if (measure.normal_filter_steps < 0) measure.normal_filter_steps = automatic_normal_filter_steps(noise);
   // With one component its level (`noise`) is the whole mesh's, which the stage would measure again.
   if (frames_.count() == 1 && !noise_levels_.empty()) measure.noise_level = noise;
+  // The frames measured every edge: the median one is theirs.
+  measure.median_edge_length = frames_.median_edge_length;
   crease_angles_ = measure_crease_angles(local_input(), topology(), measure, progress);
   // Where the filter does not run the stage measures no noise, but the
   // automatic angle asks whether the mesh is piecewise planar.

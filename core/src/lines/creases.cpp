@@ -1163,6 +1163,9 @@ CreaseAngles measure_crease_angles(const Mesh& mesh, const Topology& topology, c
   parts = total(out.normal_filter_steps);
   const double edge_share = out.normal_filter_steps > 0 ? 3.0 : 1.0;
   const size_t ne = topology.edges.size();
+  // The median length only where not given (the Pipeline's frames measured
+  // every edge's).
+  const bool measure_lengths = !(options.median_edge_length >= 0);
   // The per-edge results, and 1 − cos of each edge's angle and its length
   // for the medians (1 − cos: monotonic in the angle; single precision: the
   // rounding moves the automatic angle by parts in 10^7). Where no filter
@@ -1171,16 +1174,18 @@ CreaseAngles measure_crease_angles(const Mesh& mesh, const Topology& topology, c
   // CLI at 1.1M triangles: max RSS −2 MB on 1 thread, −6 on 2); with the
   // filter, after it (not held through its steps).
   std::vector<float> complement, length;
-  // Their fills write fresh pages (40 MB at 1.1M triangles: 16 bytes an
-  // edge of doubles, 8 of floats), whose faults cost more than the writes:
+  // Their fills write fresh pages (33 MB at 1.1M triangles: 16 bytes an
+  // edge of doubles, 4 of floats, 4 more where the lengths are measured
+  // here), whose faults cost more than the writes:
   // half on one thread, half on another, allocated on this one (see
   // detail::number_edges).
   const auto make_results = [&] {
-    out.angle.reserve(ne), out.support.reserve(ne), complement.reserve(ne), length.reserve(ne);
+    out.angle.reserve(ne), out.support.reserve(ne), complement.reserve(ne);
+    if (measure_lengths) length.reserve(ne);
     run_side_by_side(
         [&] {
           out.angle.assign(ne, 0.0);
-          length.assign(ne, std::numeric_limits<float>::infinity());
+          if (measure_lengths) length.assign(ne, std::numeric_limits<float>::infinity());
         },
         [&] {
           out.support.assign(ne, 0.0);
@@ -1221,7 +1226,8 @@ CreaseAngles measure_crease_angles(const Mesh& mesh, const Topology& topology, c
           const auto& ahead = topology.edge_triangles[e + kAhead];
           __builtin_prefetch(&normal[ahead[0]]);
           if (ahead[1] != kNone) __builtin_prefetch(&normal[ahead[1]]);
-          for (uint32_t v : topology.edges[e + kAhead]) __builtin_prefetch(&mesh.positions[v]);
+          if (measure_lengths)
+            for (uint32_t v : topology.edges[e + kAhead]) __builtin_prefetch(&mesh.positions[v]);
         }
         if (topology.is_boundary_edge(static_cast<uint32_t>(e))) {
           ++boundary;
@@ -1231,8 +1237,9 @@ CreaseAngles measure_crease_angles(const Mesh& mesh, const Topology& topology, c
         const Vec3 &n0 = normal[f0], &n1 = normal[f1];
         const double cosine = n0.dot(n1);
         complement[e] = static_cast<float>(1.0 - cosine);
-        length[e] =
-            static_cast<float>((mesh.positions[topology.edges[e][1]] - mesh.positions[topology.edges[e][0]]).norm());
+        if (measure_lengths)
+          length[e] =
+              static_cast<float>((mesh.positions[topology.edges[e][1]] - mesh.positions[topology.edges[e][0]]).norm());
         if (cosine > candidate) continue;  // below kCandidateAngle: never a crease, left 0
         // The edge as f0 runs along it (counter-clockwise seen from outside):
         // (n0 × n1)·d > 0 where the surface folds away below f0's plane.
@@ -1277,12 +1284,15 @@ CreaseAngles measure_crease_angles(const Mesh& mesh, const Topology& topology, c
     std::nth_element(values.begin(), middle, values.end());
     return double(*middle);
   };
-  run_side_by_side(
-      [&] {
-        const double m = median_of(complement);
-        if (m >= 0) out.median = portable_acos_of_complement(m) / kDegree;
-      },
-      [&] { out.median_edge_length = std::max(0.0, median_of(length)); });
+  const auto median_angle = [&] {
+    const double m = median_of(complement);
+    if (m >= 0) out.median = portable_acos_of_complement(m) / kDegree;
+  };
+  out.median_edge_length = options.median_edge_length;
+  if (measure_lengths)
+    run_side_by_side(median_angle, [&] { out.median_edge_length = std::max(0.0, median_of(length)); });
+  else
+    median_angle();
   return out;
 }
 

@@ -542,3 +542,17 @@ TEST_CASE("the automatic angle's medians do not depend on how the mesh is number
     CHECK(relabelled.angles.median_edge_length == base.angles.median_edge_length);
   }
 }
+
+TEST_CASE("a given median edge length is passed through, not measured", "[creases]") {
+  // The Pipeline gives its frames' (ComponentFrames::median_edge_length);
+  // the angles and the median angle are those measured without it.
+  const Run r = measure(repair_mesh(cube(6)).mesh);
+  CreaseMeasureOptions options{0};
+  options.median_edge_length = 0.25;
+  const CreaseAngles given = measure_crease_angles(r.mesh, r.topology, options);
+  CHECK(given.median_edge_length == 0.25);
+  CHECK(r.angles.median_edge_length == Approx(2.0 / 6));
+  CHECK(given.median == r.angles.median);
+  CHECK(given.angle == r.angles.angle);
+  CHECK(given.support == r.angles.support);
+}

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "analytic_meshes.h"
+#include "crestline/lines/creases.h"
 #include "crestline/mesh/topology.h"
 #include "on_threads.h"
 
@@ -180,4 +181,50 @@ TEST_CASE("components that do not fit the mesh are found again, not read", "[fra
     CHECK(got.centre == want.centre);
     CHECK(got.scale == want.scale);
   }
+}
+
+TEST_CASE("the median interior edge is measured over interior edges, in mean edges", "[frame]") {
+  // An open cylinder one cell high, 4 cells round (radius 1, height 10):
+  // interior edges 4 of 10 and 4 diagonals of √102; the 8 rim edges (√2) on
+  // the boundary are left out, or the upper median would be 10.
+  testing::GridOptions grid;
+  grid.nu = 4, grid.nv = 1;
+  Mesh mesh;
+  append(mesh, testing::cylinder(1, 10, grid), Vec3(0, 0, 0));
+  const ComponentFrames f = frames_on(1, mesh);
+  const double mean = (2 * (40 + 4 * std::sqrt(102.0)) + 8 * std::sqrt(2.0)) / 24;
+  CHECK(f.scale[0] == Approx(mean).epsilon(1e-12));
+  CHECK(f.median_edge_length == Approx(std::sqrt(102.0) / mean).epsilon(1e-6));
+  // A closed surface only: a mesh of boundary edges has no median.
+  Mesh single;
+  single.positions = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
+  single.triangles = {{0, 1, 2}};
+  CHECK(frames_on(1, single).median_edge_length == 0);
+}
+
+TEST_CASE("the median interior edge is the crease measure's own, for any numbering, threads and power-of-two scale",
+          "[frame][threads]") {
+  // Components at scales 1000 apart, with boundaries (an open cylinder and a
+  // jittered height field) and without (a sphere): each edge in its own
+  // component's mean edges. The crease measure on the working-frame mesh
+  // measures the same median from positions (single precision): the same
+  // bits. 2^15 triangles and more so that the pass splits over threads.
+  testing::GridOptions grid;
+  grid.nu = 120, grid.nv = 60, grid.jitter = 0.3;
+  Mesh mesh;
+  append(mesh, testing::cylinder(1, 3, grid), Vec3(0, 0, 0));
+  append(mesh, testing::height_field([](double x, double y) { return 0.1 * x * y; }, 2e3, 1e3, grid), Vec3(5, 0, 0));
+  append(mesh, testing::icosphere(5, 1e-3), Vec3(0, 7, 0));
+  REQUIRE(mesh.triangles.size() > size_t{1} << 15);
+  const ComponentFrames f = frames_on(1, mesh);
+  REQUIRE(f.count() == 3);
+  const Topology topology = build_topology(mesh);
+  const double own = measure_crease_angles(to_local(mesh, f), topology, {0}).median_edge_length;
+  CHECK(same_bits(f.median_edge_length, own));
+  CHECK(f.median_edge_length > 0.5);
+  for (int threads : {2, 3}) CHECK(same_bits(frames_on(threads, mesh).median_edge_length, own));
+  for (unsigned seed : {1u, 2u}) CHECK(same_bits(frames_on(2, testing::shuffled(mesh, seed)).median_edge_length, own));
+  Mesh scaled = mesh;
+  for (Vec3& p : scaled.positions) p *= 1024.0;
+  CHECK(same_bits(frames_on(1, scaled).median_edge_length, own));
 }

@@ -35,6 +35,10 @@ struct CreaseMeasureOptions {
   /// Pipeline's constructor measured it): not measured again. Negative: measured
   /// here (where the filter steps are not 0).
   double noise_level = -1;
+  /// CreaseAngles::median_edge_length where the caller has it (≥ 0; the
+  /// Pipeline's frames measured it, ComponentFrames::median_edge_length):
+  /// not measured again. Negative: measured here.
+  double median_edge_length = -1;
 };
 
 /// The crease stage's rules for very noisy surfaces (creases.cpp: support
@@ -101,7 +105,8 @@ struct CreaseAngles {
   /// The median |angle| over every interior edge, degrees: how much a
   /// smooth edge of this mesh turns (single precision, creases.cpp).
   double median = 0;
-  /// The median length of the same edges (mesh units).
+  /// The median length of the same edges (mesh units; single precision),
+  /// or CreaseMeasureOptions::median_edge_length where given.
   double median_edge_length = 0;
   /// surface_noise_level of the mesh (not measured, 0, when the filter steps
   /// were given as 0): bridging (creases.cpp) only up to kBridgeNoiseLimit.

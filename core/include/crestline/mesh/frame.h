@@ -31,6 +31,12 @@ struct ComponentFrames {
   std::vector<Vec3> centre;            // per component, user coordinates
   std::vector<double> scale;           // per component: its mean edge length, user units
   std::vector<size_t> triangle_count;  // per component
+  /// The upper median of the interior edges' lengths (edges with two
+  /// triangles) over the whole mesh, each in its component's mean edges (the
+  /// working frame's units), rounded to single precision as the crease
+  /// measure rounds its own (creases.cpp); 0 without interior edges. The
+  /// crease stage's spur rule reads it on sliver-heavy meshes.
+  double median_edge_length = 0;
 
   size_t count() const { return centre.size(); }
   /// vertex_component[v], or 0 where it is released.
