@@ -12,6 +12,7 @@ target_sources(crestline_tests PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/numerics/uninitialised_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/numerics/symmetric_eigen3_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/numerics/portable_math_test.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/numerics/select_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/lines/trace_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/lines/polylines_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/lines/fairing_test.cpp

@@ -8,6 +8,7 @@
 #include <functional>
 #include <limits>
 
+#include "../numerics/select.h"
 #include "crestline/mesh/cotan.h"
 #include "crestline/mesh/presmooth.h"
 #include "crestline/numerics/constants.h"
@@ -1269,7 +1270,8 @@ CreaseAngles measure_crease_angles(const Mesh& mesh, const Topology& topology, c
   // are made (at 1.1M triangles 32 bytes per triangle beside them).
   faces = FaceNormals(), filtered = std::vector<Vec3>();
   // The median angle and the same edges' median length (the spur rule's
-  // scale), each on a thread of its own if there are two. Over every
+  // scale, where not given), each on a thread of its own if there are two
+  // (detail::value_at_rank: nth_element's value in about one pass). Over every
   // interior edge: a sample of every fourth edge in edge order (before
   // 2026-12-07) depended on how the file numbers its vertices and
   // triangles (bench/relabel.mjs: a shuffled spot.obj's automatic angle
@@ -1280,9 +1282,7 @@ CreaseAngles measure_crease_angles(const Mesh& mesh, const Topology& topology, c
   const size_t interior = ne - boundary_edges.load();
   const auto median_of = [&](std::vector<float>& values) {
     if (interior == 0) return -1.0;
-    const auto middle = values.begin() + static_cast<std::ptrdiff_t>(interior / 2);
-    std::nth_element(values.begin(), middle, values.end());
-    return double(*middle);
+    return double(detail::value_at_rank(values.data(), values.size(), interior / 2));
   };
   const auto median_angle = [&] {
     const double m = median_of(complement);
