@@ -176,14 +176,14 @@ ComponentFrames component_frames(const Mesh& mesh, const Topology& topology, Ver
   std::vector<double> factor(n);
   for (size_t c = 0; c < n; ++c) factor[c] = extent[c] / f.scale[c];
   std::atomic<size_t> boundary_edges{0};
-  parallel_for(ne, [&, sides = topology.edge_triangles.data(), l = length.data()](size_t begin, size_t end) {
+  parallel_for(ne, [&, l = length.data()](size_t begin, size_t end) {
     size_t boundary = 0;
     if (n == 1) {
       for (size_t e = begin; e < end; ++e)
-        if (sides[e][1] == kNone) l[e] = INFINITY, ++boundary;
+        if (topology.is_boundary_edge(uint32_t(e))) l[e] = INFINITY, ++boundary;
     } else {
       for (size_t e = begin; e < end; ++e) {
-        if (sides[e][1] == kNone)
+        if (topology.is_boundary_edge(uint32_t(e)))
           l[e] = INFINITY, ++boundary;
         else
           l[e] *= factor[f.vertex_component[topology.edges[e][0]]];
