@@ -159,7 +159,7 @@ val Session::loadFile(std::string name, val bytes, val companions, val options) 
 }
 
 val Session::adopt(TriangleSoup soup, const RepairOptions& repair) {
-  RepairResult repaired = repair_mesh(soup, repair);
+  RepairResult repaired = repair_mesh(std::move(soup), repair);  // its notes stay
   val notes = val::array();
   for (const std::string& note : soup.notes) notes.call<void>("push", note);
   for (const std::string& note : repaired.report.notes()) notes.call<void>("push", note);

@@ -875,9 +875,14 @@ size_t count_boundary_edges(const std::vector<Triangle>& tris, const Orientation
   return boundary;
 }
 
-}  // namespace
+// Gives a soup's arrays back (assigning {} would only clear them).
+void release_arrays(TriangleSoup& soup) {
+  decltype(soup.positions)().swap(soup.positions);
+  decltype(soup.indices)().swap(soup.indices);
+}
 
-RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options) {
+// repair_mesh, releasing `consumed`'s arrays once read where it is the soup.
+RepairResult repair(const TriangleSoup& soup, TriangleSoup* consumed, const RepairOptions& options) {
   check_soup(soup, options);
   RepairResult result;
   RepairReport& report = result.report;
@@ -909,6 +914,7 @@ RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options)
     }
   });
   check_first_bad_index(soup, first_bad);
+  if (consumed) decltype(consumed->positions)().swap(consumed->positions);  // all in `points` now
   // The bounding box of the weldable vertices (finite and referenced), by
   // parts merged in order. (Equal minima of −0 and 0 may keep the other
   // sign than a pass in index order did; nothing below sees a zero's sign.)
@@ -994,6 +1000,7 @@ RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options)
     test_triangles(std::true_type{});
   else
     test_triangles(std::false_type{});
+  if (consumed) release_arrays(*consumed);  // the triangles all in `tris` now
   report.nonfinite_triangles = nonfinite, report.degenerate_triangles = degenerate;
   if (nonfinite + degenerate > 0) {
     std::vector<Triangle> kept;
@@ -1072,6 +1079,21 @@ RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options)
     });
   }
   return result;
+}
+
+}  // namespace
+
+RepairResult repair_mesh(const TriangleSoup& soup, const RepairOptions& options) {
+  return repair(soup, nullptr, options);
+}
+
+RepairResult repair_mesh(TriangleSoup&& soup, const RepairOptions& options) {
+  try {
+    return repair(soup, &soup, options);
+  } catch (...) {
+    release_arrays(soup);
+    throw;
+  }
 }
 
 std::vector<std::string> RepairReport::notes() const {

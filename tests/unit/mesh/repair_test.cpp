@@ -109,6 +109,31 @@ TEST_CASE("repair drops degenerate, duplicate, non-finite and unreferenced data"
   CHECK(r.report.notes().size() >= 4);
 }
 
+TEST_CASE("repair of a soup given up to it releases its arrays and repairs as from a copy", "[repair]") {
+  TriangleSoup s = split_cube();
+  add_triangle(s, 2, 1, 0);      // a duplicate, reversed
+  add_vertex(s, Vec3(5, 5, 5));  // unreferenced
+  s.notes.push_back("a reader's note");
+  const RepairResult kept = repair_mesh(s);
+  TriangleSoup given = s;
+  const RepairResult released = repair_mesh(std::move(given));
+  CHECK(given.positions.capacity() == 0);
+  CHECK(given.indices.capacity() == 0);
+  CHECK(given.notes == s.notes);  // the caller reports them
+  CHECK(released.mesh.positions == kept.mesh.positions);
+  CHECK(released.mesh.triangles == kept.mesh.triangles);
+  CHECK(released.report.notes() == kept.report.notes());
+  CHECK(released.components.count == kept.components.count);
+  testing::check_same_topology(released.topology, kept.topology);
+
+  // Released also when repair throws; the message still names the index.
+  TriangleSoup bad = split_cube();
+  bad.indices[5] = 999;
+  CHECK_THROWS_WITH(repair_mesh(std::move(bad)), Catch::Contains("999"));
+  CHECK(bad.positions.capacity() == 0);
+  CHECK(bad.indices.capacity() == 0);
+}
+
 TEST_CASE("repair cuts non-manifold edges and splits non-manifold vertices", "[repair]") {
   // Three triangles around one edge (a "book" with three pages).
   TriangleSoup book;
