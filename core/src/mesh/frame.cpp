@@ -124,12 +124,17 @@ ComponentFrames component_frames(const Mesh& mesh, const Topology& topology, Ver
   // pass in vertex order. One part when the components are many and small.
   const size_t box_parts = n * 64 <= nv ? threads : 1;
   std::vector<Vec3> lo(box_parts * n, Vec3::Constant(INFINITY)), hi(box_parts * n, Vec3::Constant(-INFINITY));
+  // Each part's in vectors of its own, then stored (in place, two threads'
+  // boxes of one component shared a cache line, passed back and forth at
+  // every vertex).
   detail::for_each_part(box_parts, nv, [&](size_t p, size_t begin, size_t end) {
-    Vec3 *part_lo = lo.data() + p * n, *part_hi = hi.data() + p * n;
+    std::vector<Vec3> part_lo(n, Vec3::Constant(INFINITY)), part_hi(n, Vec3::Constant(-INFINITY));
     for (size_t v = begin; v < end; ++v) {
       const uint32_t c = f.component(v);
       part_lo[c] = part_lo[c].cwiseMin(mesh.positions[v]), part_hi[c] = part_hi[c].cwiseMax(mesh.positions[v]);
     }
+    std::copy(part_lo.begin(), part_lo.end(), lo.begin() + ptrdiff_t(p * n));
+    std::copy(part_hi.begin(), part_hi.end(), hi.begin() + ptrdiff_t(p * n));
   });
   for (size_t p = 1; p < box_parts; ++p)
     for (size_t c = 0; c < n; ++c) lo[c] = lo[c].cwiseMin(lo[p * n + c]), hi[c] = hi[c].cwiseMax(hi[p * n + c]);
@@ -256,10 +261,14 @@ SideSums side_sums(const Mesh& mesh, const Topology& topology, const std::vector
       part_sum[0] = total, part_count[0] = end - begin;
       return;
     }
+    std::vector<WideSum> own_sum(components, 0);  // not in place: see the boxes above
+    std::vector<size_t> own_count(components, 0);
     for (size_t t = begin; t < end; ++t) {
       const uint32_t c = vertex_component[mesh.triangles[t][0]];
-      part_sum[c] += quanta(t), ++part_count[c];
+      own_sum[c] += quanta(t), ++own_count[c];
     }
+    std::copy(own_sum.begin(), own_sum.end(), part_sum);
+    std::copy(own_count.begin(), own_count.end(), part_count);
   });
   for (size_t c = 0; c < components; ++c) {
     WideSum total = 0;

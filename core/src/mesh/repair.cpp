@@ -667,14 +667,21 @@ Orientation orient(std::vector<Triangle>& tris, const std::vector<Vec3>& points,
   const size_t parts = one_part ? 0 : n * 64 <= nt ? detail::part_count(nt) : 1;
   if (!one_part) {
     size.assign(parts * n, 0), nflip.assign(parts * n, 0), open.assign(parts * n, 0);
+    // Counted in the part's own vectors, then stored: counted in place, the
+    // parts' counters of one component shared a cache line, which two
+    // threads passed back and forth at every triangle (1.1M triangles, one
+    // component: 15-62 ms on 2 threads).
     detail::for_each_part(parts, nt, [&](size_t p, size_t begin, size_t end) {
-      uint32_t *part_size = size.data() + p * n, *part_nflip = nflip.data() + p * n;
-      uint8_t* part_open = open.data() + p * n;
+      std::vector<uint32_t> part_size(n, 0), part_nflip(n, 0);
+      std::vector<uint8_t> part_open(n, 0);
       for (size_t t = begin; t < end; ++t) {
         const uint32_t c = component[t];
         ++part_size[c], part_nflip[c] += flip[t];
         if (!joined(3 * t) || !joined(3 * t + 1) || !joined(3 * t + 2)) part_open[c] = 1;
       }
+      std::copy(part_size.begin(), part_size.end(), size.begin() + ptrdiff_t(p * n));
+      std::copy(part_nflip.begin(), part_nflip.end(), nflip.begin() + ptrdiff_t(p * n));
+      std::copy(part_open.begin(), part_open.end(), open.begin() + ptrdiff_t(p * n));
     });
   }
   for (size_t p = 1; p < parts; ++p)
