@@ -124,9 +124,9 @@ ComponentFrames component_frames(const Mesh& mesh, const Topology& topology, Ver
   // pass in vertex order. One part when the components are many and small.
   const size_t box_parts = n * 64 <= nv ? threads : 1;
   std::vector<Vec3> lo(box_parts * n, Vec3::Constant(INFINITY)), hi(box_parts * n, Vec3::Constant(-INFINITY));
-  // Each part's in vectors of its own, then stored (in place, two threads'
-  // boxes of one component shared a cache line, passed back and forth at
-  // every vertex).
+  // Each part's boxes in vectors of its own, then stored: kept in place,
+  // two threads' boxes of one component shared a cache line, passed back
+  // and forth at every vertex.
   detail::for_each_part(box_parts, nv, [&](size_t p, size_t begin, size_t end) {
     std::vector<Vec3> part_lo(n, Vec3::Constant(INFINITY)), part_hi(n, Vec3::Constant(-INFINITY));
     for (size_t v = begin; v < end; ++v) {
