@@ -126,8 +126,51 @@ for (let y = 0; y < H; y += 6) {
     picks.push(ours.length);
   }
 }
+// Levels of detail: dense closed curves (3000 points, segments a tenth of a pixel long) drawn at
+// fitDetail's level and with every point, each against the same curves drawn from 300 points (their
+// polylines within 0.004 px of the curves, a segment 1-2 px long): a drawing of the curves as they are.
+function denseLines(n) {
+  const dense = { points: [], offsets: [0], types: [], closed: [], strengths: [] };
+  for (let l = 0; l < 24; l++) {
+    const r = 0.15 + 0.025 * l;
+    for (let i = 0; i < n; i++) {
+      const a = (i / n) * 2 * Math.PI;
+      dense.points.push(r * Math.cos(a) * (1 + 0.1 * Math.sin(5 * a + l)), r * Math.sin(a) * 0.8, 0.2 * Math.sin(2 * a + 0.3 * l));
+    }
+    dense.offsets.push(dense.points.length / 3);
+    dense.types.push(l % 2);
+    dense.closed.push(1);
+    dense.strengths.push(l);
+  }
+  return { points: Float64Array.from(dense.points), offsets: Uint32Array.from(dense.offsets), types: Uint8Array.from(dense.types), closed: Uint8Array.from(dense.closed), strengths: Float64Array.from(dense.strengths) };
+}
+function drawDense(lines, fit) {
+  const layer = new LineLayer({ ridgeColor: colors[0], valleyColor: colors[1], width: 2.5 });
+  layer.setResolution(W, H);
+  if (fit) layer.fitDetail(camera);
+  layer.setLines(lines, origin);
+  if (fit) layer.fitDetail(camera);
+  return { layer, pixels: draw([layer.group]) };
+}
+/** compare(), and the pixels differing by more than 48 in a channel. */
+function compareStrongly(a, b) {
+  let strongly = 0;
+  for (let i = 0; i < a.length; i += 4) if (Math.max(...[0, 1, 2, 3].map((c) => Math.abs(a[i + c] - b[i + c]))) > 48) strongly++;
+  return { ...compare(a, b), strongly };
+}
+const everyPoint = drawDense(denseLines(3000), false);
+const fitted = drawDense(denseLines(3000), true);
+const exact = drawDense(denseLines(300), false);
+const detail = {
+  fitted: compareStrongly(fitted.pixels, exact.pixels),
+  everyPoint: compareStrongly(everyPoint.pixels, exact.pixels),
+  segments: [0, 1].map((t) => fitted.layer.level.geometries[t].segmentCount),
+  full: fitted.layer.objects.map((o) => o.userData.segments),
+  key: fitted.layer.level.key,
+};
+
 window.result = {
-  first, second, strong, ranges, shownIndices,
+  first, second, strong, ranges, shownIndices, detail,
   segments: layer.objects.map((o) => o.userData.segments),
   shownFlags: layer.objects.map((o) => o.geometry.getAttribute('instanceShown').count),
   hits: picks.reduce((a, b) => a + b, 0),
@@ -174,4 +217,21 @@ test('the line layer draws and picks its segments as LineSegments2 does', async 
   assert.deepEqual(result.ranges, result.shownIndices, 'the draw ranges: the indices of the shown segments, no more');
   assert.ok(result.hits > 50, `${result.hits} hits over ${result.rays} rays`);
   assert.equal(result.mismatches, 0, 'rays whose hits (object, segment, point) differ from LineSegments2');
+});
+
+test('lines drawn at fitDetail’s level: a thirtieth of the segments, as close to the curves as every point', async () => {
+  // The page of the first test, its result kept.
+  const { detail } = await browser
+    .contexts()[0]
+    .pages()[0]
+    .evaluate(() => window.result);
+  console.log(`levels of detail: ${JSON.stringify(detail)}`);
+  const [drawn, full] = [detail.segments[0] + detail.segments[1], detail.full[0] + detail.full[1]];
+  assert.equal(full, 2 * 12 * 3000);
+  assert.ok(drawn < full / 30, `${drawn} of ${full} segments drawn`);
+  // Every point's drawing is all caps (each segment's round end decided once a pixel, not per sample):
+  // its rims differ from the exact drawing's more than the level's long segments do.
+  assert.ok(detail.fitted.differ <= detail.everyPoint.differ, JSON.stringify(detail));
+  for (const { gained, strongly, drawn: pixels } of [detail.fitted, detail.everyPoint])
+    assert.ok(gained <= pixels / 100 && strongly <= pixels / 100, JSON.stringify(detail));
 });

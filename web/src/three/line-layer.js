@@ -15,6 +15,14 @@
 // vertices fewer to draw. Only where the dropped cap's depth (its start
 // point's) decided a depth test against another object may a pixel differ
 // (tests/browser/line-layer.test.mjs bounds it).
+//
+// A layer draws its lines at a level of detail (line-detail.js): every
+// point unless the viewer calls fitDetail(camera) before its frames, which
+// then draws the points that keep each line within DETAIL_PIXELS of all of
+// them (the dragon seen whole: 98k shown segments -> 16k). Each level is an
+// index and a geometry of its own, made when first drawn; a threshold
+// change writes the flags of the level drawn, and of another level when it
+// is drawn again.
 import {
   BufferAttribute,
   BufferGeometry,
@@ -30,6 +38,7 @@ import { LineMaterial } from 'three/examples/jsm/lines/LineMaterial.js';
 import { LineSegments2 } from 'three/examples/jsm/lines/LineSegments2.js';
 import { LineSegmentsGeometry } from 'three/examples/jsm/lines/LineSegmentsGeometry.js';
 import { LINE_COLORS } from './colors.js';
+import { DETAIL_PIXELS, pointImportance, worldPerPixel } from './line-detail.js';
 
 export const RIDGE = 0;
 export const VALLEY = 1;
@@ -43,36 +52,52 @@ export const concaveShade = (color) => new Color(color).multiplyScalar(0.55);
 /** Session.creases() as Lines whose types are CONVEX / CONCAVE (for a LineLayer). */
 export const creasesAsLines = (creases) => ({ ...creases, types: Uint8Array.from(creases.convex, (c) => (c ? CONVEX : CONCAVE)) });
 
-/** Segments of line l: a closed line also joins its last point to its first. */
-const segmentCount = (lines, l) => {
-  const n = lines.offsets[l + 1] - lines.offsets[l];
+/**
+ * Segments of line l (of its points with mask[p] set, if a mask is given): a
+ * closed line also joins its last point to its first.
+ */
+const segmentCount = (lines, l, mask) => {
+  let n = lines.offsets[l + 1] - lines.offsets[l];
+  if (mask) for (let p = lines.offsets[l], end = lines.offsets[l + 1]; p < end; p++) n -= mask[p] ? 0 : 1;
   return lines.closed[l] ? n : Math.max(0, n - 1);
 };
 
-/** Segment end points (x,y,z pairs, float32, minus `origin`) of the lines of one type. */
-export function segmentPositions(lines, type, origin) {
+/**
+ * Segment end points (x,y,z pairs, float32, minus `origin`) of the lines of
+ * one type; with a `mask`, between the points it keeps (mask[p] set) only,
+ * which must include each line's first and last.
+ */
+export function segmentPositions(lines, type, origin, mask = null) {
   const { points, offsets, types } = lines;
   let count = 0;
-  for (let l = 0; l < types.length; l++) if (types[l] === type) count += segmentCount(lines, l);
+  for (let l = 0; l < types.length; l++) if (types[l] === type) count += segmentCount(lines, l, mask);
   const out = new Float32Array(count * 6);
   let o = 0;
   for (let l = 0; l < types.length; l++) {
     if (types[l] !== type) continue;
     const first = offsets[l];
-    const last = offsets[l + 1] - 1;
-    const segments = segmentCount(lines, l);
-    for (let s = 0; s < segments; s++, o += 6) {
-      const a = 3 * (first + s);
-      const b = first + s === last ? 3 * first : a + 3;
-      out[o] = points[a] - origin[0];
-      out[o + 1] = points[a + 1] - origin[1];
-      out[o + 2] = points[a + 2] - origin[2];
-      out[o + 3] = points[b] - origin[0];
-      out[o + 4] = points[b + 1] - origin[1];
-      out[o + 5] = points[b + 2] - origin[2];
+    const end = offsets[l + 1];
+    if (first === end) continue;
+    let a = 3 * first;
+    for (let p = first + 1; p < end; p++) {
+      if (mask && !mask[p]) continue;
+      o = storeSegment(out, o, points, a, 3 * p, origin);
+      a = 3 * p;
     }
+    if (lines.closed[l]) o = storeSegment(out, o, points, a, 3 * first, origin);
   }
   return out;
+}
+
+/** Points a and b (float indices into points) minus origin at out[o…o + 5]; returns o + 6. */
+function storeSegment(out, o, points, a, b, origin) {
+  out[o] = points[a] - origin[0];
+  out[o + 1] = points[a + 1] - origin[1];
+  out[o + 2] = points[a + 2] - origin[2];
+  out[o + 3] = points[b] - origin[0];
+  out[o + 4] = points[b + 1] - origin[1];
+  out[o + 5] = points[b + 2] - origin[2];
+  return o + 6;
 }
 
 /**
@@ -273,6 +298,44 @@ export function segmentLineMaterial(parameters) {
   return material;
 }
 
+/** The bounding sphere of the lines' points minus `origin`: the box's centre, the farthest point. */
+function linesSphere({ points, offsets }, origin) {
+  const end = 3 * (offsets.length ? offsets[offsets.length - 1] : 0);
+  const min = new Vector3(Infinity, Infinity, Infinity);
+  const max = new Vector3(-Infinity, -Infinity, -Infinity);
+  const p = new Vector3();
+  for (let i = 0; i < end; i += 3) {
+    p.set(points[i] - origin[0], points[i + 1] - origin[1], points[i + 2] - origin[2]);
+    min.min(p);
+    max.max(p);
+  }
+  const center = end ? min.add(max).multiplyScalar(0.5) : new Vector3();
+  let radius2 = 0;
+  for (let i = 0; i < end; i += 3)
+    radius2 = Math.max(radius2, p.set(points[i] - origin[0], points[i + 1] - origin[1], points[i + 2] - origin[2]).distanceToSquared(center));
+  return new Sphere(center, Math.sqrt(radius2));
+}
+
+/** The `q` quantile of the finite importances (the points a level may leave out), from at most 4096 of them; Infinity if none. */
+function importanceQuantile(importance, q) {
+  let finite = 0;
+  for (const x of importance) finite += x < Infinity ? 1 : 0;
+  if (!finite) return Infinity;
+  const stride = Math.ceil(finite / 4096);
+  const sample = [];
+  let i = 0;
+  for (const x of importance) if (x < Infinity && i++ % stride === 0) sample.push(x);
+  sample.sort((a, b) => a - b);
+  return sample[Math.min(sample.length - 1, Math.floor(q * sample.length))];
+}
+
+const worldCenter = new Vector3();
+
+/** The level of detail with every point (LineLayer.setDetail). */
+export const FULL_DETAIL = 'full';
+/** The coarser levels a layer keeps beside the one shown, at most this many segments (times its full count) in all. */
+const CACHED_LEVEL_SEGMENTS = 2;
+
 export class LineLayer {
   constructor({ ridgeColor = LINE_COLORS.ridge, valleyColor = LINE_COLORS.valley, width = 2.5 } = {}) {
     this.group = new Group();
@@ -281,96 +344,196 @@ export class LineLayer {
       const object = new SegmentLines(new SegmentGeometry(), material);
       object.frustumCulled = false;
       object.renderOrder = 1;
+      object.userData.segments = 0; // the lines' segments at full detail
+      object.userData.empty = object.geometry; // drawn until fitDetail chooses a level for new lines
       this.group.add(object);
       return object;
     });
+    this.lines = null;
     this.lineCount = 0;
-    this.firstSegment = new Uint32Array(0); // line → its first segment in its type's geometry
-    this.segments = new Uint32Array(0); // line → its segment count
     this.types = new Uint8Array(0);
     this.kept = new Uint8Array(0); // line → shown (1) or not
-    this.drawEnd = new Uint32Array(0);
+    /** Levels of detail made (FULL_DETAIL, or a level number: see detailFor), the one drawn is `level`. */
+    this.levels = new Map();
+    this.level = null;
+    /** Whether setDetail chooses the level (fitDetail was called); else every point is drawn. */
+    this.autoDetail = false;
+    this.height = 0; // the view's CSS pixels, for fitDetail
   }
 
   /**
    * Every line of the mesh (Session.lines(true)); `kept` (Uint32Array of line
-   * indices, or undefined for all) says which are shown.
+   * indices, or undefined for all) says which are shown. The geometry of a
+   * level of detail is made when it is first drawn: every point's now unless
+   * fitDetail chose the levels before.
    */
   setLines(lines, origin, kept) {
     const count = lines.types.length;
+    this.disposeLevels();
+    this.lines = lines;
+    this.origin = [...origin];
     this.lineCount = count;
     this.types = lines.types.slice();
-    this.firstSegment = new Uint32Array(count);
-    this.segments = new Uint32Array(count);
-    const next = [0, 0];
-    for (let l = 0; l < count; l++) {
-      this.segments[l] = segmentCount(lines, l);
-      this.firstSegment[l] = next[lines.types[l]];
-      next[lines.types[l]] += this.segments[l];
-    }
-    // The triangles in order of decreasing strength: the lines a threshold keeps (filter.cpp: strength at
-    // least the threshold, but short weak ones) come first, and a draw range ends at the weakest one kept.
-    // The hidden segments past it cost nothing; drawn and hidden, they cost SwiftShader about as much as shown.
+    this.importance = null; // pointImportance, when a coarser level is first asked for
+    const full = [0, 0];
+    for (let l = 0; l < count; l++) if (this.types[l] === RIDGE || this.types[l] === VALLEY) full[this.types[l]] += segmentCount(lines, l);
+    this.objects.forEach((o, type) => (o.userData.segments = full[type]));
+    // The lines in order of decreasing strength: the lines a threshold keeps (filter.cpp: strength at least the
+    // threshold, but short weak ones) come first, and a draw range ends at the weakest one kept. The hidden
+    // segments past it cost nothing; drawn and hidden, they cost SwiftShader about as much as shown.
     const strengths = lines.strengths;
-    const byStrength = Array.from({ length: count }, (_, l) => l).sort((a, b) => (strengths ? strengths[b] - strengths[a] : 0) || a - b);
-    this.drawEnd = new Uint32Array(count); // line → the indices drawn up to and with it, in its type's order
-    const runs = [[], []];
-    const runLines = [[], []];
-    for (const l of byStrength) {
-      const type = lines.types[l];
-      if (type !== RIDGE && type !== VALLEY) continue;
-      runs[type].push([this.firstSegment[l], this.segments[l], lines.closed[l] === 1]);
-      runLines[type].push(l);
-    }
-    for (const type of [RIDGE, VALLEY]) {
-      const object = this.objects[type];
-      object.geometry.dispose();
-      const geometry = new SegmentGeometry(segmentPositions(lines, type, origin), runs[type]);
-      runLines[type].forEach((l, r) => (this.drawEnd[l] = geometry.runEnds[r]));
-      object.geometry = geometry;
-      object.userData.segments = geometry.segmentCount;
-    }
+    this.byStrength = Array.from({ length: count }, (_, l) => l).sort((a, b) => (strengths ? strengths[b] - strengths[a] : 0) || a - b);
+    this.sphere = linesSphere(lines, this.origin);
     this.kept = new Uint8Array(count);
     this.setKept(kept ?? Uint32Array.from({ length: count }, (_, l) => l));
+    if (!this.autoDetail) this.setDetail(FULL_DETAIL);
+    else for (const o of this.objects) o.geometry = o.userData.empty; // fitDetail's level, at the next draw
   }
 
   /**
    * Shows the lines in `kept` (indices into the lines of setLines) and hides
-   * the others: only the flags of lines that changed are written and uploaded.
+   * the others: only the flags of lines that changed are written and uploaded
+   * (those of the level drawn; another level's when it is drawn again).
    */
   setKept(kept) {
     const next = new Uint8Array(this.lineCount);
     for (const l of kept) next[l] = 1;
+    this.kept = next;
+    if (this.level) this.applyKept(this.level);
+    this.applyVisibility();
+  }
+
+  /** The flags of `level`'s segments as this.kept says, only those of lines that changed since it last took them. */
+  applyKept(level) {
+    const { firstSegment, segments, drawEnd, geometries } = level;
     const ranges = [
       [Infinity, -1],
       [Infinity, -1],
     ];
     for (let l = 0; l < this.lineCount; l++) {
-      if (next[l] === this.kept[l] || !this.segments[l]) continue;
+      if (this.kept[l] === level.kept[l] || !segments[l]) continue;
       const type = this.types[l];
-      const first = this.firstSegment[l];
-      this.objects[type].geometry.setShown(first, this.segments[l], next[l]);
+      const first = firstSegment[l];
+      geometries[type].setShown(first, segments[l], this.kept[l]);
       ranges[type][0] = Math.min(ranges[type][0], first);
-      ranges[type][1] = Math.max(ranges[type][1], first + this.segments[l]);
+      ranges[type][1] = Math.max(ranges[type][1], first + segments[l]);
     }
-    this.kept = next;
-    this.shownSegments = [0, 0];
+    level.kept = this.kept;
     const ends = [0, 0];
-    for (let l = 0; l < this.lineCount; l++) {
-      if (!next[l]) continue;
-      this.shownSegments[this.types[l]] += this.segments[l];
-      ends[this.types[l]] = Math.max(ends[this.types[l]], this.drawEnd[l]);
-    }
-    for (const type of [RIDGE, VALLEY]) this.objects[type].geometry.setDrawRange(0, ends[type]);
+    for (let l = 0; l < this.lineCount; l++) if (this.kept[l] && segments[l]) ends[this.types[l]] = Math.max(ends[this.types[l]], drawEnd[l]);
     for (const type of [RIDGE, VALLEY]) {
+      const geometry = geometries[type];
+      geometry.setDrawRange(0, ends[type]);
       const [start, end] = ranges[type];
       if (end < 0) continue;
-      const attribute = this.objects[type].geometry.getAttribute('instanceShown');
+      const attribute = geometry.getAttribute('instanceShown');
       attribute.clearUpdateRanges();
       attribute.addUpdateRange(start * SEGMENT_VERTICES, (end - start) * SEGMENT_VERTICES);
       attribute.needsUpdate = true;
     }
-    this.applyVisibility();
+  }
+
+  /**
+   * Draws the lines at the level of detail that looks like every point in
+   * `camera`'s view (setResolution's size): no drawn line more than
+   * DETAIL_PIXELS off its points. The viewers call it before each frame.
+   */
+  fitDetail(camera) {
+    this.autoDetail = true;
+    if (this.lines) this.setDetail(this.detailFor(camera));
+  }
+
+  /** fitDetail's level: FULL_DETAIL, or k for the points of importance above radius · 2^(k/2). */
+  detailFor(camera) {
+    const { center, radius } = this.sphere;
+    if (!(radius > 0) || !(this.height > 1)) return FULL_DETAIL;
+    this.group.updateWorldMatrix(true, false);
+    const matrix = this.group.matrixWorld;
+    const scale = matrix.getMaxScaleOnAxis();
+    const tolerance = (DETAIL_PIXELS * worldPerPixel(camera, worldCenter.copy(center).applyMatrix4(matrix), radius * scale, this.height)) / scale;
+    this.importance ??= pointImportance(this.lines);
+    this.fullBelow ??= importanceQuantile(this.importance, 0.1);
+    // Where all but a tenth of the points would be kept, all are: not a level of its own.
+    if (!(tolerance > this.fullBelow)) return FULL_DETAIL;
+    return Math.floor(2 * Math.log2(tolerance / radius));
+  }
+
+  /** Draws `key`'s level of detail (FULL_DETAIL or detailFor's number), made now if it is not kept. */
+  setDetail(key) {
+    if (!this.lines) return;
+    let level = this.levels.get(key);
+    if (!level) {
+      level = this.makeLevel(key);
+      this.levels.set(key, level);
+    }
+    // Most recently drawn last.
+    this.levels.delete(key);
+    this.levels.set(key, level);
+    if (level !== this.level) {
+      this.level = level;
+      this.objects.forEach((o, type) => (o.geometry = level.geometries[type]));
+    }
+    this.applyKept(level);
+    this.evictLevels();
+  }
+
+  makeLevel(key) {
+    const lines = this.lines;
+    let mask = null;
+    if (key !== FULL_DETAIL) {
+      this.importance ??= pointImportance(lines);
+      const tolerance = this.sphere.radius * 2 ** (key / 2);
+      mask = new Uint8Array(this.importance.length);
+      for (let p = 0; p < mask.length; p++) mask[p] = this.importance[p] > tolerance ? 1 : 0;
+    }
+    const count = this.lineCount;
+    const firstSegment = new Uint32Array(count); // line → its first segment in its type's geometry
+    const segments = new Uint32Array(count); // line → its segment count
+    const next = [0, 0];
+    for (let l = 0; l < count; l++) {
+      const type = this.types[l];
+      if (type !== RIDGE && type !== VALLEY) continue;
+      segments[l] = segmentCount(lines, l, mask);
+      firstSegment[l] = next[type];
+      next[type] += segments[l];
+    }
+    const drawEnd = new Uint32Array(count); // line → the indices drawn up to and with it, in its type's order
+    const runs = [[], []];
+    const runLines = [[], []];
+    for (const l of this.byStrength) {
+      const type = this.types[l];
+      if (type !== RIDGE && type !== VALLEY) continue;
+      runs[type].push([firstSegment[l], segments[l], lines.closed[l] === 1]);
+      runLines[type].push(l);
+    }
+    const geometries = [RIDGE, VALLEY].map((type) => {
+      const geometry = new SegmentGeometry(segmentPositions(lines, type, this.origin, mask), runs[type]);
+      runLines[type].forEach((l, r) => (drawEnd[l] = geometry.runEnds[r]));
+      return geometry;
+    });
+    // No flag set yet (SegmentGeometry's are 0): applyKept sets those of the lines kept.
+    return { key, firstSegment, segments, drawEnd, geometries, kept: new Uint8Array(count), segmentCount: next[0] + next[1] };
+  }
+
+  /** Frees the least recently drawn levels but the one drawn while those kept have more segments than allowed. */
+  evictLevels() {
+    const allowed = CACHED_LEVEL_SEGMENTS * (this.objects[0].userData.segments + this.objects[1].userData.segments);
+    let total = 0;
+    for (const level of this.levels.values()) total += level.segmentCount;
+    for (const [key, level] of this.levels) {
+      if (total <= allowed) break;
+      if (level === this.level) continue;
+      for (const geometry of level.geometries) geometry.dispose();
+      this.levels.delete(key);
+      total -= level.segmentCount;
+    }
+  }
+
+  disposeLevels() {
+    for (const level of this.levels.values()) for (const geometry of level.geometries) geometry.dispose();
+    this.levels.clear();
+    this.level = null;
+    this.fullBelow = undefined;
   }
 
   setShown(ridges, valleys) {
@@ -379,7 +542,11 @@ export class LineLayer {
   }
 
   applyVisibility() {
-    this.objects.forEach((o, type) => (o.visible = this.shown?.[type] !== false && (this.shownSegments?.[type] ?? 0) > 0));
+    // A line with a segment has one at every level of detail (its first and last points are in each).
+    const shown = [false, false];
+    for (let l = 0; l < this.lineCount; l++)
+      if (this.kept[l] && (this.types[l] === RIDGE || this.types[l] === VALLEY)) shown[this.types[l]] ||= segmentCount(this.lines, l) > 0;
+    this.objects.forEach((o, type) => (o.visible = this.shown?.[type] !== false && shown[type]));
   }
 
   setColors(ridge, valley) {
@@ -393,11 +560,13 @@ export class LineLayer {
 
   setResolution(width, height) {
     for (const o of this.objects) o.material.resolution.set(width, height);
+    this.height = height;
   }
 
   dispose() {
+    this.disposeLevels();
     for (const o of this.objects) {
-      o.geometry.dispose();
+      o.userData.empty.dispose();
       o.material.dispose();
     }
   }
