@@ -9,6 +9,7 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { after, test } from 'node:test';
 import { computeFeatureLines, FeatureLines } from 'crestline';
+import { PerspectiveCamera } from 'three';
 import { NATIVE_CLI, ROOT, haveNativeCli, parseLinesObj, sineHeightField } from './helpers.mjs';
 import { readmeExample } from './readme-example.mjs';
 import { loadCrestline } from '../../wasm/node.mjs';
@@ -127,6 +128,29 @@ test('FeatureLines: LineSegments2 objects, shown or hidden line by line on a thr
   await lines.update({ threshold: 0 });
   assert.equal(shown(), all);
   assert.equal(changes, 2);
+  // fitDetail: seen whole from far away, fewer segments, every one shown; close up, more.
+  const camera = new PerspectiveCamera(35, 1, 0.01, 1000);
+  camera.position.set(0, 0, 200);
+  camera.lookAt(0, 0, 0);
+  camera.updateMatrixWorld();
+  lines.fitDetail(camera, 600);
+  assert.notEqual(ridges.geometry, geometry);
+  const far = ridges.geometry.getAttribute('instanceShown');
+  assert.ok(far.count < geometry.getAttribute('instanceShown').count, `${far.count / 8} segments from afar`);
+  assert.equal(
+    far.array.reduce((a, b) => a + b, 0),
+    far.count,
+  );
+  camera.position.set(0, 0, 0.1);
+  camera.near = 1e-9;
+  camera.updateMatrixWorld();
+  lines.fitDetail(camera, 600);
+  const near = ridges.geometry.getAttribute('instanceShown');
+  assert.ok(near.count > far.count, `${near.count / 8} segments close up, ${far.count / 8} from afar`);
+  assert.equal(
+    near.array.reduce((a, b) => a + b, 0),
+    near.count,
+  );
   lines.dispose();
 });
 

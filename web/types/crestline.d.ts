@@ -1,5 +1,5 @@
 // Types of the package's entry (`import { computeFeatureLines, FeatureLines } from 'crestline'`).
-import type { BufferGeometry, Group, Mesh, Object3DEventMap } from 'three';
+import type { BufferGeometry, Camera, Group, Mesh, Object3DEventMap } from 'three';
 
 /** A triangle mesh: xyz per vertex, three vertex indices per triangle (absent: every three vertices). */
 export interface MeshArrays {
@@ -99,6 +99,13 @@ export class FeatureLines extends Group<FeatureLinesEventMap> {
   readonly valleyCount: number;
   /** New options, merged with the current ones; resolves when the lines are shown. */
   update(options: FeatureLinesOptions): Promise<FeatureLines>;
+  /**
+   * Draws the lines through the points that keep them within a fifth of a
+   * pixel of all their points in `camera`'s view, `height` pixels high
+   * (far fewer segments for a large mesh seen whole). Call it before each
+   * render; without it every point is drawn.
+   */
+  fitDetail(camera: Camera, height: number): void;
   cancel(): void;
   dispose(): void;
 }

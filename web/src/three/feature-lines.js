@@ -78,6 +78,16 @@ export class FeatureLines extends Group {
     return done;
   }
 
+  /**
+   * Draws the lines through the points that keep them within a fifth of a
+   * pixel of all their points in `camera`'s view, `height` pixels high:
+   * far fewer segments for a large mesh seen whole. Call it before each
+   * render; without it every point is drawn.
+   */
+  fitDetail(camera, height) {
+    this.layer.fitDetail(camera, height);
+  }
+
   /** Stops a running computation; the lines shown stay. */
   cancel() {
     this.session.cancel();

@@ -76,14 +76,14 @@ export function pointImportance({ points, offsets }) {
   return importance;
 }
 
-/** How much of a CSS pixel a drawn line may be off its points: a fifth (less than a line's antialiased rim shows). */
+/** How much of a pixel a drawn line may be off its points: a fifth (less than a line's antialiased rim shows). */
 export const DETAIL_PIXELS = 0.2;
 
 const eye = new Vector3();
 const forward = new Vector3();
 
 /**
- * The smallest length in world units that a CSS pixel of `camera`'s view
+ * The smallest length in world units that a pixel of `camera`'s view
  * `height` pixels high spans anywhere on a sphere (`center` in world
  * coordinates, `radius`): at the sphere's nearest depth, or the near plane's
  * if the sphere reaches it. A perspective view's pixel grows with depth.

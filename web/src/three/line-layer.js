@@ -435,22 +435,24 @@ export class LineLayer {
 
   /**
    * Draws the lines at the level of detail that looks like every point in
-   * `camera`'s view (setResolution's size): no drawn line more than
-   * DETAIL_PIXELS off its points. The viewers call it before each frame.
+   * `camera`'s view, `height` pixels high (setResolution's CSS pixels by
+   * default; the viewers pass the image's device pixels): no drawn line
+   * more than DETAIL_PIXELS of a pixel off its points. The viewers call it
+   * before each frame.
    */
-  fitDetail(camera) {
+  fitDetail(camera, height = this.height) {
     this.autoDetail = true;
-    if (this.lines) this.setDetail(this.detailFor(camera));
+    if (this.lines) this.setDetail(this.detailFor(camera, height));
   }
 
   /** fitDetail's level: FULL_DETAIL, or k for the points of importance above radius · 2^(k/2). */
-  detailFor(camera) {
+  detailFor(camera, height) {
     const { center, radius } = this.sphere;
-    if (!(radius > 0) || !(this.height > 1)) return FULL_DETAIL;
+    if (!(radius > 0) || !(height > 1)) return FULL_DETAIL;
     this.group.updateWorldMatrix(true, false);
     const matrix = this.group.matrixWorld;
     const scale = matrix.getMaxScaleOnAxis();
-    const tolerance = (DETAIL_PIXELS * worldPerPixel(camera, worldCenter.copy(center).applyMatrix4(matrix), radius * scale, this.height)) / scale;
+    const tolerance = (DETAIL_PIXELS * worldPerPixel(camera, worldCenter.copy(center).applyMatrix4(matrix), radius * scale, height)) / scale;
     this.importance ??= pointImportance(this.lines);
     this.fullBelow ??= importanceQuantile(this.importance, 0.1);
     // Where all but a tenth of the points would be kept, all are: not a level of its own.

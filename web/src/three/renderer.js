@@ -73,7 +73,7 @@ export function renderInto(view, context, width, height) {
   gl.setScissorTest(true);
   gl.setClearColor(0x000000, 0);
   view.surface?.cullHiddenFaces(view.camera);
-  for (const layer of [view.lines, view.creases]) layer?.fitDetail(view.camera);
+  for (const layer of [view.lines, view.creases]) layer?.fitDetail(view.camera, height); // the image's pixels (an export's)
   gl.render(view.scene, view.camera);
   gl.setScissorTest(false);
   context.clearRect(0, 0, width, height);

@@ -237,7 +237,7 @@ export class Viewer {
   /** One frame, now: through the surface cache when the surface is large. */
   draw() {
     this.surface.cullHiddenFaces(this.camera);
-    for (const layer of [this.lines, this.creases]) layer.fitDetail(this.camera);
+    for (const layer of [this.lines, this.creases]) layer.fitDetail(this.camera, this.renderer.domElement.height); // device pixels
     if (this.largeSurface()) this.drawThroughCache();
     else {
       this.surfaceCache.release();
