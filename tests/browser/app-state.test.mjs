@@ -25,10 +25,12 @@ const A = { name: 'hills.obj', text: objText(sineHeightField({ n: 48 })) }; // 4
 const B = { name: 'waves.obj', text: objText(sineHeightField({ n: 110 })) }; // 24,200 triangles
 const app = useApp({}, { acceptDownloads: true });
 
-/** Every view of the page: header, label, state, error, stats, the picture's mesh and lines. */
+/** Every view of the page: header, label, state, error, stats, the picture's mesh and lines (as the next frame draws them). */
 const views = () =>
-  app.page.evaluate(() => {
+  app.page.evaluate(async () => {
     const { viewer } = window.crestline;
+    // New lines get their geometry when drawn (the level of detail of the frame's view).
+    await new Promise((resolve) => viewer.afterFrame(resolve));
     const text = (id) => document.getElementById(id).textContent;
     return {
       state: document.body.dataset.state,

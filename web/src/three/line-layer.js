@@ -301,30 +301,32 @@ export function segmentLineMaterial(parameters) {
 /** The bounding sphere of the lines' points minus `origin`: the box's centre, the farthest point. */
 function linesSphere({ points, offsets }, origin) {
   const end = 3 * (offsets.length ? offsets[offsets.length - 1] : 0);
-  const min = new Vector3(Infinity, Infinity, Infinity);
-  const max = new Vector3(-Infinity, -Infinity, -Infinity);
-  const p = new Vector3();
-  for (let i = 0; i < end; i += 3) {
-    p.set(points[i] - origin[0], points[i + 1] - origin[1], points[i + 2] - origin[2]);
-    min.min(p);
-    max.max(p);
-  }
-  const center = end ? min.add(max).multiplyScalar(0.5) : new Vector3();
-  let radius2 = 0;
+  if (!end) return new Sphere(new Vector3(), 0);
+  const low = [Infinity, Infinity, Infinity];
+  const high = [-Infinity, -Infinity, -Infinity];
   for (let i = 0; i < end; i += 3)
-    radius2 = Math.max(radius2, p.set(points[i] - origin[0], points[i + 1] - origin[1], points[i + 2] - origin[2]).distanceToSquared(center));
-  return new Sphere(center, Math.sqrt(radius2));
+    for (let k = 0; k < 3; k++) {
+      const x = points[i + k];
+      if (x < low[k]) low[k] = x;
+      if (x > high[k]) high[k] = x;
+    }
+  const center = [0, 1, 2].map((k) => (low[k] + high[k]) / 2);
+  let radius2 = 0;
+  for (let i = 0; i < end; i += 3) {
+    const dx = points[i] - center[0],
+      dy = points[i + 1] - center[1],
+      dz = points[i + 2] - center[2];
+    radius2 = Math.max(radius2, dx * dx + dy * dy + dz * dz);
+  }
+  return new Sphere(new Vector3(center[0] - origin[0], center[1] - origin[1], center[2] - origin[2]), Math.sqrt(radius2));
 }
 
-/** The `q` quantile of the finite importances (the points a level may leave out), from at most 4096 of them; Infinity if none. */
+/** The `q` quantile of the finite importances (the points a level may leave out), from every k-th point (4096 or so); Infinity if none. */
 function importanceQuantile(importance, q) {
-  let finite = 0;
-  for (const x of importance) finite += x < Infinity ? 1 : 0;
-  if (!finite) return Infinity;
-  const stride = Math.ceil(finite / 4096);
+  const stride = Math.max(1, Math.floor(importance.length / 4096));
   const sample = [];
-  let i = 0;
-  for (const x of importance) if (x < Infinity && i++ % stride === 0) sample.push(x);
+  for (let p = 0; p < importance.length; p += stride) if (importance[p] < Infinity) sample.push(importance[p]);
+  if (!sample.length) return Infinity;
   sample.sort((a, b) => a - b);
   return sample[Math.min(sample.length - 1, Math.floor(q * sample.length))];
 }
