@@ -14,14 +14,19 @@ import { ROOT } from '../node/helpers.mjs';
 const MESHES = join(ROOT, '../shared/meshes');
 const app = useApp({ '/meshes/': MESHES });
 
-/** Installs the counters; the sample (6k triangles) goes through the cache as a large mesh would. */
-function instrument() {
-  return app.page.evaluate(() => {
+/**
+ * Installs the counters; the sample (6k triangles) goes through the cache as
+ * a large mesh would, its picture multisampled as on a GPU (`multisample`:
+ * true) or as on this software rasterizer (null: one sample a pixel).
+ */
+function instrument(multisample = true) {
+  return app.page.evaluate((multisample) => {
     const { viewer } = window.crestline;
+    viewer.surfaceCache.multisample = multisample;
     viewer.cacheMinTriangles = 0;
     window.surfaceDraws = 0;
     viewer.surface.mesh.onBeforeRender = () => window.surfaceDraws++;
-  });
+  }, multisample);
 }
 
 /** Surface draws and frames drawn during `action` and the two animation frames after it; `value`: what it returned. */
@@ -120,6 +125,33 @@ test('the cached surface and the lines draw the plain render’s pixels, at pixe
     viewer.renderer.setPixelRatio(1);
     viewer.resize();
   });
+});
+
+test('on this software rasterizer the picture has one sample a pixel: the plain render’s pixels but at the surface’s edges', async () => {
+  await instrument(null);
+  const software = await app.page.evaluate(() => {
+    const { viewer } = window.crestline;
+    const gl = viewer.renderer.getContext();
+    const info = gl.getExtension('WEBGL_debug_renderer_info');
+    return { name: gl.getParameter(info.UNMASKED_RENDERER_WEBGL), samples: viewer.surfaceCache.samples(viewer.renderer) };
+  });
+  assert.match(software.name, /SwiftShader/, 'headless Chromium rasterises with SwiftShader');
+  assert.equal(software.samples, 0);
+  const one = await comparePictures();
+  console.log(`# one sample a pixel: ${JSON.stringify(one)}`);
+  for (const [name, { filled, kept, keptDrewSurface }] of Object.entries({ surface: one.surface, lines: one.lines })) {
+    assert.equal(keptDrewSurface, 0, `${name}: the second frame draws the picture kept`);
+    assert.deepEqual(kept, filled, `${name}: the picture kept draws what the frame that kept it drew`);
+  }
+  // Without the lines: the pixels on the surface's silhouette and folds differ, the rest are the plain render's.
+  const { surface, lines, pixels } = one;
+  assert.ok(surface.filled.differ > 0, 'no pixel differs: the picture was multisampled');
+  assert.ok(surface.filled.differ < 0.02 * pixels, `${surface.filled.differ} of ${pixels} pixels differ`);
+  // With them, the lines keep their pixels within 10 %, as multisampled.
+  assert.ok(Math.abs(lines.filled.lines - lines.filled.plainLines) <= 0.1 * lines.filled.plainLines, JSON.stringify(lines.filled));
+  // Told to, the picture is multisampled again (a new target).
+  await instrument(true);
+  assert.equal((await comparePictures()).surface.filled.differ, 0);
 });
 
 test('a threshold change (shaded or over a colour map) and a line toggle draw the lines over the picture kept', async () => {

@@ -17,6 +17,14 @@
 // edge pixels differ (tests/browser/surface-cache.test.mjs bounds it).
 // WebGL 2 can neither copy samples into a multisampled framebuffer nor
 // write a depth per sample, which keeping the samples would need.
+//
+// Where WebGL rasterises on the CPU (SwiftShader, llvmpipe: no GPU, or one
+// the browser will not use), the picture is drawn with one sample a pixel:
+// multisampling doubles the cost of every surface frame there (the dragon's
+// 871k triangles: 1.5-1.8 s of CPU against 0.8, taken from the worker's
+// two threads while it computes the lines), and only the surface's
+// silhouette and folds lose their smoothing; the lines are still drawn
+// multisampled on the canvas.
 import {
   AlwaysDepth,
   BufferAttribute,
@@ -82,10 +90,28 @@ export function surfaceKey(renderer, scene, camera, overlays) {
 
 const sameKey = (a, b) => a?.length === b.length && a.every((x, i) => x === b[i]);
 
+/**
+ * Whether `gl` rasterises on the CPU, as its renderer's name says
+ * (Chromium names it only through WEBGL_debug_renderer_info; Firefox, which
+ * deprecates that extension, in RENDERER itself).
+ */
+export function softwareRasterizer(gl) {
+  let name = String(gl.getParameter(gl.RENDERER));
+  if (/^WebKit WebGL$/i.test(name)) {
+    const info = gl.getExtension('WEBGL_debug_renderer_info');
+    if (info) name = String(gl.getParameter(info.UNMASKED_RENDERER_WEBGL));
+  }
+  return /SwiftShader|llvmpipe|softpipe|Software|Basic Render/i.test(name);
+}
+
 export class SurfaceCache {
   constructor() {
     this.target = null; // made on the first draw
     this.key = null;
+    /** Whether the picture is multisampled (on an antialiased canvas): null, the default, unless on a software rasterizer. */
+    this.multisample = null;
+    this.software = null; // softwareRasterizer's answer, asked once
+    this.canvasSamples = null;
     /** Frames that drew the surface into the picture (the others started from the picture kept). */
     this.surfaceDraws = 0;
     this.material = copyMaterial();
@@ -99,6 +125,7 @@ export class SurfaceCache {
   /** The next frame draws the surface again (a lost context took the picture). */
   invalidate() {
     this.key = null;
+    this.software = this.canvasSamples = null; // a restored context may rasterise elsewhere
   }
 
   /**
@@ -111,8 +138,11 @@ export class SurfaceCache {
     scene.updateMatrixWorld();
     const key = surfaceKey(renderer, scene, camera, overlays);
     const [width, height] = [key[0], key[1]];
-    if (!this.target) this.target = this.createTarget(renderer, width, height);
-    else if (this.target.width !== width || this.target.height !== height) this.target.setSize(width, height);
+    const samples = this.samples(renderer);
+    if (this.target?.samples !== samples) {
+      this.release();
+      this.target = this.createTarget(renderer, width, height, samples);
+    } else if (this.target.width !== width || this.target.height !== height) this.target.setSize(width, height);
     const previous = renderer.getRenderTarget();
     const autoClear = renderer.autoClear;
     const shown = overlays.map((o) => o.visible);
@@ -138,10 +168,18 @@ export class SurfaceCache {
     }
   }
 
-  createTarget(renderer, width, height) {
+  /** The picture's samples a pixel: the canvas's, or 0 (one) on a software rasterizer unless `multisample` says. */
+  samples(renderer) {
     const gl = renderer.getContext();
+    if (!gl.getContextAttributes()?.antialias) return 0;
+    this.software ??= softwareRasterizer(gl);
+    this.canvasSamples ??= gl.getParameter(gl.SAMPLES) || 4;
+    return (this.multisample ?? !this.software) ? this.canvasSamples : 0;
+  }
+
+  createTarget(renderer, width, height, samples) {
     const target = new WebGLRenderTarget(width, height, {
-      samples: gl.getContextAttributes().antialias ? gl.getParameter(gl.SAMPLES) || 4 : 0,
+      samples,
       depthTexture: new DepthTexture(width, height),
       colorSpace: SRGBColorSpace,
       internalFormat: 'RGBA8', // the encoded values as they are, not an sRGB texture that decodes them
