@@ -12,6 +12,7 @@
 #include "crestline/error.h"
 #include "crestline/io/read_mesh.h"
 #include "crestline/io/write_lines.h"
+#include "crestline/lines/detail.h"
 #include "crestline/mesh/repair.h"
 #include "crestline/mesh/topology.h"
 
@@ -401,6 +402,9 @@ val flat_lines(const std::vector<Polyline>& lines, bool creases, double mean_edg
   out.set("closed", copy_out(closed.data(), closed.size()));
   out.set("strengths", copy_out(strengths.data(), strengths.size()));
   out.set("lengths", copy_out(lengths.data(), lengths.size()));
+  // The page draws lines at a level of detail (web/src/three/line-detail.js).
+  const std::vector<float> importance = point_importance(lines);
+  out.set("importance", copy_out(importance.data(), importance.size()));
   if (creases) {
     out.set("convex", copy_out(convex.data(), convex.size()));
     out.set("angles", copy_out(angles.data(), angles.size()));

@@ -7,6 +7,8 @@ import { test } from 'node:test';
 import { PerspectiveCamera } from 'three';
 import { DETAIL_PIXELS, pointImportance, worldPerPixel } from '../../web/src/three/line-detail.js';
 import { FULL_DETAIL, LineLayer, SEGMENT_VERTICES } from '../../web/src/three/line-layer.js';
+import { loadCrestline } from '../../wasm/node.mjs';
+import { sineHeightField } from './helpers.mjs';
 
 /** Seeded lines: wiggly open and closed curves of 1 to `most` points, some points repeated. */
 function randomLines(seed, count, most) {
@@ -191,4 +193,26 @@ test('LineLayer: a threshold change shows the same lines at every level; levels 
   }
   assert.equal(new Set(keys).size, 5, `levels ${keys}`);
   assert.equal(keys[4], FULL_DETAIL);
+});
+
+test('the WASM session’s lines carry the core’s importances: pointImportance’s numbers, bit for bit', async () => {
+  const module = await loadCrestline();
+  const session = new module.Session();
+  const mesh = sineHeightField({ n: 60 });
+  assert.ok(session.load(mesh.positions, mesh.indices, {}).ok);
+  session.setOptions({ threshold: 0 });
+  session.run(null);
+  const lines = session.lines(true);
+  assert.ok(lines.importance instanceof Float32Array);
+  assert.ok(lines.types.length > 5 && lines.importance.length === lines.offsets[lines.types.length] && lines.importance.length > 200);
+  assert.deepEqual([...lines.importance], [...pointImportance(lines)]);
+  assert.ok(
+    lines.importance.some((x) => x > 0 && x < Infinity),
+    'some points a level may leave out',
+  );
+  // The layer takes them as they are.
+  const layer = new LineLayer();
+  layer.setLines(lines, [0, 0, 0]);
+  assert.equal(layer.importance, lines.importance);
+  session.delete();
 });

@@ -17,6 +17,7 @@ target_sources(crestline_tests PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/lines/polylines_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/lines/fairing_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/lines/clearance_test.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/lines/detail_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/lines/creases_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/lines/creases_real_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/pipeline/pipeline_test.cpp

@@ -376,7 +376,8 @@ export class LineLayer {
     this.origin = [...origin];
     this.lineCount = count;
     this.types = lines.types.slice();
-    this.importance = null; // pointImportance, when a coarser level is first asked for
+    // The worker's (the core's point_importance, the same numbers), else pointImportance's when a coarser level is first asked for.
+    this.importance = lines.importance?.length === (lines.offsets[count] ?? 0) ? lines.importance : null;
     const full = [0, 0];
     for (let l = 0; l < count; l++) if (this.types[l] === RIDGE || this.types[l] === VALLEY) full[this.types[l]] += segmentCount(lines, l);
     this.objects.forEach((o, type) => (o.userData.segments = full[type]));

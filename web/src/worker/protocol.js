@@ -17,11 +17,14 @@
  *   (its back faces are hidden from outside)
  * @typedef {{positions: Float64Array, indices: Uint32Array, view: SurfaceView}} Surface
  * @typedef {{points: Float64Array, offsets: Uint32Array, types: Uint8Array,
- *            strengths: Float64Array, lengths: Float64Array, closed: Uint8Array}} Lines
+ *            strengths: Float64Array, lengths: Float64Array, closed: Uint8Array, importance?: Float32Array}} Lines
  *   every line's points (xyz) flat; line l is points offsets[l]..offsets[l+1]-1;
- *   types: 0 ridge, 1 valley
+ *   types: 0 ridge, 1 valley; importance: per point, the tolerance up to
+ *   which the line drawn through fewer points keeps it (the core's
+ *   point_importance, as web/src/three/line-detail.js computes it where
+ *   it is missing)
  * @typedef {{points: Float64Array, offsets: Uint32Array, strengths: Float64Array, lengths: Float64Array,
- *            closed: Uint8Array, convex: Uint8Array, angles: Float64Array}} Creases
+ *            closed: Uint8Array, importance?: Float32Array, convex: Uint8Array, angles: Float64Array}} Creases
  *   the sharp edges (Session.creases()), laid out as Lines without types;
  *   convex: 1 convex, 0 concave; angles: mean |dihedral| per line, degrees
  * @typedef {Record<string, number>} Stats  the CLI's --stats object
