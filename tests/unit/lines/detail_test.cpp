@@ -27,7 +27,8 @@ std::vector<Polyline> random_lines(uint32_t seed, int count, int most) {
       if (i > 0 && unit(random) < 0.05)
         lines[l].points.push_back(lines[l].points.back());
       else
-        lines[l].points.push_back({std::cos(t + a) + 0.02 * std::sin(b * t), 0.7 * std::sin(t), 0.03 * std::sin(a * t)});
+        lines[l].points.push_back(
+            {std::cos(t + a) + 0.02 * std::sin(b * t), 0.7 * std::sin(t), 0.03 * std::sin(a * t)});
     }
     lines[l].closed = unit(random) < 0.3;
   }
