@@ -467,10 +467,8 @@ export class LineLayer {
   setDetail(key) {
     if (!this.lines) return;
     let level = this.levels.get(key);
-    if (!level) {
-      level = this.makeLevel(key);
-      this.levels.set(key, level);
-    }
+    const made = !level;
+    if (made) level = this.makeLevel(key);
     // Most recently drawn last.
     this.levels.delete(key);
     this.levels.set(key, level);
@@ -478,8 +476,9 @@ export class LineLayer {
       this.level = level;
       this.objects.forEach((o, type) => (o.geometry = level.geometries[type]));
     }
-    this.applyKept(level);
-    this.evictLevels();
+    // A frame with the same lines kept writes nothing.
+    if (level.kept !== this.kept) this.applyKept(level);
+    if (made) this.evictLevels();
   }
 
   makeLevel(key) {
