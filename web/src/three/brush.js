@@ -31,6 +31,9 @@ export class WeightBrush {
     this.radius = 0.05; // fraction of the bounding-sphere radius
     this.value = 0;
     this.weights = null;
+    /** The weights current() last scanned (null: scan again) and whether any of them was not 1. */
+    this.scanned = null;
+    this.painted = false;
     this.painting = false;
     const canvas = viewer.renderer.domElement;
     canvas.addEventListener('pointerdown', (e) => this.down(e));
@@ -41,7 +44,10 @@ export class WeightBrush {
 
   /** Weights for a surface of `count` vertices, reset to 1 when the mesh changed. */
   reset(count) {
-    if (this.weights?.length !== count) this.weights = new Float64Array(count).fill(1);
+    if (this.weights?.length !== count) {
+      this.weights = new Float64Array(count).fill(1);
+      [this.scanned, this.painted] = [this.weights, false]; // all 1: nothing for current() to scan
+    }
     this.index = null; // built again for the new surface on first use
     this.building = null;
   }
@@ -87,11 +93,23 @@ export class WeightBrush {
 
   clear() {
     this.weights?.fill(1);
+    this.scanned = null;
   }
 
-  /** Null when every weight is 1 (homogeneous smoothing). */
+  /**
+   * Null when every weight is 1 (homogeneous smoothing). Every option change
+   * asks (a threshold change too), so the answer is kept until a stroke or
+   * clear() changes the weights or they are replaced: scanning a million
+   * vertices' weights took 3-4 ms of the page's main thread.
+   */
   current() {
-    return this.weights && this.weights.some((w) => w !== 1) ? this.weights : null;
+    const weights = this.weights;
+    if (!weights) return null;
+    if (this.scanned !== weights) {
+      this.painted = weights.some((w) => w !== 1);
+      this.scanned = weights;
+    }
+    return this.painted ? weights : null;
   }
 
   setEnabled(on) {
@@ -143,6 +161,7 @@ export class WeightBrush {
     });
     if (!count) return 0;
     this.changed = true;
+    this.scanned = null;
     const surface = this.viewer.surface;
     if (!surface.mesh.geometry.getAttribute('color'))
       surface.setColors(
