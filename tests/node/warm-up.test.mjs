@@ -8,7 +8,15 @@ import { test } from 'node:test';
 import { setFlagsFromString } from 'node:v8';
 import { loadCrestline } from '../../wasm/node.mjs';
 import { createHandler } from '../../web/src/worker/handler.js';
-import { WARM_UP_RINGS, WARM_UP_SEGMENTS, torusGlb, warmUpEngine } from '../../web/src/worker/warm-up.js';
+import {
+  WARM_UP_READ_RINGS,
+  WARM_UP_READ_SEGMENTS,
+  WARM_UP_RINGS,
+  WARM_UP_ROUNDS,
+  WARM_UP_SEGMENTS,
+  torusGlb,
+  warmUpEngine,
+} from '../../web/src/worker/warm-up.js';
 import { sineHeightField } from './helpers.mjs';
 
 // This file ends while V8 still compiles optimised code in the background, and
@@ -44,6 +52,27 @@ test('the warm-up GLB: a closed torus of rings × segments quads, read as such b
     session.delete();
   }
   assert.equal(warmUpEngine(module), 2 * WARM_UP_RINGS * WARM_UP_SEGMENTS, 'warmUpEngine reads the full-size torus');
+});
+
+test("the creased torus (the warm-up's): closed, one piece, and its four grooves are found as creases", async () => {
+  const module = await modulePromise;
+  const session = new module.Session();
+  try {
+    const loaded = session.loadFile('torus.glb', torusGlb(WARM_UP_RINGS, WARM_UP_SEGMENTS, { creased: true }), [], {});
+    assert.equal(loaded.error, undefined);
+    assert.equal(loaded.triangles, 2 * WARM_UP_RINGS * WARM_UP_SEGMENTS);
+    const { boundaryEdges, components, weldedVertices, degenerateTriangles } = loaded.report;
+    assert.deepEqual(
+      { boundaryEdges, components, weldedVertices, degenerateTriangles },
+      { boundaryEdges: 0, components: 1, weldedVertices: 0, degenerateTriangles: 0 },
+    );
+    assert.equal(session.surface().view.closed, true);
+    const ran = session.run(() => true);
+    assert.equal(ran.error, undefined);
+    assert.equal(ran.stats.creases, 4, 'one closed crease along each groove');
+  } finally {
+    session.delete();
+  }
 });
 
 test('warmUpEngine reads the torus and runs the whole pipeline on it, in a session of its own that it deletes', async () => {
@@ -85,6 +114,13 @@ test('warmUpEngine reads the torus and runs the whole pipeline on it, in a sessi
     'creases',
   ]);
   assert.equal(stats.triangles, 2 * WARM_UP_RINGS * WARM_UP_SEGMENTS);
+  // The last round reads the larger torus and runs nothing.
+  calls.length = 0;
+  assert.equal(warmUpEngine(spy, WARM_UP_ROUNDS - 1), 2 * WARM_UP_READ_RINGS * WARM_UP_READ_SEGMENTS);
+  assert.deepEqual(
+    calls.map((c) => c.method),
+    ['loadFile', 'delete'],
+  );
 });
 
 /**
@@ -100,7 +136,7 @@ function harness({ warmUp = true } = {}) {
   const handler = createHandler({
     startModule: () => modulePromise,
     post: (m) => messages.push(m),
-    warmUp: (module) => warmUps.push({ triangles: warmUpEngine(module), after: messages.length }),
+    warmUp: (module, round) => warmUps.push({ triangles: warmUpEngine(module, round), after: messages.length, round }),
     schedule: (task) => tasks.push(task),
   });
   const send = (message) => (queue = handler.handle(message));
@@ -115,7 +151,7 @@ function harness({ warmUp = true } = {}) {
 
 const withoutTimes = ({ stats, ...rest }) => ({ ...rest, stats: { ...stats, seconds: undefined }, milliseconds: undefined });
 
-test('the warm-up runs once, after the first result, when no message waits, and posts nothing', async () => {
+test('the warm-up runs its rounds after the first result, each a task of its own when no message waits, and posts nothing', async () => {
   const h = harness();
   await h.settled();
   assert.equal(h.tasks.length, 0, 'nothing before a result (init, ready)');
@@ -125,12 +161,25 @@ test('the warm-up runs once, after the first result, when no message waits, and 
   assert.equal(h.messages.at(-1).type, 'result');
   assert.equal(h.tasks.length, 1, 'scheduled once the result is out and the queue is empty');
   const posted = h.messages.length;
-  await h.runScheduled();
-  assert.deepEqual(h.warmUps, [{ triangles: 2 * WARM_UP_RINGS * WARM_UP_SEGMENTS, after: posted }]);
+  for (let round = 1; round <= WARM_UP_ROUNDS; round++) {
+    assert.equal(h.tasks.length, 1, `round ${round}: one task`);
+    await h.runScheduled();
+    assert.equal(h.warmUps.length, round, 'one round a task');
+  }
+  const last = WARM_UP_ROUNDS - 1;
+  assert.deepEqual(
+    h.warmUps,
+    Array.from({ length: WARM_UP_ROUNDS }, (_, round) => ({
+      triangles: 2 * (round === last ? WARM_UP_READ_RINGS * WARM_UP_READ_SEGMENTS : WARM_UP_RINGS * WARM_UP_SEGMENTS),
+      after: posted,
+      round,
+    })),
+  );
+  assert.equal(h.tasks.length, 0, 'no round after the last');
   assert.equal(h.messages.length, posted, 'the warm-up posts nothing');
   await h.send({ type: 'options', id: 1, job: 2, options: { threshold: 0 } });
   await h.runScheduled();
-  assert.equal(h.warmUps.length, 1, 'once per worker');
+  assert.equal(h.warmUps.length, WARM_UP_ROUNDS, 'once per worker');
 });
 
 test('a message that arrives before the warm-up goes first; the warm-up waits for the queue to be empty again', async () => {
@@ -149,6 +198,47 @@ test('a message that arrives before the warm-up goes first; the warm-up waits fo
   await h.runScheduled();
   assert.equal(h.warmUps.length, 1);
   assert.equal(h.warmUps[0].after, posted, 'after the job that came first');
+  // Between rounds too: a job sent while the next round's task waits goes first.
+  assert.equal(h.tasks.length, 1, 'the next round is scheduled');
+  const between = h.send({ type: 'options', id: 1, job: 3, options: { smoothingSteps: 2 } });
+  h.tasks.splice(0)[0]();
+  assert.equal(h.warmUps.length, 1, 'no round while a message waits');
+  await between;
+  assert.equal(h.messages.at(-1).type, 'result');
+  await h.runScheduled();
+  assert.deepEqual(
+    h.warmUps.map((w) => w.after),
+    [posted, h.messages.length],
+    'the second round after the job that came between',
+  );
+});
+
+test('a round that fails ends the warm-up', async () => {
+  const tasks = [];
+  let rounds = 0;
+  const handler = createHandler({
+    startModule: () => modulePromise,
+    post: () => {},
+    warmUp: () => {
+      rounds += 1;
+      throw new Error('no memory left');
+    },
+    schedule: (task) => tasks.push(task),
+  });
+  await handler.handle({ type: 'init', warmUp: true });
+  const warned = [];
+  const warn = console.warn;
+  console.warn = (text) => warned.push(text);
+  try {
+    await handler.handle({ type: 'load', id: 1, job: 1, ...sineHeightField({ n: 12 }), options: {} });
+    tasks.splice(0)[0]();
+    await handler.handle({ type: 'describe', request: 1 }); // after the round in the queue
+  } finally {
+    console.warn = warn;
+  }
+  assert.equal(rounds, 1);
+  assert.equal(tasks.length, 0, 'no further round');
+  assert.match(warned.join(' '), /warm-up failed \(no memory left\)/);
 });
 
 test('no warm-up without a result (a cancelled first run) or without init asking for it', async () => {

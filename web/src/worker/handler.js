@@ -8,7 +8,7 @@
 import { Engine, EngineError } from './engine.js';
 import { fetchFiles } from './fetch-files.js';
 import { SurfaceIndex } from './surface-index.js';
-import { warmUpEngine } from './warm-up.js';
+import { WARM_UP_ROUNDS, warmUpEngine } from './warm-up.js';
 
 /**
  * @typedef {import('./protocol.js').Request} Request
@@ -19,15 +19,24 @@ import { warmUpEngine } from './warm-up.js';
 /**
  * @param {{startModule: () => Promise<CrestlineModule>, post: (message: Reply) => void,
  *          startDecoders?: () => Promise<import('./engine.js').GltfDecoders>,
- *          warmUp?: (module: CrestlineModule) => void, schedule?: (task: () => void) => void}} io
+ *          warmUp?: (module: CrestlineModule, round: number) => void, warmUpRounds?: number,
+ *          schedule?: (task: () => void) => void}} io
  *   post sends a message (transferring its typed arrays); startDecoders: the
  *   npm Draco and meshopt decoders, started when a compressed glTF first
  *   arrives (without them such a file gets the readers' sentence); warmUp:
- *   what init's `warmUp` runs once, when the worker is first idle after a
- *   result (warm-up.js: a small GLB read and its lines); schedule: runs a task
+ *   one round of what init's `warmUp` asks for (warm-up.js: a small GLB
+ *   read and its lines; `round`: 0, 1, …), `warmUpRounds` of them,
+ *   each when the worker is idle after a result; schedule: runs a task
  *   after the messages already waiting (a macrotask: setTimeout)
  */
-export function createHandler({ startModule, post, startDecoders, warmUp = warmUpEngine, schedule = (task) => setTimeout(task, 0) }) {
+export function createHandler({
+  startModule,
+  post,
+  startDecoders,
+  warmUp = warmUpEngine,
+  warmUpRounds = WARM_UP_ROUNDS,
+  schedule = (task) => setTimeout(task, 0),
+}) {
   /** @type {Promise<CrestlineModule> | null} */
   let starting = null;
   /** @type {Map<number, Engine>} */
@@ -46,8 +55,9 @@ export function createHandler({ startModule, post, startDecoders, warmUp = warmU
   const fetchedFiles = new Map();
   /** Messages received and not yet handled (init aside): the warm-up runs only when there are none. */
   let waiting = 0;
-  /** The warm-up: 'off' (init did not ask), 'wanted', 'scheduled' or 'done'. */
+  /** The warm-up: 'off' (init did not ask), 'wanted' (a round), 'scheduled', 'running' or 'done'. */
   let warmUpState = 'off';
+  let roundsDone = 0;
   let resultPosted = false;
 
   /**
@@ -103,10 +113,11 @@ export function createHandler({ startModule, post, startDecoders, warmUp = warmU
 
   /**
    * Once a result is out (the page's sample: its lines are never delayed)
-   * and nothing waits, the warm-up runs, once. A message that arrives before
-   * its task goes first; the warm-up then waits for the queue to be empty
-   * again. It posts nothing and touches no session: a message that comes
-   * during it waits at most for its one short read and run (≈ 0.1-0.2 s).
+   * and nothing waits, the warm-up's rounds run, each a task of its own. A
+   * message that arrives before a round's task goes first; the round then
+   * waits for the queue to be empty again. The warm-up posts nothing and
+   * touches no session: a message that comes during it waits at most for
+   * one round's short read and run (≈ 0.1-0.2 s). A round that fails ends it.
    */
   function warmUpWhenIdle() {
     if (warmUpState !== 'wanted' || !resultPosted || waiting > 0) return;
@@ -116,11 +127,21 @@ export function createHandler({ startModule, post, startDecoders, warmUp = warmU
         warmUpState = 'wanted'; // after the messages that came first
         return;
       }
-      warmUpState = 'done';
+      warmUpState = 'running';
+      const round = roundsDone++;
       queue = queue
         .then(theModule)
-        .then(warmUp)
-        .catch((error) => console.warn(`Crestline: the worker's warm-up failed (${error?.message ?? error}).`));
+        .then((module) => warmUp(module, round))
+        .then(
+          () => {
+            warmUpState = roundsDone < warmUpRounds ? 'wanted' : 'done';
+            warmUpWhenIdle();
+          },
+          (error) => {
+            warmUpState = 'done';
+            console.warn(`Crestline: the worker's warm-up failed (${error?.message ?? error}).`);
+          },
+        );
     });
   }
 

@@ -21,7 +21,7 @@ import pthreadWorkerUrl from '../../../wasm/dist/crestline-mt.worker.js?url';
 import { canShareMemory, createModule, startThreadedModule } from './engine.js';
 import { createHandler } from './handler.js';
 import { transferables } from './protocol.js';
-import { warmUpEngine } from './warm-up.js';
+import { WARM_UP_ROUNDS, warmUpEngine } from './warm-up.js';
 
 const absolute = (/** @type {string} */ url) => new URL(url, import.meta.url).href;
 
@@ -42,7 +42,10 @@ const handler = createHandler({
     const [draco] = await Promise.all([createDracoDecoder({ locateFile: () => dracoWasmUrl }), MeshoptDecoder.ready]);
     return { draco, meshopt: MeshoptDecoder };
   },
-  // What the warm-up read and when it ended (ms since the epoch), for the browser tests and bench/browser.mjs.
-  warmUp: (module) => Object.assign(self, { crestlineWarmedUp: { triangles: warmUpEngine(module), at: performance.timeOrigin + performance.now() } }),
+  // The warm-up's rounds and when the last one ended (ms since the epoch), for the browser tests and bench/browser.mjs.
+  warmUp: (module, round) => {
+    warmUpEngine(module, round);
+    if (round === WARM_UP_ROUNDS - 1) Object.assign(self, { crestlineWarmedUp: { rounds: round + 1, at: performance.timeOrigin + performance.now() } });
+  },
 });
 self.onmessage = ({ data }) => handler.handle(data);
