@@ -19,24 +19,16 @@ import { WARM_UP_ROUNDS, warmUpEngine } from './warm-up.js';
 /**
  * @param {{startModule: () => Promise<CrestlineModule>, post: (message: Reply) => void,
  *          startDecoders?: () => Promise<import('./engine.js').GltfDecoders>,
- *          warmUp?: (module: CrestlineModule, round: number) => void, warmUpRounds?: number,
- *          schedule?: (task: () => void) => void}} io
+ *          warmUp?: (module: CrestlineModule, round: number) => void, schedule?: (task: () => void) => void}} io
  *   post sends a message (transferring its typed arrays); startDecoders: the
  *   npm Draco and meshopt decoders, started when a compressed glTF first
  *   arrives (without them such a file gets the readers' sentence); warmUp:
  *   one round of what init's `warmUp` asks for (warm-up.js: a small GLB
- *   read and its lines; `round`: 0, 1, …), `warmUpRounds` of them,
+ *   read and its lines; `round`: 0, 1, …), WARM_UP_ROUNDS of them,
  *   each when the worker is idle after a result; schedule: runs a task
  *   after the messages already waiting (a macrotask: setTimeout)
  */
-export function createHandler({
-  startModule,
-  post,
-  startDecoders,
-  warmUp = warmUpEngine,
-  warmUpRounds = WARM_UP_ROUNDS,
-  schedule = (task) => setTimeout(task, 0),
-}) {
+export function createHandler({ startModule, post, startDecoders, warmUp = warmUpEngine, schedule = (task) => setTimeout(task, 0) }) {
   /** @type {Promise<CrestlineModule> | null} */
   let starting = null;
   /** @type {Map<number, Engine>} */
@@ -134,7 +126,7 @@ export function createHandler({
         .then((module) => warmUp(module, round))
         .then(
           () => {
-            warmUpState = roundsDone < warmUpRounds ? 'wanted' : 'done';
+            warmUpState = roundsDone < WARM_UP_ROUNDS ? 'wanted' : 'done';
             warmUpWhenIdle();
           },
           (error) => {

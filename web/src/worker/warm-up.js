@@ -28,7 +28,7 @@ export function torusGlb(rings, segments, { creased = false } = {}) {
   const positions = new Float32Array(3 * vertexCount);
   for (let i = 0; i < rings; i++) {
     const even = (2 * Math.PI * i) / rings;
-    // Creased: the rings crowd together on one side (triangles there ≈ 5 times smaller) …
+    // Creased: the rings crowd together on one side (4.7 times closer there than opposite) …
     const u = creased ? even + 0.65 * Math.sin(even) : even;
     for (let j = 0; j < segments; j++) {
       const v = (2 * Math.PI * j) / segments;
