@@ -88,6 +88,9 @@ async function dropAndCancelAt(hook, file = B) {
         state: document.body.dataset.state,
         header: document.getElementById('file').firstChild.textContent,
         label: document.getElementById('view-label').textContent,
+        canvas: (({ opacity, filter, transitionDuration }) => ({ opacity, filter, transitionDuration }))(
+          getComputedStyle(document.querySelector('#view canvas')),
+        ),
         at: performance.now(),
       };
       document.getElementById('cancel').click();
@@ -107,6 +110,8 @@ test("Cancel while B is read: A's page comes back whole", async () => {
   assert.equal(before.state, 'loading');
   assert.match(before.header, /^waves\.obj: reading…/);
   assert.equal(before.label, 'Previous mesh: hills.obj (shown until waves.obj is read)');
+  // Dimmed by opacity alone, at once: no filter pass or fade for the compositor to redraw in every frame.
+  assert.deepEqual(before.canvas, { opacity: '0.45', filter: 'none', transitionDuration: '0s' });
   const after = await views();
   assert.deepEqual({ ...after }, { ...shownA }, "header, state, stats, picture: A's");
   assert.match(await app.page.textContent('#notes'), /^Cancelled waves\.obj: back to hills\.obj\.$/);
