@@ -4,7 +4,7 @@
 import assert from 'node:assert/strict';
 import { test } from 'node:test';
 import { LineSegmentsGeometry } from 'three/examples/jsm/lines/LineSegmentsGeometry.js';
-import { JOINED_INDICES, SEGMENT_INDEX, SEGMENT_VERTICES, SegmentGeometry, segmentPositions } from '../../web/src/three/line-layer.js';
+import { JOINED_INDICES, SEGMENT_INDEX, SEGMENT_VERTICES, SegmentGeometry, segmentPositions, segmentTextureWidth } from '../../web/src/three/line-layer.js';
 
 // An open ridge of 3 points, a closed valley of 3 points, an open ridge of 2.
 const LINES = {
@@ -20,7 +20,7 @@ test('segmentPositions: each segment’s two end points minus the origin, a clos
   assert.deepEqual([...segmentPositions(LINES, 1, origin)], [4, 5, 5, 5, 5, 5, 5, 5, 5, 4, 6, 5, 4, 6, 5, 4, 5, 5]);
 });
 
-test('SegmentGeometry: the end points on every vertex, a start cap only where an open line starts', () => {
+test('SegmentGeometry: the end points in its texture (two texels a segment), a start cap only where an open line starts', () => {
   const positions = segmentPositions(LINES, 0, [0, 0, 0]);
   // Runs: the 2-segment line (its first segment degenerate: the cap goes with the next), then the 1-segment one.
   positions.set([0, 0, 0, 0, 0, 0], 0);
@@ -28,12 +28,14 @@ test('SegmentGeometry: the end points on every vertex, a start cap only where an
     [0, 2, false],
     [2, 1, false],
   ]);
-  // Each segment's 8 vertices carry its two end points.
-  const ends = geometry.getAttribute('instanceStart').data.array;
-  assert.equal(ends.length, 3 * SEGMENT_VERTICES * 6);
-  for (let s = 0; s < 3; s++)
-    for (let k = 0; k < SEGMENT_VERTICES; k++)
-      assert.deepEqual([...ends.subarray(6 * (8 * s + k), 6 * (8 * s + k) + 6)], [...positions.subarray(6 * s, 6 * s + 6)]);
+  // Segment s's end points are texels 2s and 2s + 1 (RGB floats, whole rows); its 8 vertices carry only the shown flag.
+  const { data, width, height } = geometry.ends.image;
+  assert.equal(width, segmentTextureWidth(3));
+  assert.equal(height, 1);
+  assert.equal(data.length, 3 * width * height);
+  assert.deepEqual([...data.subarray(0, 18)], [...positions]);
+  assert.ok(data.subarray(18).every((x) => x === 0));
+  assert.deepEqual(Object.keys(geometry.attributes), ['instanceShown']);
   assert.equal(geometry.getAttribute('instanceShown').count, 3 * SEGMENT_VERTICES);
   // SegmentGeometry stores SEGMENT_INDEX's quads itself: they must be the table's, offset by the segment's first vertex.
   const triangles = (s, withStart) => SEGMENT_INDEX.slice(0, withStart ? SEGMENT_INDEX.length : JOINED_INDICES).map((k) => s * SEGMENT_VERTICES + k);
@@ -41,6 +43,18 @@ test('SegmentGeometry: the end points on every vertex, a start cap only where an
   assert.deepEqual([...geometry.runEnds], [36, 54]);
   const closed = new SegmentGeometry(segmentPositions(LINES, 1, [0, 0, 0]), [[0, 3, true]]);
   assert.deepEqual([...closed.index.array], [...triangles(0, false), ...triangles(1, false), ...triangles(2, false)]);
+});
+
+test('segmentTextureWidth: even, at least 2,048 texels, rows for every segment within the width', () => {
+  for (const count of [0, 1, 1024, 1025, 2_097_152, 2_097_153, 30_000_000]) {
+    const width = segmentTextureWidth(count);
+    const rows = Math.ceil((2 * count) / width);
+    assert.equal(width % 2, 0, `${count}`);
+    assert.ok(width >= 2048 && rows <= width, `${count}: ${width} × ${rows}`);
+  }
+  // Up to 2,097,152 segments (1,024 a row) the texture is 2,048 wide, WebGL 2's least maximum, and as many rows high.
+  assert.equal(segmentTextureWidth(2_097_152), 2048);
+  assert.equal(segmentTextureWidth(2_097_153), 2050);
 });
 
 test('SegmentGeometry: the bounding sphere is LineSegmentsGeometry’s, to the bit', () => {

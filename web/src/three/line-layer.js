@@ -1,20 +1,24 @@
-// Ridges and valleys as wide lines (LineSegments2), one object per type;
-// a second layer draws the creases (convex and concave as its two types).
+// Ridges and valleys as wide lines (LineSegments2's look), one object per
+// type; a second layer draws the creases (convex and concave as its two types).
 // The geometry holds every faired line; a threshold change only shows or
 // hides line ranges (a per-segment flag the vertex shader reads), so it
 // uploads one flag per changed segment vertex and rebuilds nothing.
 //
 // The segments are not instanced: each one is 8 vertices of its own (the
-// LineSegmentsGeometry template's, told apart by gl_VertexID % 8) carrying
-// its two end points, drawn with LineMaterial's own shaders; one instanced
-// draw of 141k segments costs WebGL on the CPU (SwiftShader) about three
-// times as much as this one. A segment draws its start cap (a half disc)
-// only where its line starts: elsewhere the previous segment's body and end
-// cap cover that half disc already, so the line covers the same pixels as
-// LineSegments2's, with two of each segment's six triangles and eight
-// vertices fewer to draw. Only where the dropped cap's depth (its start
-// point's) decided a depth test against another object may a pixel differ
-// (tests/browser/line-layer.test.mjs bounds it).
+// LineSegmentsGeometry template's, told apart by gl_VertexID % 8), drawn
+// with LineMaterial's own shaders; one instanced draw of 141k segments costs
+// WebGL on the CPU (SwiftShader) about three times as much as this one. The
+// vertices carry no end points: segment s's two are texels 2s and 2s + 1 of
+// a float texture (the segments' positions as they are, 24 bytes a segment),
+// which the vertex shader reads by gl_VertexID / 8. Copying them onto each
+// of the 8 vertices instead (192 bytes a segment) made the dragon's 141k
+// segments 27 MB to build and upload on the main thread. A segment draws its
+// start cap (a half disc) only where its line starts: elsewhere the previous
+// segment's body and end cap cover that half disc already, so the line
+// covers the same pixels as LineSegments2's, with two of each segment's six
+// triangles and eight vertices fewer to draw. Only where the dropped cap's
+// depth (its start point's) decided a depth test against another object may
+// a pixel differ (tests/browser/line-layer.test.mjs bounds it).
 //
 // A layer draws its lines at a level of detail (line-detail.js): every
 // point unless the viewer calls fitDetail(camera) before its frames, which
@@ -27,10 +31,13 @@ import {
   BufferAttribute,
   BufferGeometry,
   Color,
+  DataTexture,
+  FloatType,
   Group,
   InstancedInterleavedBuffer,
-  InterleavedBuffer,
   InterleavedBufferAttribute,
+  NearestFilter,
+  RGBFormat,
   Sphere,
   Vector3,
 } from 'three';
@@ -139,16 +146,27 @@ const degenerate = (positions, s) =>
   positions[6 * s] === positions[6 * s + 3] && positions[6 * s + 1] === positions[6 * s + 4] && positions[6 * s + 2] === positions[6 * s + 5];
 
 /**
+ * Texels a row of the texture of `count` segments (two texels each): 2,048
+ * (1,024 segments), WebGL 2's least maximum size, up to 2,048 rows; beyond,
+ * as many texels a row as rows, rounded up to even.
+ */
+export function segmentTextureWidth(count) {
+  const side = Math.ceil(Math.sqrt(2 * count));
+  return Math.max(2048, side + (side % 2));
+}
+
+/**
  * The segments `positions` (end point pairs, as segmentPositions makes them)
- * as a plain indexed geometry: 8 vertices per segment, each with both end
- * points (instanceStart, instanceEnd: one interleaved buffer) and the
- * segment's shown flag (instanceShown, 0 until setKept). `runs` ([first
- * segment, count, closed] triples covering every segment once, by default
- * each segment alone) are the lines, each segment's end the next one's start
- * (and the last one's the first one's when closed), in the order of the
- * triangles in the index: a draw range over its start up to runEnds[r]
- * draws runs 0…r only. An open run's start cap goes with its first segment
- * of any length.
+ * as a plain indexed geometry: 8 vertices per segment, each with the
+ * segment's shown flag (instanceShown, 0 until setKept) and nothing else;
+ * the end points are `ends`, an RGB float texture (segment s: texels 2s and
+ * 2s + 1, rows of segmentTextureWidth texels) that segmentLineMaterial's
+ * shader reads. `runs` ([first segment, count, closed] triples covering
+ * every segment once, by default each segment alone) are the lines, each
+ * segment's end the next one's start (and the last one's the first one's
+ * when closed), in the order of the triangles in the index: a draw range
+ * over its start up to runEnds[r] draws runs 0…r only. An open run's start
+ * cap goes with its first segment of any length.
  */
 export class SegmentGeometry extends BufferGeometry {
   constructor(positions = new Float32Array(0), runs = Array.from({ length: positions.length / 6 }, (_, s) => [s, 1, false])) {
@@ -156,19 +174,16 @@ export class SegmentGeometry extends BufferGeometry {
     this.type = 'SegmentGeometry';
     const count = positions.length / 6;
     this.segmentCount = count;
-    const ends = new Float32Array(count * SEGMENT_VERTICES * 6);
-    for (let s = 0, o = 0; s < count; s++) {
-      // The segment's end points (6 floats) on each of its vertices.
-      const p = 6 * s;
-      for (let k = 0; k < SEGMENT_VERTICES; k++, o += 6) {
-        ends[o] = positions[p];
-        ends[o + 1] = positions[p + 1];
-        ends[o + 2] = positions[p + 2];
-        ends[o + 3] = positions[p + 3];
-        ends[o + 4] = positions[p + 4];
-        ends[o + 5] = positions[p + 5];
-      }
-    }
+    this.positions = positions;
+    // The texture's rows are whole; the floats past the segments' are 0 and never read.
+    const width = segmentTextureWidth(count);
+    const height = Math.max(1, Math.ceil((2 * count) / width));
+    const texels = new Float32Array(3 * width * height);
+    texels.set(positions);
+    this.ends = new DataTexture(texels, width, height, RGBFormat, FloatType);
+    this.ends.internalFormat = 'RGB32F'; // three names none for RGB floats itself
+    this.ends.minFilter = this.ends.magFilter = NearestFilter;
+    this.ends.needsUpdate = true;
     // An open run's start caps: its first segment's, and its first non-degenerate one's after degenerate ones.
     let caps = 0;
     for (const [start, length, closed] of runs) {
@@ -201,12 +216,9 @@ export class SegmentGeometry extends BufferGeometry {
     });
     if (covered !== count) throw new Error('SegmentGeometry: the runs do not cover every segment once');
     this.setIndex(new BufferAttribute(index, 1));
-    const buffer = new InterleavedBuffer(ends, 6);
-    this.setAttribute('instanceStart', new InterleavedBufferAttribute(buffer, 3, 0));
-    this.setAttribute('instanceEnd', new InterleavedBufferAttribute(buffer, 3, 3));
     this.setAttribute('instanceShown', new BufferAttribute(new Uint8Array(count * SEGMENT_VERTICES), 1));
-    // One entry per segment over the same floats (every 8th vertex), for LineSegments2's raycast.
-    const perSegment = new InstancedInterleavedBuffer(ends, 6 * SEGMENT_VERTICES, 1);
+    // One entry per segment over the positions, for LineSegments2's raycast.
+    const perSegment = new InstancedInterleavedBuffer(positions, 6, 1);
     this.segments = new LineSegmentsGeometry();
     this.segments.setAttribute('instanceStart', new InterleavedBufferAttribute(perSegment, 3, 0));
     this.segments.setAttribute('instanceEnd', new InterleavedBufferAttribute(perSegment, 3, 3));
@@ -223,26 +235,20 @@ export class SegmentGeometry extends BufferGeometry {
    * accessors (the renderer asks for it at the first draw: 141k segments).
    */
   computeBoundingSphere() {
-    // A segment's end points: the first 6 of its vertices' 8 × 6 floats.
-    const floats = this.getAttribute('instanceStart').data.array;
-    const stride = 6 * SEGMENT_VERTICES;
+    const floats = this.positions;
     const min = new Vector3(Infinity, Infinity, Infinity);
     const max = new Vector3(-Infinity, -Infinity, -Infinity);
-    for (let s = 0; s < floats.length; s += stride) {
-      for (let f = s; f < s + 6; f += 3) {
-        min.set(Math.min(min.x, floats[f]), Math.min(min.y, floats[f + 1]), Math.min(min.z, floats[f + 2]));
-        max.set(Math.max(max.x, floats[f]), Math.max(max.y, floats[f + 1]), Math.max(max.z, floats[f + 2]));
-      }
+    for (let f = 0; f < floats.length; f += 3) {
+      min.set(Math.min(min.x, floats[f]), Math.min(min.y, floats[f + 1]), Math.min(min.z, floats[f + 2]));
+      max.set(Math.max(max.x, floats[f]), Math.max(max.y, floats[f + 1]), Math.max(max.z, floats[f + 2]));
     }
     const center = floats.length ? min.add(max).multiplyScalar(0.5) : new Vector3();
     let radiusSq = 0;
-    for (let s = 0; s < floats.length; s += stride) {
-      for (let f = s; f < s + 6; f += 3) {
-        const dx = center.x - floats[f];
-        const dy = center.y - floats[f + 1];
-        const dz = center.z - floats[f + 2];
-        radiusSq = Math.max(radiusSq, dx * dx + dy * dy + dz * dz);
-      }
+    for (let f = 0; f < floats.length; f += 3) {
+      const dx = center.x - floats[f];
+      const dy = center.y - floats[f + 1];
+      const dz = center.z - floats[f + 2];
+      radiusSq = Math.max(radiusSq, dx * dx + dy * dy + dz * dz);
     }
     this.boundingSphere = new Sphere(center, Math.sqrt(radiusSq));
   }
@@ -252,10 +258,24 @@ export class SegmentGeometry extends BufferGeometry {
     const attribute = this.getAttribute('instanceShown');
     attribute.array.fill(shown, first * SEGMENT_VERTICES, (first + count) * SEGMENT_VERTICES);
   }
+
+  dispose() {
+    this.ends.dispose();
+    super.dispose();
+  }
 }
 
-/** LineSegments2 drawn from a SegmentGeometry (not instanced); picks as LineSegments2 does, one hit per segment. */
+/**
+ * LineSegments2 drawn from a SegmentGeometry (not instanced), its material
+ * reading the geometry's end points; picks as LineSegments2 does, one hit
+ * per segment.
+ */
 class SegmentLines extends LineSegments2 {
+  onBeforeRender(renderer, scene, camera, geometry, material) {
+    // The renderer uploads a material's uniforms at its first draw in a frame (each object has a material of its own).
+    material.uniforms.segmentEnds.value = geometry.ends;
+  }
+
   raycast(raycaster, intersects) {
     const geometry = this.geometry;
     if (!geometry.segmentCount) return;
@@ -270,14 +290,20 @@ class SegmentLines extends LineSegments2 {
 
 /**
  * LineMaterial for a SegmentGeometry: the template's corner (position) and
- * uv come from gl_VertexID % 8 instead of attributes, and a hidden segment
- * (instanceShown = 0) leaves the vertex shader at once, outside the clip volume.
+ * uv come from gl_VertexID % 8 instead of attributes, the end points
+ * (instanceStart, instanceEnd) from the geometry's texture, and a hidden
+ * segment (instanceShown = 0) leaves the vertex shader at once, outside the
+ * clip volume.
  */
 export function segmentLineMaterial(parameters) {
   const material = new LineMaterial(parameters);
+  material.uniforms.segmentEnds = { value: null };
   const shader = material.vertexShader;
   const replaced = shader
-    .replace('attribute vec3 instanceEnd;', 'attribute vec3 instanceEnd;\n\t\tattribute float instanceShown;')
+    .replace(
+      /attribute vec3 instanceStart;\s*attribute vec3 instanceEnd;/,
+      'uniform highp sampler2D segmentEnds; // segment s: texels 2s, 2s + 1\n\t\tattribute float instanceShown;',
+    )
     .replace(
       'void main() {',
       `void main() {
@@ -288,11 +314,20 @@ export function segmentLineMaterial(parameters) {
 			int corner = gl_VertexID % ${SEGMENT_VERTICES};
 			float row = float( 2 - corner / 2 );
 			vec2 segmentCorner = vec2( ( corner % 2 ) == 1 ? 1.0 : - 1.0, row );
-			vec2 segmentUv = vec2( segmentCorner.x, row > 0.5 ? row : row - 1.0 );`,
+			vec2 segmentUv = vec2( segmentCorner.x, row > 0.5 ? row : row - 1.0 );
+			int texel = 2 * ( gl_VertexID / ${SEGMENT_VERTICES} );
+			int width = textureSize( segmentEnds, 0 ).x; // even: a segment's two texels share a row
+			ivec2 at = ivec2( texel % width, texel / width );
+			vec3 instanceStart = texelFetch( segmentEnds, at, 0 ).xyz;
+			vec3 instanceEnd = texelFetch( segmentEnds, at + ivec2( 1, 0 ), 0 ).xyz;`,
     )
     .replace(/\bposition\.([xy])\b/g, 'segmentCorner.$1')
     .replace('vUv = uv;', 'vUv = segmentUv;');
-  if (!replaced.includes('segmentUv;') || /\bposition\b/.test(replaced.slice(replaced.indexOf('void main()'))))
+  if (
+    !replaced.includes('segmentUv;') ||
+    /attribute vec3 instance(Start|End)/.test(replaced) ||
+    /\bposition\b/.test(replaced.slice(replaced.indexOf('void main()')))
+  )
     throw new Error('LineMaterial: its vertex shader is not the one segmentLineMaterial adapts');
   material.vertexShader = replaced;
   return material;
