@@ -64,11 +64,12 @@ bool checked(const Ready& ready) {
 }
 
 // True if ready() became true within kChecksBeforeSleep checks, or natively
-// within kSpinBeforeSleep.
+// within kSpinBeforeSleep if `spin` (a loop on no more threads than cores:
+// with more, a spinning thread would take the core of the one it waits for).
 template <class Ready>
-bool soon(const Ready& ready) {
+bool soon(const Ready& ready, bool spin) {
   if (checked(ready)) return true;
-  if constexpr (kSpinBeforeSleep.count() > 0) {
+  if (kSpinBeforeSleep.count() > 0 && spin) {
     const auto until = std::chrono::steady_clock::now() + kSpinBeforeSleep;
     do {
       if (checked(ready)) return true;
@@ -110,6 +111,9 @@ class Pool {
       workers_.emplace_back([this, index] { work(index); });
     }
     const uint64_t generation = generation_.load(std::memory_order_relaxed) + 1;
+    // hardware_concurrency() reads a file in glibc: once.
+    static const size_t cores = static_cast<size_t>(hardware_threads());
+    spin_.store(threads <= cores, std::memory_order_relaxed);
     chunk_.store(&chunk, std::memory_order_relaxed);
     threads_.store(threads, std::memory_order_relaxed);
     pieces_.store(pieces, std::memory_order_relaxed);
@@ -126,7 +130,7 @@ class Pool {
     }
     take_pieces(0, generation, threads);
     const auto finished = [&] { return done_.load(std::memory_order_acquire) == pieces; };
-    if (!soon(finished)) {
+    if (!soon(finished, spin_.load(std::memory_order_relaxed))) {
       std::unique_lock<std::mutex> lock(mutex_);
       finished_.wait(lock, finished);
     }
@@ -189,7 +193,7 @@ class Pool {
     uint64_t seen = generation_.load(std::memory_order_acquire) - 1;
     for (;;) {
       const auto published = [&] { return generation_.load(std::memory_order_seq_cst) != seen; };
-      if (!soon(published)) {
+      if (!soon(published, spin_.load(std::memory_order_relaxed))) {
         std::unique_lock<std::mutex> lock(mutex_);
         sleepers_.fetch_add(1, std::memory_order_seq_cst);
         wake_.wait(lock, [&] { return stop_ || published(); });
@@ -209,6 +213,7 @@ class Pool {
   std::atomic<const std::function<void(size_t)>*> chunk_{nullptr};
   std::atomic<size_t> threads_{0}, pieces_{0}, done_{0};
   std::atomic<bool> failed_{false};
+  std::atomic<bool> spin_{false};  // the latest loop fits on the cores: threads waiting after it spin first (soon)
   std::atomic<uint64_t> next_[kMaxThreads] = {};  // per run (see word())
   std::atomic<int> sleepers_{0};
   std::mutex mutex_;  // guards error_, stop_ and the sleeps
