@@ -17,8 +17,9 @@ namespace crestline {
 namespace {
 
 #ifdef CRESTLINE_THREADS
-int hardware_threads() { return static_cast<int>(std::max(1u, std::thread::hardware_concurrency())); }
-std::atomic<int> g_threads{hardware_threads()};
+// The cores, read once (glibc's hardware_concurrency() reads a file in /sys).
+const int g_cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+std::atomic<int> g_threads{g_cores};
 
 // True on a thread while it runs a chunk of a parallel loop: a loop nested
 // in one runs on that thread alone.
@@ -111,9 +112,7 @@ class Pool {
       workers_.emplace_back([this, index] { work(index); });
     }
     const uint64_t generation = generation_.load(std::memory_order_relaxed) + 1;
-    // hardware_concurrency() reads a file in glibc: once.
-    static const size_t cores = static_cast<size_t>(hardware_threads());
-    spin_.store(threads <= cores, std::memory_order_relaxed);
+    spin_.store(threads <= static_cast<size_t>(g_cores), std::memory_order_relaxed);
     chunk_.store(&chunk, std::memory_order_relaxed);
     threads_.store(threads, std::memory_order_relaxed);
     pieces_.store(pieces, std::memory_order_relaxed);

@@ -174,12 +174,13 @@ export class SegmentGeometry extends BufferGeometry {
     this.type = 'SegmentGeometry';
     const count = positions.length / 6;
     this.segmentCount = count;
-    this.positions = positions;
     // The texture's rows are whole; the floats past the segments' are 0 and never read.
     const width = segmentTextureWidth(count);
     const height = Math.max(1, Math.ceil((2 * count) / width));
     const texels = new Float32Array(3 * width * height);
     texels.set(positions);
+    // The end points for the raycast and the bounds: the texture's own floats, not a second copy.
+    this.positions = texels.subarray(0, positions.length);
     this.ends = new DataTexture(texels, width, height, RGBFormat, FloatType);
     this.ends.internalFormat = 'RGB32F'; // three names none for RGB floats itself
     this.ends.minFilter = this.ends.magFilter = NearestFilter;
@@ -218,7 +219,7 @@ export class SegmentGeometry extends BufferGeometry {
     this.setIndex(new BufferAttribute(index, 1));
     this.setAttribute('instanceShown', new BufferAttribute(new Uint8Array(count * SEGMENT_VERTICES), 1));
     // One entry per segment over the positions, for LineSegments2's raycast.
-    const perSegment = new InstancedInterleavedBuffer(positions, 6, 1);
+    const perSegment = new InstancedInterleavedBuffer(this.positions, 6, 1);
     this.segments = new LineSegmentsGeometry();
     this.segments.setAttribute('instanceStart', new InterleavedBufferAttribute(perSegment, 3, 0));
     this.segments.setAttribute('instanceEnd', new InterleavedBufferAttribute(perSegment, 3, 3));
