@@ -6,6 +6,7 @@
 #include <numeric>
 #include <utility>
 
+#include "crestline/numerics/parallel.h"
 #include "crestline/parameters.h"
 
 namespace crestline {
@@ -273,8 +274,13 @@ void Pipeline::measure_boundary_segments(const Topology& topology, const Mesh& l
   for (uint32_t e : boundary_edges_)
     for (uint32_t v : topology.edges[e])
       if (slot[v] == kNone) slot[v] = static_cast<uint32_t>(sum.size()), sum.push_back(0), count.push_back(0);
-  for (const auto& [a, b] : topology.edges) {
-    if (slot[a] == kNone && slot[b] == kNone) continue;
+  // The edges at them found on every thread (at 1.1M triangles the scan was
+  // ≈ 4 ms of the calling thread alone on 2), added in edge order.
+  const std::vector<uint32_t> at_ends = indices_where(topology.edges.size(), [&](size_t e) {
+    return slot[topology.edges[e][0]] != kNone || slot[topology.edges[e][1]] != kNone;
+  });
+  for (uint32_t e : at_ends) {
+    const auto [a, b] = topology.edges[e];
     const double length = (local.positions[b] - local.positions[a]).norm();
     for (uint32_t v : {a, b})
       if (slot[v] != kNone) sum[slot[v]] += length, ++count[slot[v]];

@@ -136,14 +136,19 @@ std::vector<uint32_t> boundary_ring_distance(const Mesh& mesh, const Topology& t
     if (topology.boundary_vertex[v]) distance[v] = 0, front = true;
   // Each ring from the triangles with a corner on the one before: a pass
   // over the triangles instead of the vertex fans, which the smoothing and
-  // the tracer, the callers, run without (release_triangle_lists).
+  // the tracer, the callers, run without (release_triangle_lists). The pass
+  // runs on every thread (at 1.1M triangles it was ≈ 4 ms of the calling
+  // thread alone per caller on 2 threads); marking the triangles found after
+  // it gives the same distances as marking them during it.
   for (uint32_t ring = 1; ring < max_rings && front; ++ring) {
+    const std::vector<uint32_t> touching = indices_where(mesh.triangles.size(), [&](size_t t) {
+      const Triangle& f = mesh.triangles[t];
+      return distance[f[0]] == ring - 1 || distance[f[1]] == ring - 1 || distance[f[2]] == ring - 1;
+    });
     front = false;
-    for (const Triangle& f : mesh.triangles) {
-      if (distance[f[0]] != ring - 1 && distance[f[1]] != ring - 1 && distance[f[2]] != ring - 1) continue;
-      for (uint32_t w : f)
+    for (uint32_t t : touching)
+      for (uint32_t w : mesh.triangles[t])
         if (distance[w] > ring) distance[w] = ring, front = true;
-    }
   }
   return distance;
 }

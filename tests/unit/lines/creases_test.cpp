@@ -5,6 +5,7 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <numeric>
 #include <random>
 
 #include "../mesh/on_threads.h"
@@ -335,6 +336,33 @@ TEST_CASE("cutting along creases splits each crease vertex into its sides", "[cr
   CHECK(open_boundary == flat_boundary + 6);
   // Nothing to cut: the same mesh.
   CHECK(cut_along_edges(flat, ft, {}).copy_of.empty());
+}
+
+TEST_CASE("per-vertex values extend to a cut's copies, grown on any thread count or within capacity",
+          "[creases][cut]") {
+  CutMesh cut;
+  cut.input_vertices = 10000;
+  cut.copy_of = {0, 3, 3, 9999};
+  std::vector<Vec3> points(cut.input_vertices);
+  for (size_t v = 0; v < points.size(); ++v) points[v] = Vec3(double(v), -double(v), 0.5);
+  std::vector<Vec3> want = points;
+  for (uint32_t v : cut.copy_of) want.push_back(points[v]);
+  for (int threads : {1, 2, 3}) {
+    INFO("threads " << threads);
+    CHECK(testing::on_threads(threads, [&] { return on_cut_vertices(cut, points); }) == want);
+  }
+  std::vector<Vec3> roomy = points;
+  roomy.reserve(points.size() + 10);
+  const Vec3* const storage = roomy.data();
+  const std::vector<Vec3> extended = on_cut_vertices(cut, std::move(roomy));
+  CHECK(extended == want);
+  CHECK(extended.data() == storage);  // extended in place
+  std::vector<uint32_t> labels(cut.input_vertices);
+  std::iota(labels.begin(), labels.end(), 0u);
+  labels = testing::on_threads(2, [&] { return on_cut_vertices(cut, labels); });
+  REQUIRE(labels.size() == cut.input_vertices + 4);
+  CHECK(std::vector<uint32_t>(labels.end() - 4, labels.end()) == cut.copy_of);
+  CHECK(labels[1234] == 1234);
 }
 
 // cut_topology regroups only the edges at split vertices; it must give

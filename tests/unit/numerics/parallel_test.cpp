@@ -116,3 +116,20 @@ TEST_CASE("run_side_by_side runs each task once, first then second on one thread
     CHECK_THROWS_AS(run_side_by_side([] {}, [] { throw std::runtime_error("second failed"); }), std::runtime_error);
   }
 }
+
+TEST_CASE("indices_where lists the matches in ascending order, the same on 1 to 4 threads", "[numerics][threads]") {
+  // Matches at every seventh index and in a dense run, over counts that make
+  // one block (stays on the caller), a few and the most (64).
+  for (size_t count : {100u, 3000u, 200000u}) {
+    std::vector<uint32_t> want;
+    const auto keep = [](size_t i) { return i % 7 == 3 || (i >= 900 && i < 1400); };
+    for (size_t i = 0; i < count; ++i)
+      if (keep(i)) want.push_back(static_cast<uint32_t>(i));
+    for (int threads : {1, 2, 3, 4}) {
+      INFO("count " << count << ", threads " << threads);
+      const ThreadLimit limit(threads);
+      CHECK(indices_where(count, keep) == want);
+    }
+  }
+  CHECK(indices_where(0, [](size_t) { return true; }).empty());
+}

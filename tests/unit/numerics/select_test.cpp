@@ -63,3 +63,25 @@ TEST_CASE("value_at_rank of doubles is nth_element's value", "[numerics][select]
     CHECK(detail::value_at_rank(copy.data(), copy.size(), rank) == reference(values, rank));
   }
 }
+
+TEST_CASE("value_at_rank has the same bits on any number of threads", "[numerics][select][threads]") {
+  // Signed zeros at the median: nth_element may return either, so only the
+  // copies' order decides which, and the blocks' copies join in the values'
+  // order whatever thread made them. 3 % zeros keep the window inside its
+  // eighth (no fallback to nth_element over all values).
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  std::vector<double> values(1000000);
+  for (double& v : values) v = random() % 100 < 3 ? (random() % 2 ? 0.0 : -0.0) : unit(random);
+  const int threads_before = max_threads();
+  std::vector<double> medians;
+  for (int threads : {1, 2, 3, 7}) {
+    set_max_threads(threads);
+    std::vector<double> copy = values;
+    medians.push_back(detail::value_at_rank(copy.data(), copy.size(), copy.size() / 2));
+    CHECK(copy == values);  // the window served
+  }
+  set_max_threads(threads_before);
+  CHECK(medians[0] == 0.0);
+  for (double m : medians) CHECK(std::signbit(m) == std::signbit(medians[0]));
+}

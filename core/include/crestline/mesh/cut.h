@@ -6,11 +6,13 @@
 // operator (§3), pre-smoothing and extremality smoothing (§5.1), the tracer's
 // boundary band (§4) — sees each side of a crease as a surface with a
 // boundary, and nothing reaches across it.
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
 #include "crestline/mesh/mesh.h"
 #include "crestline/mesh/topology.h"
+#include "crestline/numerics/parallel.h"
 
 namespace crestline {
 
@@ -48,8 +50,20 @@ Topology cut_topology(Topology topology, const CutMesh& cut);
 /// the value of the vertex it split from.
 template <typename T>
 std::vector<T> on_cut_vertices(const CutMesh& cut, std::vector<T> values) {
-  values.reserve(values.size() + cut.copy_of.size());  // the references below stay valid
-  for (uint32_t v : cut.copy_of) values.push_back(values[v]);
+  const size_t n = values.size();
+  if (values.capacity() < n + cut.copy_of.size()) {
+    // Copied to the larger array on every thread, where its pages are first
+    // touched (growing it in place copied on the calling thread alone: the
+    // positions at 1.1M triangles ≈ 5 ms of it on 2 threads). Eigen's
+    // vectors construct uninitialised, so sizing it writes nothing for them.
+    std::vector<T> grown(n + cut.copy_of.size());
+    parallel_for(n, [&](size_t begin, size_t end) {
+      std::copy(values.begin() + begin, values.begin() + end, grown.begin() + begin);
+    });
+    for (size_t k = 0; k < cut.copy_of.size(); ++k) grown[n + k] = values[cut.copy_of[k]];
+    return grown;
+  }
+  for (uint32_t v : cut.copy_of) values.push_back(values[v]);  // within capacity: references stay valid
   return values;
 }
 
