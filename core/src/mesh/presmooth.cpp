@@ -266,7 +266,7 @@ std::vector<double> surface_noise_levels(const Mesh& mesh, const Topology& topol
   UninitialisedVector<double> offset(nv);
   UninitialisedVector<uint8_t> valid(nv);
   {
-    std::vector<NeighbourSum<Vec3>> around(nv, NeighbourSum<Vec3>{Vec3::Zero(), 0});
+    UninitialisedVector<NeighbourSum<Vec3>> around = filled_on_every_thread(nv, NeighbourSum<Vec3>{Vec3::Zero(), 0});
     sweep_edges(
         topology, nv, parts,
         [&](size_t part, uint32_t v, size_t first, size_t last, const auto& mine) {
@@ -324,7 +324,7 @@ std::vector<double> surface_noise_levels(const Mesh& mesh, const Topology& topol
   UninitialisedVector<double> jump(nv);
   UninitialisedVector<uint8_t> has_jump(nv);
   {
-    std::vector<NeighbourSum<double>> around(nv, NeighbourSum<double>{0.0, 0});
+    UninitialisedVector<NeighbourSum<double>> around = filled_on_every_thread(nv, NeighbourSum<double>{0.0, 0});
     sweep_edges(
         topology, nv, parts,
         [&](size_t, uint32_t v, size_t first, size_t last, const auto& mine) {

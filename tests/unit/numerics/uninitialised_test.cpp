@@ -3,12 +3,17 @@
 // what it is for), while every construction with a value still happens.
 #include "crestline/numerics/uninitialised.h"
 
+#include <algorithm>
+#include <array>
 #include <catch2/catch.hpp>
 #include <cstdint>
 #include <cstring>
 #include <memory>
 #include <string>
 
+using crestline::filled_on_every_thread;
+using crestline::max_threads;
+using crestline::set_max_threads;
 using crestline::UninitialisedAllocator;
 using crestline::UninitialisedVector;
 
@@ -37,4 +42,18 @@ TEST_CASE("UninitialisedVector: resize does not zero-fill, values are constructe
   words.emplace_back("x");
   CHECK(words.size() == 3);
   CHECK(words[2] == "x");
+}
+
+TEST_CASE("filled_on_every_thread writes every element, on 1 to 3 threads", "[numerics][threads]") {
+  const int threads_before = max_threads();
+  for (int threads : {1, 2, 3}) {
+    INFO("threads " << threads);
+    set_max_threads(threads);
+    const std::array<double, 6> value = {1.5, -2, 0, 3, 4, 5};
+    const UninitialisedVector<std::array<double, 6>> filled = filled_on_every_thread(100003, value);
+    CHECK(filled.size() == 100003);
+    CHECK(std::count(filled.begin(), filled.end(), value) == 100003);
+    CHECK(filled_on_every_thread(0, 7).empty());
+  }
+  set_max_threads(threads_before);
 }
