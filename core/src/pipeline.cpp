@@ -6,8 +6,8 @@
 #include <numeric>
 #include <utility>
 
-#include "crestline/numerics/parallel.h"
 #include "crestline/parameters.h"
+#include "mesh/parts.h"
 
 namespace crestline {
 namespace {
@@ -276,7 +276,7 @@ void Pipeline::measure_boundary_segments(const Topology& topology, const Mesh& l
       if (slot[v] == kNone) slot[v] = static_cast<uint32_t>(sum.size()), sum.push_back(0), count.push_back(0);
   // The edges at them found on every thread (at 1.1M triangles the scan was
   // ≈ 4 ms of the calling thread alone on 2), added in edge order.
-  const std::vector<uint32_t> at_ends = indices_where(topology.edges.size(), [&](size_t e) {
+  const std::vector<uint32_t> at_ends = detail::indices_where(topology.edges.size(), [&](size_t e) {
     return slot[topology.edges[e][0]] != kNone || slot[topology.edges[e][1]] != kNone;
   });
   for (uint32_t e : at_ends) {

@@ -2,8 +2,8 @@
 // Loops cut into a few consecutive parts whose results are then combined in
 // part order (counts turned into offsets, boxes merged): the combined result
 // is the same however many parts there are or run at once, so the parts can
-// follow the thread count. Shared by repair_mesh, build_topology and
-// component_frames.
+// follow the thread count. Shared by repair_mesh, build_topology,
+// component_frames and the scans of a few matches (indices_where).
 #include <algorithm>
 #include <atomic>
 #include <cstddef>
@@ -68,6 +68,22 @@ size_t place_kept(size_t count, const Keep& keep, const Sized& sized, const Plac
       if (keep(i)) place(i, rank++);
   });
   return offset[parts];
+}
+
+/// The i in [0, count) with keep(i), ascending (count < 2^32): place_kept's
+/// result in one pass instead of two, each part listing its own, for scans
+/// whose matches are few. keep is called once per index.
+template <typename Keep>
+std::vector<uint32_t> indices_where(size_t count, const Keep& keep) {
+  const size_t parts = part_count(count);
+  std::vector<std::vector<uint32_t>> found(parts);
+  for_each_part(parts, count, [&](size_t p, size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i)
+      if (keep(i)) found[p].push_back(static_cast<uint32_t>(i));
+  });
+  std::vector<uint32_t> out = std::move(found[0]);
+  for (size_t p = 1; p < parts; ++p) out.insert(out.end(), found[p].begin(), found[p].end());
+  return out;
 }
 
 }  // namespace crestline::detail

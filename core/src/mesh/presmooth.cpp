@@ -133,12 +133,9 @@ static std::vector<uint8_t> clean_crease_vertices(const Mesh& mesh, const Topolo
   if (sharp.empty()) return out;
   auto cosine = [&](uint32_t e, bool& degenerate) { return edge_cosine(topology, n, e, degenerate); };
   // Their vertices, gathered in ascending order on every thread.
-  std::vector<uint32_t> candidates;
   std::vector<uint8_t> state(nv, 0);  // 1 for a candidate, then its state (below)
   for (uint32_t e : sharp) state[topology.edges[e][0]] = state[topology.edges[e][1]] = 1;
-  detail::place_kept(
-      nv, [&](size_t v) { return state[v] != 0; }, [&](size_t count) { candidates.resize(count); },
-      [&](size_t v, size_t rank) { candidates[rank] = uint32_t(v); });
+  const std::vector<uint32_t> candidates = detail::indices_where(nv, [&](size_t v) { return state[v] != 0; });
   // Each one's state (crease_state), its turn in turn[i] for candidates[i].
   std::vector<double> turn(candidates.size(), 0.0);
   auto turn_at = [&](uint32_t v) {

@@ -141,7 +141,7 @@ std::vector<uint32_t> boundary_ring_distance(const Mesh& mesh, const Topology& t
   // thread alone per caller on 2 threads); marking the triangles found after
   // it gives the same distances as marking them during it.
   for (uint32_t ring = 1; ring < max_rings && front; ++ring) {
-    const std::vector<uint32_t> touching = indices_where(mesh.triangles.size(), [&](size_t t) {
+    const std::vector<uint32_t> touching = detail::indices_where(mesh.triangles.size(), [&](size_t t) {
       const Triangle& f = mesh.triangles[t];
       return distance[f[0]] == ring - 1 || distance[f[1]] == ring - 1 || distance[f[2]] == ring - 1;
     });

@@ -20,8 +20,8 @@ namespace crestline::detail {
 /// the values (equal values have equal bits, but for ±0, either of which
 /// nth_element may return too). A sample of every (count / 2^14)-th value
 /// bounds a window around the rank; one pass (on every thread) counts the
-/// values below it and copies those inside, and nth_element finds the rank among the copies.
-/// The sample decides the speed only, never the value: where the window
+/// values below it and copies those inside, and nth_element finds the rank
+/// among the copies. The sample decides the speed only, never the value: where the window
 /// misses the rank (an unrepresentative sample) or holds more than an
 /// eighth of the values (many equal), nth_element over all of them, which
 /// reorders them; otherwise they are only read.

@@ -10,6 +10,8 @@
 #include <thread>
 #include <vector>
 
+#include "../../../core/src/mesh/parts.h"
+
 using namespace crestline;
 
 namespace {
@@ -119,7 +121,7 @@ TEST_CASE("run_side_by_side runs each task once, first then second on one thread
 
 TEST_CASE("indices_where lists the matches in ascending order, the same on 1 to 4 threads", "[numerics][threads]") {
   // Matches at every seventh index and in a dense run, over counts that make
-  // one block (stays on the caller), a few and the most (64).
+  // one part (stays on the caller) and one per thread.
   for (size_t count : {100u, 3000u, 200000u}) {
     std::vector<uint32_t> want;
     const auto keep = [](size_t i) { return i % 7 == 3 || (i >= 900 && i < 1400); };
@@ -128,8 +130,8 @@ TEST_CASE("indices_where lists the matches in ascending order, the same on 1 to 
     for (int threads : {1, 2, 3, 4}) {
       INFO("count " << count << ", threads " << threads);
       const ThreadLimit limit(threads);
-      CHECK(indices_where(count, keep) == want);
+      CHECK(detail::indices_where(count, keep) == want);
     }
   }
-  CHECK(indices_where(0, [](size_t) { return true; }).empty());
+  CHECK(detail::indices_where(0, [](size_t) { return true; }).empty());
 }

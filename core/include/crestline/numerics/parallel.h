@@ -6,11 +6,8 @@
 // Threads exist only when core is built with CRESTLINE_THREADS (the CMake
 // option: ON natively, OFF under Emscripten, where the single-threaded
 // module is the default); otherwise everything runs on the calling thread.
-#include <algorithm>
 #include <cstddef>
-#include <cstdint>
 #include <functional>
-#include <vector>
 
 namespace crestline {
 
@@ -29,30 +26,5 @@ void parallel_for(size_t count, const std::function<void(size_t begin, size_t en
 /// else first() then second() on the caller. Each task writes only its own
 /// results, so they are the same either way.
 void run_side_by_side(const std::function<void()>& first, const std::function<void()>& second);
-
-/// The indices i in [0, count) where keep(i) holds, ascending (count <
-/// 2^32), for a scan whose matches are few: tested on every thread, each
-/// block of the range listing its own, joined in order (the same list for
-/// any thread count). Ranges under two blocks stay on the caller.
-template <typename Keep>
-std::vector<uint32_t> indices_where(size_t count, const Keep& keep, size_t block = 256) {
-  const size_t blocks = std::clamp<size_t>(count / std::max<size_t>(block, 1), 1, 64);
-  std::vector<std::vector<uint32_t>> found(blocks);
-  parallel_for(
-      blocks,
-      [&](size_t first, size_t last) {
-        for (size_t b = first; b < last; ++b)
-          for (size_t i = count * b / blocks, end = count * (b + 1) / blocks; i < end; ++i)
-            if (keep(i)) found[b].push_back(static_cast<uint32_t>(i));
-      },
-      1);
-  if (blocks == 1) return std::move(found[0]);
-  size_t total = 0;
-  for (const std::vector<uint32_t>& list : found) total += list.size();
-  std::vector<uint32_t> out;
-  out.reserve(total);
-  for (const std::vector<uint32_t>& list : found) out.insert(out.end(), list.begin(), list.end());
-  return out;
-}
 
 }  // namespace crestline
